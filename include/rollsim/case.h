@@ -1,0 +1,96 @@
+/* A rollsim case: every key of interfaces.md "Case file (YAML)", resolved and
+ * validated, with defaults filled in. Units: mm, N, s, N/mm^2 (model.md §1). */
+#ifndef ROLLSIM_CASE_H
+#define ROLLSIM_CASE_H
+
+#include <stdio.h>
+#include "rollsim/history.h"
+#include "rollsim/status.h"
+
+typedef enum { RS_NORMAL_DISCRETE = 0, RS_NORMAL_HERTZ = 1 } rs_normal_solution;
+typedef enum { RS_MODE_TRANSIENT = 0, RS_MODE_STEADY = 1 } rs_mode;
+typedef enum { RS_START_REST = 0, RS_START_STEADY = 1 } rs_initial_state;
+
+/* Choice of the semismooth scaling r (model.md §4, §9): r = 1/(c_j*C_self + V*C_shift/dx)
+ * with C_shift the steady self-compliance difference (A(0)-A(dx)) or the self-compliance A(0). */
+typedef enum { RS_SCALING_AUTO = 0, RS_SCALING_DIFFERENCE = 1, RS_SCALING_SELF = 2 } rs_scaling;
+
+/* Output fields (bit mask) */
+enum {
+  RS_FIELD_PX = 1 << 0,
+  RS_FIELD_PN = 1 << 1,
+  RS_FIELD_SLIP = 1 << 2,
+  RS_FIELD_UPL = 1 << 3,
+  RS_FIELD_USTAR = 1 << 4,
+  RS_FIELD_TAUC = 1 << 5,
+  RS_FIELD_REGIME = 1 << 6
+};
+
+typedef struct rs_case {
+  char *source_path; /* the case file as given on the command line */
+  char *yaml_text;   /* the case as run (after --set), as YAML text */
+  char *title;
+
+  /* contact: */
+  int dimension;                      /* 2 (3 is rejected for now) */
+  rs_history normal_load;             /* N/mm (2D) */
+  double radius;                      /* mm, combined radius */
+  rs_normal_solution normal_solution;
+  double reference_length;            /* mm, L of the 2D kernel */
+
+  /* grid: */
+  int cells;
+  double extent;                      /* half-length of the potential contact area, in Hertz a */
+
+  /* material: */
+  double shear_modulus;               /* G, N/mm^2 */
+  double poisson_ratio;               /* nu */
+
+  /* friction: (law: coulomb is the only law) */
+  double mu;
+
+  /* layer: */
+  double layer_thickness;             /* h3, mm */
+  double layer_shear_modulus;         /* G3, N/mm^2 */
+
+  /* plasticity: */
+  int has_plasticity;                 /* 0: the block is absent (purely elastic) */
+  double tau_c0;                      /* N/mm^2 */
+  double k_tau;                       /* N/mm^3 (k_rel converted: k_tau = G*k_rel/(1-k_rel)) */
+  double tau_c_min;                   /* N/mm^2, default 0.1*tau_c0 */
+
+  /* rolling: */
+  rs_history velocity;                /* V, mm/s */
+  rs_history creepage;                /* xi */
+  double shift_velocity;              /* mm/s */
+
+  /* simulation: */
+  rs_mode mode;
+  double end_time;                    /* s (derived from rolled_distance when that was given) */
+  double rolled_distance;             /* mm, < 0 when not given */
+  double output_interval;             /* s */
+  rs_initial_state initial_state;
+
+  /* solver: */
+  double rtol, atol;                  /* atol in N/mm^2 (tractions) */
+  int max_order;
+  rs_scaling scaling;                 /* solver.scaling: auto | difference | self */
+  long max_steps;                     /* solver.max_steps, default 1000000 */
+
+  /* output: */
+  char *output_file;
+  unsigned fields;                    /* RS_FIELD_* mask */
+} rs_case;
+
+/* Load and validate a case file. `sets` are the --set KEY=VALUE strings, applied
+ * after parsing the file (a --set value is parsed as a YAML scalar/flow node).
+ * On error returns RS_ERR_INPUT with msg like
+ *   "cases/x.yaml:12: plasticity.k_tau: expected a number, got \"abc\""
+ * and leaves *c freed/zeroed. */
+int rs_case_load(rs_case *c, const char *path, const char *const *sets, int nsets, rs_msg *msg);
+void rs_case_free(rs_case *c);
+
+/* Print every resolved parameter, one "key: value  # unit" line each (for `rollsim check`). */
+void rs_case_print(const rs_case *c, FILE *out);
+
+#endif

@@ -1,0 +1,104 @@
+/* The 2D rolling-contact model with local plasticity (model.md §4-5), semi-
+ * discretised in space: the DAE F(t, y, y') = 0 with, per contact-grid cell I,
+ *   y = [ p_0..p_{n-1} | upl_0..upl_{n-1} | ustar_0..ustar_{n-1} ]
+ * (tangential traction on body 1, plastic displacement difference, accumulated
+ * plastic deformation). This module is pure physics: plain arrays, no SUNDIALS. */
+#ifndef ROLLSIM_MODEL_H
+#define ROLLSIM_MODEL_H
+
+#include <stdint.h>
+#include "rollsim/case.h"
+#include "rollsim/elastic.h"
+#include "rollsim/history.h"
+#include "rollsim/status.h"
+
+/* Regime of a cell (paper eqs. 7-10); the values are the netCDF flag values. */
+typedef enum { RS_EXTERIOR = 0, RS_ADHESION = 1, RS_SLIP = 2, RS_PLASTIC = 3 } rs_regime;
+
+/* Active branch of each semismooth equation of a cell (bit flags). */
+enum { RS_BRANCH_EXTERIOR = 1, RS_BRANCH_SLIP = 2, RS_BRANCH_YIELD = 4 };
+
+typedef struct rs_model {
+  int n;                   /* contact-grid cells */
+  int neq;                 /* 3 n */
+  double dx;               /* mm */
+  double *x;               /* cell centres, mm [n] */
+  double hertz_a, hertz_p0;
+  rs_elastic2d el;
+  double layer_flex;       /* h3/G3, mm/(N/mm^2), added to the self term only */
+  double normal_load;      /* N/mm */
+  double approach;         /* delta of the normal solution, mm */
+  double *pn;              /* pressure [n] */
+  double *bound;           /* traction bound g = mu p_n [n] */
+  double mu;
+  int has_plasticity;
+  double tau_c0, k_tau, tau_c_min;
+  rs_history velocity, creepage;
+  double shift_velocity;   /* mm/s */
+  rs_scaling scaling;
+  double time_scale;       /* s: sets r when there is neither rolling nor a time step */
+  double inflow_upl, inflow_ustar; /* state of the material entering at the leading edge */
+} rs_model;
+
+/* Build grid, influence coefficients and the normal solution from a case. */
+int rs_model_create(rs_model *m, const rs_case *c, rs_msg *msg);
+void rs_model_free(rs_model *m);
+
+/* Compressed sparse row matrix (the generalized Jacobian). Indices are int64 to
+ * match SUNDIALS' sunindextype. */
+typedef struct rs_csr {
+  int64_t nrows, cap_rows, cap; /* rows assembled, rows of the matrix, entries capacity */
+  int64_t *rowptr; /* [nrows + 1] */
+  int64_t *col;    /* [cap] */
+  double *val;     /* [cap] */
+} rs_csr;
+
+/* Work arrays for residual/Jacobian evaluation. */
+typedef struct rs_work {
+  double *uel;     /* elastic displacement difference on the padded grid [n + 1] */
+  double *ueldot;  /* its time derivative [n] */
+  double *vslip;   /* slip velocity v_s [n] */
+  double *dupl;    /* Du_pl/Dt [n] */
+  double *dustar;  /* Dustar/Dt [n] */
+  unsigned char *branch; /* RS_BRANCH_* flags per cell [n] */
+} rs_work;
+
+int rs_work_create(rs_work *w, int n);
+void rs_work_free(rs_work *w);
+
+/* Maximum number of Jacobian nonzeros (dense traction block plus bands). */
+int64_t rs_model_jac_capacity(const rs_model *m);
+
+/* The semismooth scaling r (traction per slip velocity), model.md §4:
+ * r = 1 / (cj * C_self + V * C_shift / dx). */
+double rs_model_scaling(const rs_model *m, double t, double cj);
+
+/* Residual F(t, y, yp) (traction units, every row), with r from cj. F may be
+ * NULL (only the work arrays are filled). If jac is non-NULL, the generalized
+ * Jacobian dF/dy + cj dF/dyp is assembled in it (structurally zero entries are
+ * left out; the pattern changes only when w->branch changes). */
+int rs_model_eval(const rs_model *m, rs_work *w, double t, const double *y, const double *yp,
+                  double cj, double *F, rs_csr *jac);
+
+/* Consistent rates at a state y (model.md §9 "consistent start"): solves the
+ * adhesion rows for p', exterior p' = 0, slip p' = g' (= 0 at constant load),
+ * upl' and ustar' from their transport equations. Plastic cells are handled with
+ * p' from the hardening law. yp: output [3n]. */
+int rs_model_consistent_rates(const rs_model *m, rs_work *w, double t, const double *y,
+                              double *yp, rs_msg *msg);
+
+/* Quantities of model.md §7 at (t, y, yp). Arrays of length n, any may be NULL. */
+typedef struct rs_diag {
+  double Fx, Fn, creepage, velocity;
+  int count[4]; /* by rs_regime */
+  double frictional_power, plastic_power, elastic_energy, rigid_slip_power;
+} rs_diag;
+
+int rs_model_diagnostics(const rs_model *m, rs_work *w, double t, const double *y,
+                         const double *yp, rs_diag *d, double *slip, double *tauc,
+                         signed char *regime);
+
+/* Yield limit of a cell with accumulated plastic deformation ustar. */
+double rs_model_yield_limit(const rs_model *m, double ustar);
+
+#endif

@@ -1,0 +1,49 @@
+/* Solvers for the rolling-contact DAE (model.md §6):
+ *  - steady rolling: KINSOL (exact semismooth Newton) on F(y, y' = 0) = 0;
+ *  - transient: IDA (variable-order BDF) whose nonlinear systems are solved by
+ *    KINSOL through a custom SUNNonlinearSolver;
+ * both with the generalized Jacobian in a SUNSparseMatrix factored by KLU. */
+#ifndef ROLLSIM_SOLVER_H
+#define ROLLSIM_SOLVER_H
+
+#include "rollsim/model.h"
+#include "rollsim/status.h"
+
+typedef struct rs_stats {
+  long steps;            /* IDA steps (transient) */
+  long nonlin_iters;     /* Newton iterations (KINSOL, summed) */
+  long nonlin_fails;     /* nonlinear solves that failed (IDA then cuts the step) */
+  long err_test_fails;   /* IDA error-test failures */
+  long res_evals;        /* residual evaluations */
+  long jac_evals;        /* Jacobian evaluations = KLU factorizations */
+  long klu_analyses;     /* symbolic analyses (the active set changed) */
+} rs_stats;
+
+/* Steady rolling (V > 0): a reusable solver so that continuation (creep curves)
+ * keeps its allocations. */
+typedef struct rs_steady rs_steady;
+int rs_steady_create(rs_steady **s, const rs_model *m, rs_msg *msg);
+/* Solve F(y, 0) = 0 at time t (inputs evaluated at t); y holds the initial guess
+ * on entry, the solution on return. */
+int rs_steady_solve(rs_steady *s, double t, double *y, rs_stats *stats, rs_msg *msg);
+void rs_steady_free(rs_steady *s);
+
+/* Transient integration. */
+typedef struct rs_transient rs_transient;
+typedef struct rs_transient_opts {
+  double rtol;        /* relative tolerance */
+  double atol;        /* absolute tolerance of tractions, N/mm^2 */
+  int max_order;      /* BDF order limit, 1..5 */
+  long max_steps;     /* per call of rs_transient_advance */
+  int max_newton;     /* Newton iterations per step (KINSOL), default 10 */
+} rs_transient_opts;
+
+/* y0, yp0: a consistent initial state (see rs_model_consistent_rates). */
+int rs_transient_create(rs_transient **tr, const rs_model *m, double t0, const double *y0,
+                        const double *yp0, const rs_transient_opts *opts, rs_msg *msg);
+/* Integrate to tout; y, yp receive the (interpolated) solution at tout. */
+int rs_transient_advance(rs_transient *tr, double tout, double *y, double *yp, rs_msg *msg);
+void rs_transient_get_stats(const rs_transient *tr, rs_stats *stats);
+void rs_transient_free(rs_transient *tr);
+
+#endif

@@ -1,0 +1,366 @@
+/* The semi-discrete 2D rolling-contact DAE with local plasticity (model.md §4-5):
+ * residual, generalized Jacobian, consistent rates and reported quantities.
+ *
+ * Per contact cell I, with D f/Dt = f' - V (f_{I+1} - f_I)/dx (first-order upwind,
+ * material enters at the high-x edge) and v_s = V xi + v_shift + Du_el/Dt + Du_pl/Dt:
+ *   R_f  = p - proj_[-g, g](p - r v_s)
+ *   R_pl = p - proj_[-tau_c, tau_c](p + r Du_pl/Dt)
+ *   R_*  = r (Dustar/Dt - |Du_pl/Dt|)
+ * Exterior cells (p_n = 0): p = 0, Du_pl/Dt = 0 (scaled by r), R_* as above. */
+#include "rollsim/model.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "rollsim/normal.h"
+
+extern void dgesv_(const int *n, const int *nrhs, double *a, const int *lda, int *ipiv,
+                   double *b, const int *ldb, int *info);
+
+static double sign_of(double v) { return v > 0.0 ? 1.0 : (v < 0.0 ? -1.0 : 0.0); }
+
+int rs_model_create(rs_model *m, const rs_case *c, rs_msg *msg)
+{
+  memset(m, 0, sizeof *m);
+  const int n = c->cells;
+  m->n = n;
+  m->neq = 3 * n;
+  m->normal_load = rs_history_eval(&c->normal_load, 0.0);
+  rs_hertz2d(m->normal_load, c->radius, c->shear_modulus, c->poisson_ratio, &m->hertz_a,
+             &m->hertz_p0);
+  const double half = c->extent * m->hertz_a;
+  m->dx = 2.0 * half / n;
+  m->x = malloc((size_t)n * sizeof *m->x);
+  m->pn = malloc((size_t)n * sizeof *m->pn);
+  m->bound = malloc((size_t)n * sizeof *m->bound);
+  if (!m->x || !m->pn || !m->bound) {
+    rs_model_free(m);
+    return rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory for a grid of %d cells", n);
+  }
+  for (int i = 0; i < n; i++) m->x[i] = -half + (i + 0.5) * m->dx;
+  int status = rs_elastic2d_create(&m->el, n, m->dx, c->shear_modulus, c->poisson_ratio,
+                                   c->reference_length, msg);
+  if (status != RS_OK) {
+    rs_model_free(m);
+    return status;
+  }
+  if (c->normal_solution == RS_NORMAL_HERTZ) {
+    rs_normal2d_hertz(m->x, n, m->hertz_a, m->hertz_p0, m->pn);
+  } else {
+    status = rs_normal2d_solve(&m->el, m->x, c->radius, m->normal_load, m->pn, &m->approach,
+                               NULL, msg);
+    if (status != RS_OK) {
+      rs_model_free(m);
+      return status;
+    }
+  }
+  m->mu = c->mu;
+  for (int i = 0; i < n; i++) m->bound[i] = m->mu * m->pn[i];
+  m->layer_flex = c->layer_thickness > 0.0 ? c->layer_thickness / c->layer_shear_modulus : 0.0;
+  m->has_plasticity = c->has_plasticity;
+  m->tau_c0 = c->tau_c0;
+  m->k_tau = c->k_tau;
+  m->tau_c_min = c->tau_c_min;
+  m->shift_velocity = c->shift_velocity;
+  m->scaling = c->scaling;
+  m->time_scale = c->output_interval;
+  if (rs_history_copy(&m->velocity, &c->velocity) != RS_OK ||
+      rs_history_copy(&m->creepage, &c->creepage) != RS_OK) {
+    rs_model_free(m);
+    return rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory copying input histories");
+  }
+  return RS_OK;
+}
+
+void rs_model_free(rs_model *m)
+{
+  free(m->x);
+  free(m->pn);
+  free(m->bound);
+  rs_elastic2d_free(&m->el);
+  rs_history_free(&m->velocity);
+  rs_history_free(&m->creepage);
+  memset(m, 0, sizeof *m);
+}
+
+int rs_work_create(rs_work *w, int n)
+{
+  w->uel = calloc((size_t)n + 1, sizeof *w->uel);
+  w->ueldot = calloc((size_t)n, sizeof *w->ueldot);
+  w->vslip = calloc((size_t)n, sizeof *w->vslip);
+  w->dupl = calloc((size_t)n, sizeof *w->dupl);
+  w->dustar = calloc((size_t)n, sizeof *w->dustar);
+  w->branch = calloc((size_t)n, sizeof *w->branch);
+  if (!w->uel || !w->ueldot || !w->vslip || !w->dupl || !w->dustar || !w->branch) {
+    rs_work_free(w);
+    return RS_ERR_INTERNAL;
+  }
+  return RS_OK;
+}
+
+void rs_work_free(rs_work *w)
+{
+  free(w->uel);
+  free(w->ueldot);
+  free(w->vslip);
+  free(w->dupl);
+  free(w->dustar);
+  free(w->branch);
+  memset(w, 0, sizeof *w);
+}
+
+int64_t rs_model_jac_capacity(const rs_model *m)
+{
+  return (int64_t)m->n * (m->n + 2) + 8 * (int64_t)m->n;
+}
+
+double rs_model_yield_limit(const rs_model *m, double ustar)
+{
+  if (!m->has_plasticity) return INFINITY;
+  return fmax(m->tau_c_min, m->tau_c0 + m->k_tau * ustar);
+}
+
+/* d tau_c / d u*: k_tau above the floor, 0 on it. */
+static double yield_slope(const rs_model *m, double ustar)
+{
+  return (m->tau_c0 + m->k_tau * ustar > m->tau_c_min) ? m->k_tau : 0.0;
+}
+
+double rs_model_scaling(const rs_model *m, double t, double cj)
+{
+  const double self = rs_elastic2d_tang(&m->el, 0) + m->layer_flex;
+  rs_scaling choice = m->scaling;
+  if (choice == RS_SCALING_AUTO) choice = m->has_plasticity ? RS_SCALING_SELF : RS_SCALING_DIFFERENCE;
+  const double shift = choice == RS_SCALING_SELF
+                           ? self
+                           : self - rs_elastic2d_tang(&m->el, 1);
+  const double V = rs_history_eval(&m->velocity, t);
+  double denom = cj * self + V * shift / m->dx;
+  if (!(denom > 0.0)) denom = self / m->time_scale; /* no rolling, no time step: a time scale */
+  return 1.0 / denom;
+}
+
+/* Transport terms shared by residual, rates and diagnostics: u_el on the padded
+ * grid, its rate, and the material derivatives of u_el, u_pl, u*. */
+static void kinematics(const rs_model *m, rs_work *w, double t, const double *y, const double *yp)
+{
+  const int n = m->n;
+  const double *p = y, *upl = y + n, *us = y + 2 * n;
+  const double c3 = m->layer_flex, a = rs_history_eval(&m->velocity, t) / m->dx;
+  const double vrigid = rs_history_eval(&m->velocity, t) * rs_history_eval(&m->creepage, t) +
+                        m->shift_velocity;
+  rs_elastic2d_apply(&m->el, m->el.tang, p, w->uel, n + 1);
+  rs_elastic2d_apply(&m->el, m->el.tang, yp, w->ueldot, n);
+  for (int i = 0; i < n; i++) {
+    w->uel[i] += c3 * p[i];
+    w->ueldot[i] += c3 * yp[i];
+  }
+  for (int i = 0; i < n; i++) {
+    const double upl_next = i + 1 < n ? upl[i + 1] : m->inflow_upl;
+    const double us_next = i + 1 < n ? us[i + 1] : m->inflow_ustar;
+    const double duel = w->ueldot[i] - a * (w->uel[i + 1] - w->uel[i]);
+    w->dupl[i] = yp[n + i] - a * (upl_next - upl[i]);
+    w->dustar[i] = yp[2 * n + i] - a * (us_next - us[i]);
+    w->vslip[i] = vrigid + duel + w->dupl[i];
+  }
+}
+
+/* Append an entry to the current row of a CSR matrix. */
+static void csr_put(rs_csr *J, int64_t col, double val)
+{
+  const int64_t k = J->rowptr[J->nrows + 1]++; /* rowptr[nrows + 1]: end of the open row */
+  J->col[k] = col;
+  J->val[k] = val;
+}
+
+static void csr_next_row(rs_csr *J)
+{
+  J->nrows++;
+  if (J->nrows < J->cap_rows) J->rowptr[J->nrows + 1] = J->rowptr[J->nrows];
+}
+
+int rs_model_eval(const rs_model *m, rs_work *w, double t, const double *y, const double *yp,
+                  double cj, double *F, rs_csr *jac)
+{
+  const int n = m->n;
+  const double *p = y, *us = y + 2 * n;
+  const double r = rs_model_scaling(m, t, cj);
+  const double a = rs_history_eval(&m->velocity, t) / m->dx, c3 = m->layer_flex;
+  kinematics(m, w, t, y, yp);
+
+  for (int i = 0; i < n; i++) {
+    unsigned char br = 0;
+    const double g = m->bound[i], tauc = rs_model_yield_limit(m, us[i]);
+    const double mpl = w->dupl[i];
+    double Fp, Fupl;
+    if (!(m->pn[i] > 0.0)) {
+      br = RS_BRANCH_EXTERIOR;
+      Fp = p[i];
+      Fupl = r * mpl;
+    } else {
+      const double arg_f = p[i] - r * w->vslip[i];
+      if (fabs(arg_f) <= g) {
+        Fp = r * w->vslip[i];
+      } else {
+        br |= RS_BRANCH_SLIP;
+        Fp = p[i] - g * sign_of(arg_f);
+      }
+      const double arg_pl = p[i] + r * mpl;
+      if (fabs(arg_pl) <= tauc) {
+        Fupl = -r * mpl;
+      } else {
+        br |= RS_BRANCH_YIELD;
+        Fupl = p[i] - tauc * sign_of(arg_pl);
+      }
+    }
+    w->branch[i] = br;
+    if (F) {
+      F[i] = Fp;
+      F[n + i] = Fupl;
+      F[2 * n + i] = r * (w->dustar[i] - fabs(mpl));
+    }
+  }
+  if (!jac) return RS_OK;
+
+  /* Generalized Jacobian dF/dy + cj dF/dy', row by row (CSR, sorted columns). */
+  jac->nrows = 0;
+  jac->cap_rows = m->neq;
+  jac->rowptr[0] = jac->rowptr[1] = 0;
+  const double *coef = m->el.tang + n; /* coef[k] = A(k) */
+  for (int i = 0; i < n; i++) {
+    const unsigned char br = w->branch[i];
+    if (br & (RS_BRANCH_EXTERIOR | RS_BRANCH_SLIP)) {
+      csr_put(jac, i, 1.0);
+    } else {
+      /* r dv_s/dp_j = r [cj A(i-j) - a (A(i+1-j) - A(i-j))] (+ layer on the diagonal) */
+      for (int j = 0; j < n; j++) {
+        double v = cj * coef[i - j] - a * (coef[i + 1 - j] - coef[i - j]);
+        if (j == i) v += (cj + a) * c3;
+        if (j == i + 1) v -= a * c3;
+        csr_put(jac, j, r * v);
+      }
+      csr_put(jac, n + i, r * (cj + a));
+      if (i + 1 < n) csr_put(jac, n + i + 1, -r * a);
+    }
+    csr_next_row(jac);
+  }
+  for (int i = 0; i < n; i++) {
+    const unsigned char br = w->branch[i];
+    if (br & RS_BRANCH_YIELD) {
+      const double arg_pl = p[i] + r * w->dupl[i];
+      csr_put(jac, i, 1.0);
+      csr_put(jac, 2 * n + i, -sign_of(arg_pl) * yield_slope(m, us[i]));
+    } else {
+      const double s = (br & RS_BRANCH_EXTERIOR) ? r : -r;
+      csr_put(jac, n + i, s * (cj + a));
+      if (i + 1 < n) csr_put(jac, n + i + 1, -s * a);
+    }
+    csr_next_row(jac);
+  }
+  for (int i = 0; i < n; i++) {
+    /* d|m|/dm: sign of m, or the direction of p where m = 0 (model.md §9). */
+    const double sig = w->dupl[i] != 0.0 ? sign_of(w->dupl[i]) : sign_of(p[i]);
+    csr_put(jac, n + i, -r * sig * (cj + a));
+    if (i + 1 < n) csr_put(jac, n + i + 1, r * sig * a);
+    csr_put(jac, 2 * n + i, r * (cj + a));
+    if (i + 1 < n) csr_put(jac, 2 * n + i + 1, -r * a);
+    csr_next_row(jac);
+  }
+  return RS_OK;
+}
+
+int rs_model_consistent_rates(const rs_model *m, rs_work *w, double t, const double *y,
+                              double *yp, rs_msg *msg)
+{
+  const int n = m->n;
+  const double *p = y, *us = y + 2 * n;
+  const double a = rs_history_eval(&m->velocity, t) / m->dx, c3 = m->layer_flex;
+  memset(yp, 0, (size_t)m->neq * sizeof *yp);
+  kinematics(m, w, t, y, yp); /* with p' = 0: v_s holds everything but A p' */
+
+  int *adh = malloc((size_t)n * sizeof *adh);
+  int *ipiv = malloc((size_t)n * sizeof *ipiv);
+  double *mat = malloc((size_t)n * (size_t)n * sizeof *mat);
+  double *rhs = malloc((size_t)n * sizeof *rhs);
+  int status = RS_OK;
+  if (!adh || !ipiv || !mat || !rhs) {
+    status = rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory computing the initial rates");
+    goto done;
+  }
+  int h = 0;
+  for (int i = 0; i < n; i++) {
+    const double lim = fmin(m->bound[i], rs_model_yield_limit(m, us[i]));
+    if (m->pn[i] > 0.0 && fabs(p[i]) < lim * (1.0 - 1e-12)) adh[h++] = i;
+  }
+  if (h > 0) {
+    /* Adhesion: v_s = 0 with Du_pl/Dt = 0, i.e. (A + c3 I) p'_H = -v_s(p' = 0). */
+    for (int c = 0; c < h; c++) {
+      for (int r = 0; r < h; r++)
+        mat[(size_t)c * h + r] = rs_elastic2d_tang(&m->el, adh[r] - adh[c]) + (r == c ? c3 : 0.0);
+      rhs[c] = -w->vslip[adh[c]];
+    }
+    int one = 1, info = 0;
+    dgesv_(&h, &one, mat, &h, ipiv, rhs, &h, &info);
+    if (info != 0) {
+      status = rs_msg_set(msg, RS_ERR_SOLVER, "initial rates: singular adhesion system (info %d)", info);
+      goto done;
+    }
+    for (int c = 0; c < h; c++) yp[adh[c]] = rhs[c];
+  }
+  kinematics(m, w, t, y, yp);
+  /* Transport of u_pl and u*: Du/Dt = 0, except plastic flow where |p| is at a
+   * yield limit below the bound (flow takes up the slip velocity left over). */
+  for (int i = 0; i < n; i++) {
+    const double tauc = rs_model_yield_limit(m, us[i]);
+    double flow = 0.0;
+    if (m->pn[i] > 0.0 && tauc < m->bound[i] && fabs(p[i]) >= tauc * (1.0 - 1e-12))
+      flow = -(w->vslip[i] - w->dupl[i]);
+    const double upl_next = i + 1 < n ? y[n + i + 1] : m->inflow_upl;
+    const double us_next = i + 1 < n ? us[i + 1] : m->inflow_ustar;
+    yp[n + i] = flow + a * (upl_next - y[n + i]);
+    yp[2 * n + i] = fabs(flow) + a * (us_next - us[i]);
+  }
+done:
+  free(adh);
+  free(ipiv);
+  free(mat);
+  free(rhs);
+  return status;
+}
+
+int rs_model_diagnostics(const rs_model *m, rs_work *w, double t, const double *y,
+                         const double *yp, rs_diag *d, double *slip, double *tauc,
+                         signed char *regime)
+{
+  const int n = m->n;
+  const double V = rs_history_eval(&m->velocity, t);
+  const double xi = rs_history_eval(&m->creepage, t);
+  const double vrigid = V * xi + m->shift_velocity;
+  /* Branches with the steady scaling (any r > 0 gives the same regimes at a solution). */
+  rs_model_eval(m, w, t, y, yp, 0.0, NULL, NULL);
+  memset(d, 0, sizeof *d);
+  d->creepage = xi;
+  d->velocity = V;
+  for (int i = 0; i < n; i++) {
+    const double p = y[i];
+    rs_regime reg = RS_ADHESION;
+    if (w->branch[i] & RS_BRANCH_EXTERIOR)
+      reg = RS_EXTERIOR;
+    else if (w->branch[i] & RS_BRANCH_SLIP)
+      reg = RS_SLIP;
+    else if (w->branch[i] & RS_BRANCH_YIELD)
+      reg = RS_PLASTIC;
+    d->count[reg]++;
+    d->Fx += p * m->dx;
+    d->Fn += m->pn[i] * m->dx;
+    d->frictional_power -= p * w->vslip[i] * m->dx;
+    d->plastic_power += p * w->dupl[i] * m->dx;
+    d->elastic_energy += 0.5 * p * w->uel[i] * m->dx;
+    d->rigid_slip_power -= p * vrigid * m->dx;
+    if (slip) slip[i] = V > 0.0 ? w->vslip[i] / V : w->vslip[i];
+    if (tauc) tauc[i] = rs_model_yield_limit(m, y[2 * n + i]);
+    if (regime) regime[i] = (signed char)reg;
+  }
+  return RS_OK;
+}

@@ -1,0 +1,121 @@
+/* 2D normal contact on the grid (model.md §3): active-set method in the style of
+ * Kalker's NORM (Kalker 1990, §5.1): solve the contact cells' equations
+ * A_CC p_C - delta = -h_C, dx sum p_C = load, then drop cells with tension and add
+ * cells that penetrate, until neither happens. */
+#include "rollsim/normal.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* LAPACK: general dense LU solve. */
+extern void dgesv_(const int *n, const int *nrhs, double *a, const int *lda, int *ipiv,
+                   double *b, const int *ldb, int *info);
+
+void rs_hertz2d(double load, double radius, double shear_modulus, double poisson_ratio,
+                double *a, double *p0)
+{
+  *a = sqrt(4.0 * load * radius * (1.0 - poisson_ratio) / (RS_PI * shear_modulus));
+  *p0 = 2.0 * load / (RS_PI * *a);
+}
+
+void rs_normal2d_hertz(const double *x, int n, double a, double p0, double *pn)
+{
+  for (int i = 0; i < n; i++) {
+    const double r = x[i] / a;
+    pn[i] = fabs(r) < 1.0 ? p0 * sqrt(1.0 - r * r) : 0.0;
+  }
+}
+
+int rs_normal2d_solve(const rs_elastic2d *el, const double *x, double radius, double load,
+                      double *pn, double *delta_out, int *iterations, rs_msg *msg)
+{
+  const int n = el->n;
+  const double dx = el->dx;
+  int *active = malloc((size_t)n * sizeof *active);
+  int *index = malloc((size_t)n * sizeof *index);
+  int *ipiv = malloc((size_t)(n + 1) * sizeof *ipiv);
+  double *mat = malloc((size_t)(n + 1) * (size_t)(n + 1) * sizeof *mat);
+  double *rhs = malloc((size_t)(n + 1) * sizeof *rhs);
+  double *h = malloc((size_t)n * sizeof *h);
+  int status = RS_OK;
+  if (!active || !index || !ipiv || !mat || !rhs || !h) {
+    status = rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory in the normal problem (%d cells)", n);
+    goto done;
+  }
+  double hmax = 0.0;
+  for (int i = 0; i < n; i++) {
+    h[i] = x[i] * x[i] / (2.0 * radius);
+    hmax = fmax(hmax, h[i]);
+    active[i] = 1;
+    pn[i] = 0.0;
+  }
+  const int max_iter = 4 * n + 10;
+  double delta = 0.0;
+  int iter;
+  for (iter = 1; iter <= max_iter; iter++) {
+    int m = 0;
+    for (int i = 0; i < n; i++)
+      if (active[i]) index[m++] = i;
+    if (m == 0) {
+      status = rs_msg_set(msg, RS_ERR_SOLVER, "normal problem: no cell remains in contact");
+      goto done;
+    }
+    /* Column-major (m+1)x(m+1) system; unknowns p_C then delta. */
+    const int ld = m + 1;
+    for (int c = 0; c < m; c++) {
+      for (int r = 0; r < m; r++)
+        mat[(size_t)c * ld + r] = rs_elastic2d_norm(el, index[r] - index[c]);
+      mat[(size_t)c * ld + m] = dx;
+      rhs[c] = -h[index[c]];
+    }
+    for (int r = 0; r < m; r++) mat[(size_t)m * ld + r] = -1.0;
+    mat[(size_t)m * ld + m] = 0.0;
+    rhs[m] = load;
+    int nrhs = 1, info = 0;
+    dgesv_(&ld, &nrhs, mat, &ld, ipiv, rhs, &ld, &info);
+    if (info != 0) {
+      status = rs_msg_set(msg, RS_ERR_SOLVER,
+                          "normal problem: singular contact system (LAPACK dgesv info %d)", info);
+      goto done;
+    }
+    delta = rhs[m];
+    memset(pn, 0, (size_t)n * sizeof *pn);
+    int changed = 0;
+    for (int c = 0; c < m; c++) {
+      pn[index[c]] = rhs[c];
+      if (rhs[c] < 0.0) { /* tension: leave the contact */
+        active[index[c]] = 0;
+        changed = 1;
+      }
+    }
+    if (changed) continue;
+    /* Penetration check outside the contact cells. */
+    const double tol = 1e-12 * (hmax + fabs(delta));
+    for (int i = 0; i < n; i++) {
+      if (active[i]) continue;
+      double gap = h[i] - delta;
+      for (int j = 0; j < n; j++) gap += rs_elastic2d_norm(el, i - j) * pn[j];
+      if (gap < -tol) {
+        active[i] = 1;
+        changed = 1;
+      }
+    }
+    if (!changed) break;
+  }
+  if (iter > max_iter) {
+    status = rs_msg_set(msg, RS_ERR_SOLVER, "normal problem: active set did not settle in %d iterations",
+                        max_iter);
+    goto done;
+  }
+  if (delta_out) *delta_out = delta;
+  if (iterations) *iterations = iter;
+done:
+  free(active);
+  free(index);
+  free(ipiv);
+  free(mat);
+  free(rhs);
+  free(h);
+  return status;
+}

@@ -1,0 +1,60 @@
+/* Helpers shared by the C unit tests: a case with the interfaces.md defaults
+ * built directly (no YAML), and assertions that print what was expected. */
+#ifndef ROLLSIM_TEST_SUPPORT_H
+#define ROLLSIM_TEST_SUPPORT_H
+
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "rollsim/case.h"
+
+/* The verification.md Carter case: q = 178.9 N/mm, R = 500 mm, G = 82000, nu = 0.28,
+ * mu = 0.3, xi = -2.4e-4, V = 30000 mm/s; elastic, steady. */
+static inline void ts_carter_case(rs_case *c, int cells)
+{
+  memset(c, 0, sizeof *c);
+  c->dimension = 2;
+  c->normal_load.kind = RS_HISTORY_CONSTANT;
+  c->normal_load.value = 178.9;
+  c->radius = 500.0;
+  c->normal_solution = RS_NORMAL_DISCRETE;
+  c->reference_length = 200.0;
+  c->cells = cells;
+  c->extent = 1.05;
+  c->shear_modulus = 82000.0;
+  c->poisson_ratio = 0.28;
+  c->mu = 0.3;
+  c->layer_shear_modulus = 1.0;
+  c->velocity.kind = RS_HISTORY_CONSTANT;
+  c->velocity.value = 30000.0;
+  c->creepage.kind = RS_HISTORY_CONSTANT;
+  c->creepage.value = -2.4e-4;
+  c->mode = RS_MODE_STEADY;
+  c->end_time = 4e-4;
+  c->rolled_distance = -1.0;
+  c->output_interval = 1e-6;
+  c->rtol = 1e-6;
+  c->atol = 1e-9;
+  c->max_order = 5;
+  c->max_steps = 1000000;
+}
+
+static int ts_failures = 0;
+
+/* Passes when |got - want| <= tol; prints either way. */
+static inline void ts_check(const char *what, double got, double want, double tol)
+{
+  const int ok = fabs(got - want) <= tol;
+  printf("%s %s: got %.10g, want %.10g, tol %.3g (diff %.3g)\n", ok ? "ok  " : "FAIL", what, got,
+         want, tol, fabs(got - want));
+  if (!ok) ts_failures++;
+}
+
+static inline void ts_check_true(const char *what, int cond)
+{
+  printf("%s %s\n", cond ? "ok  " : "FAIL", what);
+  if (!cond) ts_failures++;
+}
+
+#endif
