@@ -36,6 +36,7 @@ typedef struct rs_transient_opts {
   int max_order;      /* BDF order limit, 1..5 */
   long max_steps;     /* per call of rs_transient_advance */
   int max_newton;     /* Newton iterations per step (KINSOL), default 10 */
+  double t_stop;      /* IDA never steps beyond this time (INFINITY: no limit) */
 } rs_transient_opts;
 
 /* y0, yp0: a consistent initial state (see rs_model_consistent_rates). */

@@ -1,0 +1,209 @@
+/* KINSOL inside IDA (see nls_kinsol.h). IDA gives the predictor y0, the error
+ * weights w and a tolerance; we solve for the correction ycor with KINSOL, with
+ * u-scaling w and f-scaling w / (diagonal of the iteration matrix), so that
+ * KINSOL's scaled norms measure the correction in IDA's weighted norm. */
+#include "nls_kinsol.h"
+
+#include <ida/ida.h>
+#include <kinsol/kinsol.h>
+#include <nvector/nvector_serial.h>
+#include <stdlib.h>
+
+typedef struct nls_content {
+  const rs_model *m;
+  rs_work *w;
+  rs_linsys *ls;
+  double *cj_slot;
+  int max_iters;
+  SUNNonlinSolSysFn sysfn;
+  void *ida_mem;
+  void *kmem;
+  N_Vector uscale, fscale;
+  double *ybuf, *ypbuf;
+  long last_iters, conv_fails;
+} nls_content;
+
+#define CONTENT(nls) ((nls_content *)(nls)->content)
+
+static int kin_residual(N_Vector ycor, N_Vector f, void *data)
+{
+  nls_content *c = data;
+  const int flag = c->sysfn(ycor, f, c->ida_mem);
+  return flag == 0 ? 0 : 1; /* recoverable: KINSOL/IDA try again */
+}
+
+static int kin_jacobian(N_Vector ycor, N_Vector f, SUNMatrix J, void *data, N_Vector t1,
+                        N_Vector t2)
+{
+  (void)f;
+  (void)J;
+  (void)t1;
+  (void)t2;
+  nls_content *c = data;
+  sunrealtype tcur, cj;
+  N_Vector ypred, yppred, yn, ypn, res;
+  void *udata;
+  IDAGetNonlinearSystemData(c->ida_mem, &tcur, &ypred, &yppred, &yn, &ypn, &res, &cj, &udata);
+  const double *dc = N_VGetArrayPointer(ycor), *yv = N_VGetArrayPointer(ypred),
+               *ypv = N_VGetArrayPointer(yppred);
+  for (int i = 0; i < c->m->neq; i++) {
+    c->ybuf[i] = yv[i] + dc[i];
+    c->ypbuf[i] = ypv[i] + cj * dc[i];
+  }
+  return rs_linsys_assemble(c->ls, c->m, c->w, tcur, c->ybuf, c->ypbuf, cj) == RS_OK ? 0 : -1;
+}
+
+static SUNNonlinearSolver_Type nls_gettype(SUNNonlinearSolver nls)
+{
+  (void)nls;
+  return SUNNONLINEARSOLVER_ROOTFIND;
+}
+
+static int nls_solve(SUNNonlinearSolver nls, N_Vector y0, N_Vector ycor, N_Vector w, sunrealtype tol,
+                     sunbooleantype call_lsetup, void *mem)
+{
+  (void)y0;
+  (void)call_lsetup; /* exact Newton: the Jacobian is rebuilt at every iteration */
+  nls_content *c = CONTENT(nls);
+  c->ida_mem = mem;
+  sunrealtype tcur, cj;
+  N_Vector ypred, yppred, yn, ypn, res;
+  void *udata;
+  IDAGetNonlinearSystemData(mem, &tcur, &ypred, &yppred, &yn, &ypn, &res, &cj, &udata);
+  *c->cj_slot = cj;
+
+  /* Scales: each residual row divided by its diagonal of the iteration matrix
+   * (1 for traction rows by the choice of r; r (cj + V/dx) for the transport rows). */
+  const rs_model *m = c->m;
+  const int n = m->n;
+  const double r = rs_model_scaling(m, tcur, cj);
+  const double diag_transport = r * (cj + rs_history_eval(&m->velocity, tcur) / m->dx);
+  const double *wv = N_VGetArrayPointer(w);
+  double *us = N_VGetArrayPointer(c->uscale), *fs = N_VGetArrayPointer(c->fscale);
+  for (int i = 0; i < m->neq; i++) {
+    us[i] = wv[i];
+    fs[i] = i < n ? wv[i] : wv[i] / diag_transport;
+  }
+  KINSetFuncNormTol(c->kmem, 0.01 * tol);
+  KINSetScaledStepTol(c->kmem, 0.01 * tol);
+  N_VConst(0.0, ycor);
+  const int flag = KINSol(c->kmem, ycor, KIN_NONE, c->uscale, c->fscale);
+  long iters = 0;
+  KINGetNumNonlinSolvIters(c->kmem, &iters);
+  c->last_iters = iters;
+  int ok = flag >= 0;
+  if (flag == KIN_STEP_LT_STPTOL) {
+    double fnorm = 1e300;
+    KINGetFuncNorm(c->kmem, &fnorm);
+    ok = fnorm <= tol;
+  }
+  if (!ok) {
+    c->conv_fails++;
+    return SUN_NLS_CONV_RECVR; /* IDA reduces the step and tries again */
+  }
+  return SUN_NLS_SUCCESS;
+}
+
+static int nls_free(SUNNonlinearSolver nls)
+{
+  if (!nls) return SUN_NLS_SUCCESS;
+  nls_content *c = CONTENT(nls);
+  if (c) {
+    if (c->kmem) KINFree(&c->kmem);
+    if (c->uscale) N_VDestroy(c->uscale);
+    if (c->fscale) N_VDestroy(c->fscale);
+    free(c->ybuf);
+    free(c->ypbuf);
+    free(c);
+  }
+  nls->content = NULL;
+  SUNNonlinSolFreeEmpty(nls);
+  return SUN_NLS_SUCCESS;
+}
+
+static int nls_setsysfn(SUNNonlinearSolver nls, SUNNonlinSolSysFn fn)
+{
+  CONTENT(nls)->sysfn = fn;
+  return SUN_NLS_SUCCESS;
+}
+
+/* IDA's convergence test (a contraction-rate estimate for modified Newton) does
+ * not apply to exact semismooth Newton: KINSOL's residual and step tests are used. */
+static int nls_setctestfn(SUNNonlinearSolver nls, SUNNonlinSolConvTestFn fn, void *data)
+{
+  (void)nls;
+  (void)fn;
+  (void)data;
+  return SUN_NLS_SUCCESS;
+}
+
+/* IDA asks for 4 iterations (tuned for modified Newton); a change of active set
+ * needs a few more, so our own limit stands. */
+static int nls_setmaxiters(SUNNonlinearSolver nls, int maxiters)
+{
+  (void)nls;
+  (void)maxiters;
+  return SUN_NLS_SUCCESS;
+}
+
+static int nls_getnumiters(SUNNonlinearSolver nls, long *iters)
+{
+  *iters = CONTENT(nls)->last_iters; /* IDA accumulates */
+  return SUN_NLS_SUCCESS;
+}
+
+static int nls_getcuriter(SUNNonlinearSolver nls, int *iter)
+{
+  *iter = (int)CONTENT(nls)->last_iters;
+  return SUN_NLS_SUCCESS;
+}
+
+static int nls_getnumconvfails(SUNNonlinearSolver nls, long *fails)
+{
+  *fails = CONTENT(nls)->conv_fails;
+  return SUN_NLS_SUCCESS;
+}
+
+SUNNonlinearSolver rs_nls_kinsol_create(const rs_model *m, rs_work *w, rs_linsys *ls,
+                                        double *cj_slot, int max_iters, N_Vector tmpl,
+                                        SUNContext ctx)
+{
+  SUNNonlinearSolver nls = SUNNonlinSolNewEmpty(ctx);
+  if (!nls) return NULL;
+  nls->ops->gettype = nls_gettype;
+  nls->ops->solve = nls_solve;
+  nls->ops->free = nls_free;
+  nls->ops->setsysfn = nls_setsysfn;
+  nls->ops->setctestfn = nls_setctestfn;
+  nls->ops->setmaxiters = nls_setmaxiters;
+  nls->ops->getnumiters = nls_getnumiters;
+  nls->ops->getcuriter = nls_getcuriter;
+  nls->ops->getnumconvfails = nls_getnumconvfails;
+  nls_content *c = calloc(1, sizeof *c);
+  nls->content = c;
+  if (!c) goto fail;
+  c->m = m;
+  c->w = w;
+  c->ls = ls;
+  c->cj_slot = cj_slot;
+  c->max_iters = max_iters > 0 ? max_iters : 10;
+  c->uscale = N_VClone(tmpl);
+  c->fscale = N_VClone(tmpl);
+  c->ybuf = malloc((size_t)m->neq * sizeof *c->ybuf);
+  c->ypbuf = malloc((size_t)m->neq * sizeof *c->ypbuf);
+  c->kmem = KINCreate(ctx);
+  if (!c->uscale || !c->fscale || !c->ybuf || !c->ypbuf || !c->kmem) goto fail;
+  int flag = KINInit(c->kmem, kin_residual, tmpl);
+  flag |= KINSetUserData(c->kmem, c);
+  flag |= KINSetLinearSolver(c->kmem, ls->LS, ls->J);
+  flag |= KINSetJacFn(c->kmem, kin_jacobian);
+  flag |= KINSetMaxSetupCalls(c->kmem, 1);
+  flag |= KINSetMaxNewtonStep(c->kmem, 1e12);
+  flag |= KINSetNumMaxIters(c->kmem, c->max_iters);
+  flag |= KINSetErrHandlerFn(c->kmem, rs_sundials_silent, NULL);
+  if (flag != 0) goto fail;
+  return nls;
+fail:
+  nls_free(nls);
+  return NULL;
+}

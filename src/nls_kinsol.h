@@ -1,0 +1,18 @@
+/* Private: a SUNNonlinearSolver (rootfinding type) for IDA that solves each BDF
+ * step's system F(t, ypred + ycor, yppred + cj ycor) = 0 with KINSOL's exact
+ * Newton and the KLU-factored generalized Jacobian (model.md §6, §9), so the
+ * contact regimes are re-resolved in every step. */
+#ifndef ROLLSIM_NLS_KINSOL_H
+#define ROLLSIM_NLS_KINSOL_H
+
+#include <sundials/sundials_nonlinearsolver.h>
+
+#include "linsys.h"
+
+/* cj_slot: where the DAE residual reads the current cj (it sets the scaling r).
+ * max_iters: Newton iterations per step before the step is declared failed. */
+SUNNonlinearSolver rs_nls_kinsol_create(const rs_model *m, rs_work *w, rs_linsys *ls,
+                                        double *cj_slot, int max_iters, N_Vector tmpl,
+                                        SUNContext ctx);
+
+#endif

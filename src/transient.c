@@ -1,0 +1,128 @@
+/* Transient rolling: IDA (variable-order, variable-step BDF with error control)
+ * on the semi-discrete DAE, each step's nonlinear system solved by KINSOL with
+ * the KLU-factored generalized Jacobian (model.md §6). */
+#include <ida/ida.h>
+#include <math.h>
+#include <nvector/nvector_serial.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "linsys.h"
+#include "nls_kinsol.h"
+#include "rollsim/solver.h"
+
+struct rs_transient {
+  const rs_model *m;
+  SUNContext ctx;
+  void *ida;
+  N_Vector y, yp, atol;
+  SUNNonlinearSolver nls;
+  rs_linsys ls;
+  rs_work work;
+  double cj; /* of the step being solved: sets the residual scaling r */
+  double t;
+};
+
+static int dae_residual(sunrealtype t, N_Vector y, N_Vector yp, N_Vector rr, void *data)
+{
+  rs_transient *tr = data;
+  return rs_model_eval(tr->m, &tr->work, t, N_VGetArrayPointer(y), N_VGetArrayPointer(yp), tr->cj,
+                       N_VGetArrayPointer(rr), NULL);
+}
+
+void rs_transient_free(rs_transient *tr)
+{
+  if (!tr) return;
+  if (tr->ida) IDAFree(&tr->ida);
+  if (tr->nls) SUNNonlinSolFree(tr->nls);
+  rs_linsys_free(&tr->ls);
+  if (tr->y) N_VDestroy(tr->y);
+  if (tr->yp) N_VDestroy(tr->yp);
+  if (tr->atol) N_VDestroy(tr->atol);
+  rs_work_free(&tr->work);
+  if (tr->ctx) SUNContext_Free(&tr->ctx);
+  free(tr);
+}
+
+int rs_transient_create(rs_transient **out, const rs_model *m, double t0, const double *y0,
+                        const double *yp0, const rs_transient_opts *o, rs_msg *msg)
+{
+  *out = NULL;
+  rs_transient *tr = calloc(1, sizeof *tr);
+  if (!tr) return rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory (transient solver)");
+  tr->m = m;
+  tr->t = t0;
+  const int n = m->n;
+  if (SUNContext_Create(NULL, &tr->ctx) != 0) goto fail;
+  tr->y = N_VNew_Serial(m->neq, tr->ctx);
+  tr->yp = N_VNew_Serial(m->neq, tr->ctx);
+  tr->atol = N_VNew_Serial(m->neq, tr->ctx);
+  if (!tr->y || !tr->yp || !tr->atol) goto fail;
+  memcpy(N_VGetArrayPointer(tr->y), y0, (size_t)m->neq * sizeof *y0);
+  memcpy(N_VGetArrayPointer(tr->yp), yp0, (size_t)m->neq * sizeof *yp0);
+  /* Absolute tolerances: tractions in N/mm^2 as given; plastic displacements in mm,
+   * scaled to the contact size (model.md §9: about 1e-4 rtol a). */
+  double *at = N_VGetArrayPointer(tr->atol);
+  for (int i = 0; i < n; i++) {
+    at[i] = o->atol;
+    at[n + i] = at[2 * n + i] = 1e-4 * o->rtol * m->hertz_a;
+  }
+  if (rs_work_create(&tr->work, n) != RS_OK) goto fail;
+  if (rs_linsys_create(&tr->ls, m, tr->y, tr->ctx) != RS_OK) goto fail;
+  tr->cj = 0.0;
+  tr->nls = rs_nls_kinsol_create(m, &tr->work, &tr->ls, &tr->cj, o->max_newton, tr->y, tr->ctx);
+  if (!tr->nls) goto fail;
+  tr->ida = IDACreate(tr->ctx);
+  if (!tr->ida) goto fail;
+  int flag = IDAInit(tr->ida, dae_residual, t0, tr->y, tr->yp);
+  flag |= IDASVtolerances(tr->ida, o->rtol, tr->atol);
+  flag |= IDASetUserData(tr->ida, tr);
+  flag |= IDASetNonlinearSolver(tr->ida, tr->nls);
+  flag |= IDASetMaxOrd(tr->ida, o->max_order);
+  flag |= IDASetMaxNumSteps(tr->ida, o->max_steps > 0 ? o->max_steps : 1000000);
+  flag |= IDASetErrHandlerFn(tr->ida, rs_sundials_silent, NULL);
+  if (isfinite(o->t_stop)) flag |= IDASetStopTime(tr->ida, o->t_stop);
+  if (flag != 0) goto fail;
+  *out = tr;
+  return RS_OK;
+fail:
+  rs_transient_free(tr);
+  return rs_msg_set(msg, RS_ERR_INTERNAL, "could not set up the transient solver (SUNDIALS/KLU)");
+}
+
+int rs_transient_advance(rs_transient *tr, double tout, double *y, double *yp, rs_msg *msg)
+{
+  sunrealtype tret = tr->t;
+  const int flag = IDASolve(tr->ida, tout, &tret, tr->y, tr->yp, IDA_NORMAL);
+  if (flag < 0) {
+    char *name = IDAGetReturnFlagName(flag);
+    sunrealtype h = 0.0;
+    IDAGetCurrentStep(tr->ida, &h);
+    IDAGetCurrentTime(tr->ida, &tret);
+    const char *why = flag == IDA_CONV_FAIL   ? "the contact problem of a time step had no solution "
+                                                "(Newton failed repeatedly)"
+                      : flag == IDA_ERR_FAIL  ? "the error test failed repeatedly"
+                      : flag == IDA_TOO_MUCH_WORK ? "solver.max_steps reached"
+                                                  : "solver error";
+    rs_msg_set(msg, RS_ERR_SOLVER, "transient solver failed at t = %.9g s (step %.3g s): %s [%s]",
+               tret, h, why, name ? name : "?");
+    free(name);
+    return RS_ERR_SOLVER;
+  }
+  tr->t = tret;
+  memcpy(y, N_VGetArrayPointer(tr->y), (size_t)tr->m->neq * sizeof *y);
+  memcpy(yp, N_VGetArrayPointer(tr->yp), (size_t)tr->m->neq * sizeof *yp);
+  return RS_OK;
+}
+
+void rs_transient_get_stats(const rs_transient *tr, rs_stats *st)
+{
+  memset(st, 0, sizeof *st);
+  IDAGetNumSteps(tr->ida, &st->steps);
+  IDAGetNumNonlinSolvIters(tr->ida, &st->nonlin_iters);
+  IDAGetNumNonlinSolvConvFails(tr->ida, &st->nonlin_fails);
+  IDAGetNumErrTestFails(tr->ida, &st->err_test_fails);
+  IDAGetNumResEvals(tr->ida, &st->res_evals);
+  st->jac_evals = tr->ls.jac_evals;
+  st->klu_analyses = tr->ls.analyses;
+}
