@@ -62,11 +62,11 @@ int rs_model_create(rs_model *m, const rs_case *c, rs_msg *msg)
   m->tau_c0 = c->tau_c0;
   m->k_tau = c->k_tau;
   m->tau_c_min = c->tau_c_min;
-  m->shift_velocity = c->shift_velocity;
   m->scaling = c->scaling;
   m->time_scale = c->output_interval;
   if (rs_history_copy(&m->velocity, &c->velocity) != RS_OK ||
-      rs_history_copy(&m->creepage, &c->creepage) != RS_OK) {
+      rs_history_copy(&m->creepage, &c->creepage) != RS_OK ||
+      rs_history_copy(&m->shift, &c->shift_velocity) != RS_OK) {
     rs_model_free(m);
     return rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory copying input histories");
   }
@@ -81,6 +81,7 @@ void rs_model_free(rs_model *m)
   rs_elastic2d_free(&m->el);
   rs_history_free(&m->velocity);
   rs_history_free(&m->creepage);
+  rs_history_free(&m->shift);
   memset(m, 0, sizeof *m);
 }
 
@@ -113,6 +114,13 @@ void rs_work_free(rs_work *w)
 int64_t rs_model_jac_capacity(const rs_model *m)
 {
   return (int64_t)m->n * (m->n + 2) + 8 * (int64_t)m->n;
+}
+
+double rs_model_next_breakpoint(const rs_model *m, double t)
+{
+  return fmin(fmin(rs_history_next_breakpoint(&m->velocity, t),
+                   rs_history_next_breakpoint(&m->creepage, t)),
+              rs_history_next_breakpoint(&m->shift, t));
 }
 
 double rs_model_yield_limit(const rs_model *m, double ustar)
@@ -149,7 +157,7 @@ static void kinematics(const rs_model *m, rs_work *w, double t, const double *y,
   const double *p = y, *upl = y + n, *us = y + 2 * n;
   const double c3 = m->layer_flex, a = rs_history_eval(&m->velocity, t) / m->dx;
   const double vrigid = rs_history_eval(&m->velocity, t) * rs_history_eval(&m->creepage, t) +
-                        m->shift_velocity;
+                        rs_history_eval(&m->shift, t);
   rs_elastic2d_apply(&m->el, m->el.tang, p, w->uel, n + 1);
   rs_elastic2d_apply(&m->el, m->el.tang, yp, w->ueldot, n);
   for (int i = 0; i < n; i++) {
@@ -336,7 +344,7 @@ int rs_model_diagnostics(const rs_model *m, rs_work *w, double t, const double *
   const int n = m->n;
   const double V = rs_history_eval(&m->velocity, t);
   const double xi = rs_history_eval(&m->creepage, t);
-  const double vrigid = V * xi + m->shift_velocity;
+  const double vrigid = V * xi + rs_history_eval(&m->shift, t);
   /* Branches with the steady scaling (any r > 0 gives the same regimes at a solution). */
   rs_model_eval(m, w, t, y, yp, 0.0, NULL, NULL);
   memset(d, 0, sizeof *d);

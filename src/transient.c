@@ -21,7 +21,19 @@ struct rs_transient {
   rs_work work;
   double cj; /* of the step being solved: sets the residual scaling r */
   double t;
+  rs_stats before_restart; /* IDA's counters of the segments before the last IDAReInit */
 };
+
+/* IDA's own counters since the last (re)initialisation. */
+static void ida_counters(const rs_transient *tr, rs_stats *st)
+{
+  memset(st, 0, sizeof *st);
+  IDAGetNumSteps(tr->ida, &st->steps);
+  IDAGetNumNonlinSolvIters(tr->ida, &st->nonlin_iters);
+  IDAGetNumNonlinSolvConvFails(tr->ida, &st->nonlin_fails);
+  IDAGetNumErrTestFails(tr->ida, &st->err_test_fails);
+  IDAGetNumResEvals(tr->ida, &st->res_evals);
+}
 
 static int dae_residual(sunrealtype t, N_Vector y, N_Vector yp, N_Vector rr, void *data)
 {
@@ -115,14 +127,34 @@ int rs_transient_advance(rs_transient *tr, double tout, double *y, double *yp, r
   return RS_OK;
 }
 
+int rs_transient_restart(rs_transient *tr, double t, const double *y, const double *yp,
+                         double t_stop, rs_msg *msg)
+{
+  rs_stats seg;
+  ida_counters(tr, &seg);
+  tr->before_restart.steps += seg.steps;
+  tr->before_restart.nonlin_iters += seg.nonlin_iters;
+  tr->before_restart.nonlin_fails += seg.nonlin_fails;
+  tr->before_restart.err_test_fails += seg.err_test_fails;
+  tr->before_restart.res_evals += seg.res_evals;
+  memcpy(N_VGetArrayPointer(tr->y), y, (size_t)tr->m->neq * sizeof *y);
+  memcpy(N_VGetArrayPointer(tr->yp), yp, (size_t)tr->m->neq * sizeof *yp);
+  int flag = IDAReInit(tr->ida, t, tr->y, tr->yp);
+  if (flag == 0 && isfinite(t_stop)) flag = IDASetStopTime(tr->ida, t_stop);
+  if (flag != 0)
+    return rs_msg_set(msg, RS_ERR_INTERNAL, "could not restart the integrator at t = %.9g s", t);
+  tr->t = t;
+  return RS_OK;
+}
+
 void rs_transient_get_stats(const rs_transient *tr, rs_stats *st)
 {
-  memset(st, 0, sizeof *st);
-  IDAGetNumSteps(tr->ida, &st->steps);
-  IDAGetNumNonlinSolvIters(tr->ida, &st->nonlin_iters);
-  IDAGetNumNonlinSolvConvFails(tr->ida, &st->nonlin_fails);
-  IDAGetNumErrTestFails(tr->ida, &st->err_test_fails);
-  IDAGetNumResEvals(tr->ida, &st->res_evals);
+  ida_counters(tr, st);
+  st->steps += tr->before_restart.steps;
+  st->nonlin_iters += tr->before_restart.nonlin_iters;
+  st->nonlin_fails += tr->before_restart.nonlin_fails;
+  st->err_test_fails += tr->before_restart.err_test_fails;
+  st->res_evals += tr->before_restart.res_evals;
   st->jac_evals = tr->ls.jac_evals;
   st->klu_analyses = tr->ls.analyses;
 }

@@ -62,7 +62,7 @@ typedef struct rs_case {
   /* rolling: */
   rs_history velocity;                /* V, mm/s */
   rs_history creepage;                /* xi */
-  double shift_velocity;              /* mm/s */
+  rs_history shift_velocity;          /* mm/s, rigid tangential shift rate (a history too) */
 
   /* simulation: */
   rs_mode mode;

@@ -34,7 +34,7 @@ typedef struct rs_model {
   int has_plasticity;
   double tau_c0, k_tau, tau_c_min;
   rs_history velocity, creepage;
-  double shift_velocity;   /* mm/s */
+  rs_history shift;        /* rigid shift velocity, mm/s (pure shift when V = 0) */
   rs_scaling scaling;
   double time_scale;       /* s: sets r when there is neither rolling nor a time step */
   double inflow_upl, inflow_ustar; /* state of the material entering at the leading edge */
@@ -97,6 +97,9 @@ typedef struct rs_diag {
 int rs_model_diagnostics(const rs_model *m, rs_work *w, double t, const double *y,
                          const double *yp, rs_diag *d, double *slip, double *tauc,
                          signed char *regime);
+
+/* Next kink or jump of an input history after t (INFINITY if none). */
+double rs_model_next_breakpoint(const rs_model *m, double t);
 
 /* Yield limit of a cell with accumulated plastic deformation ustar. */
 double rs_model_yield_limit(const rs_model *m, double ustar);

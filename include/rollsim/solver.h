@@ -44,6 +44,11 @@ int rs_transient_create(rs_transient **tr, const rs_model *m, double t0, const d
                         const double *yp0, const rs_transient_opts *opts, rs_msg *msg);
 /* Integrate to tout; y, yp receive the (interpolated) solution at tout. */
 int rs_transient_advance(rs_transient *tr, double tout, double *y, double *yp, rs_msg *msg);
+/* Restart at time t from a consistent state (after a breakpoint of an input
+ * history: IDA never integrates across a kink or jump); new stop time t_stop.
+ * Step statistics keep accumulating. */
+int rs_transient_restart(rs_transient *tr, double t, const double *y, const double *yp,
+                         double t_stop, rs_msg *msg);
 void rs_transient_get_stats(const rs_transient *tr, rs_stats *stats);
 void rs_transient_free(rs_transient *tr);
 

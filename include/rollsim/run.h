@@ -1,0 +1,39 @@
+/* Running a case end to end: model, initial state, steady or transient solve,
+ * netCDF records during the run, status attribute, summary numbers. */
+#ifndef ROLLSIM_RUN_H
+#define ROLLSIM_RUN_H
+
+#include <signal.h>
+#include <stddef.h>
+#include "rollsim/case.h"
+#include "rollsim/model.h"
+#include "rollsim/solver.h"
+#include "rollsim/status.h"
+
+typedef struct rs_run_opts {
+  const char *output_path;  /* overrides case output.file when non-NULL */
+  const char *history;      /* netCDF history attribute (command line and date) */
+  int progress;             /* draw a progress bar on stderr */
+  /* Set asynchronously (signal handler) to stop at the next output record. */
+  volatile sig_atomic_t *interrupt_flag;
+} rs_run_opts;
+
+typedef struct rs_run_result {
+  rs_diag final;            /* quantities at the last record */
+  double mu;
+  double time;              /* simulated time of the last record, s */
+  rs_stats stats;
+  double wall_seconds;
+  size_t records;
+  char file[1024];
+} rs_run_result;
+
+/* Returns RS_OK, RS_ERR_SOLVER (status "failed: ..."), RS_ERR_INTERRUPTED,
+ * RS_ERR_OUTPUT or RS_ERR_INTERNAL; msg says what happened. Records written
+ * before a failure are kept. */
+int rs_run(const rs_case *c, const rs_run_opts *o, rs_run_result *res, rs_msg *msg);
+
+/* Print derived parameters of a case (Hertz a, p0, grid, scaling, ...) for `check`. */
+int rs_run_print_derived(const rs_case *c, FILE *out, rs_msg *msg);
+
+#endif

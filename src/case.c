@@ -1,0 +1,340 @@
+/* rs_case_load: read a case file (case_yaml.c), apply --set, fill the keys
+ * (case_keys.c), then the rules that involve several keys and the derived values:
+ *   k_tau = G*k_rel/(1 - k_rel),  tau_c_min = 0.1*tau_c0 by default,
+ *   end_time = rolled_distance/V when the rolled distance is given. */
+#define _POSIX_C_SOURCE 200809L
+#include "case_internal.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+static void set_defaults(rs_case_input *in)
+{
+  rs_case *c = &in->c;
+  c->dimension = 2;
+  c->normal_load.kind = RS_HISTORY_CONSTANT;
+  c->normal_load.value = 178.9;
+  c->radius = 500.0;
+  c->normal_solution = RS_NORMAL_DISCRETE;
+  c->reference_length = 200.0;
+  c->cells = 100;
+  c->extent = 1.05;
+  c->shear_modulus = 82000.0;
+  c->poisson_ratio = 0.28;
+  c->mu = 0.5;
+  c->layer_thickness = 0.0;
+  c->layer_shear_modulus = 1.0;
+  c->tau_c0 = 35.0;
+  c->k_tau = 123000.0;
+  c->tau_c_min = NAN; /* 0.1*tau_c0 unless given */
+  c->velocity.kind = RS_HISTORY_CONSTANT;
+  c->velocity.value = 30000.0;
+  c->creepage.kind = RS_HISTORY_CONSTANT;
+  c->creepage.value = -0.0004;
+  c->shift_velocity.kind = RS_HISTORY_CONSTANT;
+  c->shift_velocity.value = 0.0;
+  c->mode = RS_MODE_TRANSIENT;
+  c->end_time = 0.0004;
+  c->rolled_distance = -1.0;
+  c->output_interval = 1.0e-6;
+  c->initial_state = RS_START_REST;
+  c->rtol = 1.0e-6;
+  c->atol = 1.0e-9;
+  c->max_order = 5;
+  c->scaling = RS_SCALING_AUTO;
+  c->max_steps = 1000000;
+  c->fields = RS_FIELD_PX | RS_FIELD_PN | RS_FIELD_SLIP | RS_FIELD_UPL | RS_FIELD_USTAR |
+              RS_FIELD_TAUC | RS_FIELD_REGIME;
+  in->k_rel = NAN;
+}
+
+typedef struct resolver {
+  const rs_case_doc *d;
+  const yaml_node_t **where;
+} resolver;
+
+/* The value node of a key (NULL when not given). */
+static const yaml_node_t *given(const resolver *r, const char *path)
+{
+  int i = rs_case_key_index(path);
+  return i < 0 ? NULL : r->where[i];
+}
+
+/* Range of a history's values over the simulated interval [0, end_time]. */
+static int check_history(const resolver *r, const char *path, const rs_history *h, double end_time)
+{
+  const rs_case_key *spec = &rs_case_keys[rs_case_key_index(path)];
+  const yaml_node_t *n = given(r, path);
+  double lo = rs_history_min(h, 0.0, end_time), big = rs_history_max_abs(h, 0.0, end_time);
+  const char *sp = *spec->unit ? " " : "";
+  if (h->kind == RS_HISTORY_CONSTANT)
+    return rs_case_check_range(r->d, n, spec, path, h->value);
+  if (lo < spec->lo)
+    return rs_case_error(r->d, n, path,
+                         "must be >= %g%s%s at all times in [0, %g] s, reaches %g%s%s", spec->lo,
+                         sp, spec->unit, end_time, lo, sp, spec->unit);
+  if (big > spec->hi)
+    return rs_case_error(r->d, n, path, "reaches %g%s%s in [0, %g] s: unreasonably large (a typo?)",
+                         big, sp, spec->unit, end_time);
+  return RS_OK;
+}
+
+static int resolve_plasticity(const resolver *r, rs_case *c, double k_rel)
+{
+  const yaml_node_t *block = given(r, "plasticity");
+  const yaml_node_t *k_tau = given(r, "plasticity.k_tau"),
+                    *k_rel_node = given(r, "plasticity.k_rel");
+  c->has_plasticity = block != NULL;
+  if (!c->has_plasticity) {
+    c->tau_c_min = 0.1 * c->tau_c0;
+    return RS_OK;
+  }
+  if (k_tau && k_rel_node)
+    return rs_case_error(r->d, k_rel_node, "plasticity.k_rel",
+                         "give plasticity.k_tau (N/mm^3) or plasticity.k_rel, not both");
+  if (!k_tau && !k_rel_node)
+    return rs_case_error(r->d, block, "plasticity",
+                         "give the hardening: plasticity.k_tau (N/mm^3) or plasticity.k_rel "
+                         "(k_tau = G*k_rel/(1 - k_rel), k_rel < 1)");
+  if (k_rel_node)
+    c->k_tau = c->shear_modulus * k_rel / (1.0 - k_rel);
+  else if (!(c->k_tau > -c->shear_modulus))
+    return rs_case_error(
+        r->d, k_tau, "plasticity.k_tau",
+        "softening must be milder than -G = %g N/mm^3 (that is, k_rel < 1), got %g",
+        -c->shear_modulus, c->k_tau);
+  const yaml_node_t *floor_node = given(r, "plasticity.tau_c_min");
+  if (!floor_node)
+    c->tau_c_min = 0.1 * c->tau_c0;
+  else if (c->tau_c_min > c->tau_c0)
+    return rs_case_error(r->d, floor_node, "plasticity.tau_c_min",
+                         "must be <= plasticity.tau_c0 = %g N/mm^2, got %g", c->tau_c0,
+                         c->tau_c_min);
+  return RS_OK;
+}
+
+static int resolve_time(const resolver *r, rs_case *c)
+{
+  const yaml_node_t *end = given(r, "simulation.end_time");
+  const yaml_node_t *dist = given(r, "simulation.rolled_distance");
+  if (end && dist)
+    return rs_case_error(
+        r->d, dist, "simulation.rolled_distance",
+        "give simulation.end_time (s) or simulation.rolled_distance (mm), not both "
+        "(null means not given)");
+  if (dist) {
+    if (!rs_history_is_constant(&c->velocity) || !(rs_history_eval(&c->velocity, 0.0) > 0))
+      return rs_case_error(r->d, dist, "simulation.rolled_distance",
+                           "needs a constant rolling.velocity > 0 mm/s; give simulation.end_time "
+                           "instead");
+    c->end_time = c->rolled_distance / rs_history_eval(&c->velocity, 0.0);
+    if (!(c->end_time > 0 && c->end_time <= 1e6))
+      return rs_case_error(r->d, dist, "simulation.rolled_distance",
+                           "gives end_time = %g s, outside (0, 1e6] s", c->end_time);
+  }
+  if (c->end_time / c->output_interval > 1e8)
+    return rs_case_error(r->d, given(r, "simulation.output_interval"), "simulation.output_interval",
+                         "%g s over end_time %g s would store %.3g records (at most 1e8)",
+                         c->output_interval, c->end_time, c->end_time / c->output_interval);
+  return RS_OK;
+}
+
+/* results/<case file name without .yaml>.nc */
+static char *default_output_file(const char *path)
+{
+  const char *base = strrchr(path, '/');
+  base = base ? base + 1 : path;
+  size_t len = strlen(base);
+  if (len > 5 && !strcmp(base + len - 5, ".yaml"))
+    len -= 5;
+  else if (len > 4 && !strcmp(base + len - 4, ".yml"))
+    len -= 4;
+  char *file = malloc(len + sizeof "results/.nc");
+  if (file)
+    snprintf(file, len + sizeof "results/.nc", "results/%.*s.nc", (int)len, base);
+  return file;
+}
+
+static int resolve(const rs_case_doc *d, rs_case_input *in, const yaml_node_t **where)
+{
+  resolver r = {d, where};
+  rs_case *c = &in->c;
+  int status;
+  if (c->dimension == 3)
+    return rs_case_error(d, given(&r, "contact.dimension"), "contact.dimension",
+                         "3D (elliptic point contact) is not implemented yet; use 2");
+  if ((status = resolve_plasticity(&r, c, in->k_rel)) != RS_OK ||
+      (status = resolve_time(&r, c)) != RS_OK)
+    return status;
+  const rs_history *hs[] = {&c->normal_load, &c->velocity, &c->creepage, &c->shift_velocity};
+  const char *names[] = {"contact.normal_load", "rolling.velocity", "rolling.creepage",
+                         "rolling.shift_velocity"};
+  for (int i = 0; i < 4; i++)
+    if ((status = check_history(&r, names[i], hs[i], c->end_time)) != RS_OK)
+      return status;
+  if (c->normal_load.kind == RS_HISTORY_CONSTANT && !(c->normal_load.value > 0))
+    return rs_case_error(d, given(&r, "contact.normal_load"), "contact.normal_load",
+                         "must be > 0 N/mm, got %g", c->normal_load.value);
+  if (c->mode == RS_MODE_STEADY && !(rs_history_min(&c->velocity, 0.0, c->end_time) > 0))
+    return rs_case_error(d, given(&r, "rolling.velocity"), "rolling.velocity",
+                         "velocity 0 mm/s (pure shift) needs simulation.mode: transient; steady "
+                         "mode is for rolling (V > 0)");
+  if (c->output_file && !*c->output_file)
+    return rs_case_error(d, given(&r, "output.file"), "output.file", "empty file name");
+  if (!c->output_file && !(c->output_file = default_output_file(d->path)))
+    return rs_msg_set(d->msg, RS_ERR_INTERNAL, "out of memory");
+  if (!c->title && !(c->title = strdup("")))
+    return rs_msg_set(d->msg, RS_ERR_INTERNAL, "out of memory");
+  return RS_OK;
+}
+
+int rs_case_load(rs_case *c, const char *path, const char *const *sets, int nsets, rs_msg *msg)
+{
+  memset(c, 0, sizeof *c);
+  if (!path)
+    return rs_msg_set(msg, RS_ERR_INPUT, "no case file given");
+  rs_case_input in;
+  memset(&in, 0, sizeof in);
+  set_defaults(&in);
+  const yaml_node_t **where = calloc(rs_case_nkeys, sizeof *where);
+  rs_case_doc d;
+  int status =
+      where ? rs_case_doc_load(&d, path, msg) : rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory");
+  for (int i = 0; status == RS_OK && i < nsets; i++)
+    status = rs_case_doc_set(&d, sets[i]);
+  if (status == RS_OK)
+    status = rs_case_parse(&d, &in, where);
+  if (status == RS_OK)
+    status = resolve(&d, &in, where);
+  if (status == RS_OK && !(in.c.source_path = strdup(path)))
+    status = rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory");
+  if (status == RS_OK)
+    status = rs_case_doc_emit(&d, &in.c.yaml_text);
+  if (where)
+    rs_case_doc_free(&d);
+  free(where);
+  if (status != RS_OK) {
+    rs_case_free(&in.c);
+    return status;
+  }
+  *c = in.c;
+  return RS_OK;
+}
+
+void rs_case_free(rs_case *c)
+{
+  if (!c)
+    return;
+  free(c->source_path);
+  free(c->yaml_text);
+  free(c->title);
+  free(c->output_file);
+  rs_history_free(&c->normal_load);
+  rs_history_free(&c->velocity);
+  rs_history_free(&c->creepage);
+  rs_history_free(&c->shift_velocity);
+  memset(c, 0, sizeof *c);
+}
+
+/* ------------------------------------------------------------------ print */
+
+static void print_history(const rs_history *h, FILE *out)
+{
+  char a[32], b[32], e[32], f[32];
+  switch (h->kind) {
+  case RS_HISTORY_CONSTANT:
+    fprintf(out, "%s", rs_case_fmt(h->value, a, sizeof a));
+    break;
+  case RS_HISTORY_RAMP:
+    fprintf(out, "{ramp: {from: %s, to: %s, start: %s, duration: %s}}", rs_case_fmt(h->from, a, 32),
+            rs_case_fmt(h->to, b, 32), rs_case_fmt(h->start, e, 32),
+            rs_case_fmt(h->duration, f, 32));
+    break;
+  case RS_HISTORY_SINE:
+    fprintf(out, "{sine: {mean: %s, amplitude: %s, frequency: %s, phase: %s}}",
+            rs_case_fmt(h->mean, a, 32), rs_case_fmt(h->amplitude, b, 32),
+            rs_case_fmt(h->frequency, e, 32), rs_case_fmt(h->phase, f, 32));
+    break;
+  case RS_HISTORY_STEPS:
+    fprintf(out, "{steps: [");
+    for (size_t i = 0; i < h->n; i++)
+      fprintf(out, "%s[%s, %s]", i ? ", " : "", rs_case_fmt(h->t[i], a, 32),
+              rs_case_fmt(h->v[i], b, 32));
+    fprintf(out, "]}");
+    break;
+  case RS_HISTORY_TABLE:
+    fprintf(out, "{table: %zu points, t = %s .. %s s}", h->n, rs_case_fmt(h->t[0], a, 32),
+            rs_case_fmt(h->t[h->n - 1], b, 32));
+    break;
+  }
+}
+
+void rs_case_print(const rs_case *c, FILE *out)
+{
+  rs_case_input in = {*c, c->k_tau / (c->shear_modulus + c->k_tau)};
+  char num[32];
+  for (size_t i = 0; i < rs_case_nkeys; i++) {
+    const rs_case_key *k = &rs_case_keys[i];
+    const void *field = k->offset == RS_KEY_NO_FIELD ? NULL : (const char *)&in + k->offset;
+    int plastic = !strncmp(k->path, "plasticity", 10);
+    if (plastic && !c->has_plasticity) {
+      if (k->kind == RS_KEY_SECTION)
+        fprintf(out, "plasticity: none  # purely elastic (no plasticity block)\n");
+      continue;
+    }
+    if (k->kind == RS_KEY_SECTION || k->kind == RS_KEY_OPAQUE)
+      continue;
+    if (!strcmp(k->path, "simulation.rolled_distance") && c->rolled_distance < 0) {
+      fprintf(out, "%s: null  # mm (not given)\n", k->path);
+      continue;
+    }
+    fprintf(out, "%s: ", k->path);
+    switch (k->kind) {
+    case RS_KEY_NUMBER:
+      fprintf(out, "%s", rs_case_fmt(*(const double *)field, num, sizeof num));
+      break;
+    case RS_KEY_INTEGER:
+      fprintf(out, "%d", *(const int *)field);
+      break;
+    case RS_KEY_LONG:
+      fprintf(out, "%ld", *(const long *)field);
+      break;
+    case RS_KEY_TEXT:
+      fputc('"', out);
+      for (const char *s = *(char *const *)field; s && *s; s++) {
+        if (*s == '"' || *s == '\\')
+          fputc('\\', out);
+        fputc(*s, out);
+      }
+      fputc('"', out);
+      break;
+    case RS_KEY_CHOICE:
+      fprintf(out, "%s", k->choices[field ? *(const int *)field : 0]);
+      break;
+    case RS_KEY_HISTORY:
+      print_history(field, out);
+      break;
+    case RS_KEY_FIELDS: {
+      int first = 1;
+      fputc('[', out);
+      for (int b = 0; rs_case_field_names[b]; b++)
+        if (c->fields & (1u << b)) {
+          fprintf(out, "%s%s", first ? "" : ", ", rs_case_field_names[b]);
+          first = 0;
+        }
+      fputc(']', out);
+      break;
+    }
+    default:
+      break;
+    }
+    if (*k->unit)
+      fprintf(out, "  # %s", k->unit);
+    else if (k->kind == RS_KEY_NUMBER || k->kind == RS_KEY_HISTORY)
+      fprintf(out, "  # 1");
+    if (k->flags & RS_KEY_DERIVED)
+      fprintf(out, " (= k_tau/(G + k_tau))");
+    fputc('\n', out);
+  }
+}

@@ -1,0 +1,120 @@
+/* Internal to the case-file module: the YAML document with the origin of every
+ * node (file line or --set), typed values read from nodes, and the key table.
+ *   case_yaml.c     load the file, apply --set, emit the document as run
+ *   case_values.c   node -> number/text/choice with file:line messages
+ *   case_keys.c     the table of keys and the walk that fills an rs_case
+ *   case_history.c  history values (number, ramp, steps, sine, CSV table)
+ *   case.c          rs_case_load/free/print, cross-key rules, derived values */
+#ifndef ROLLSIM_CASE_INTERNAL_H
+#define ROLLSIM_CASE_INTERNAL_H
+
+#include <stddef.h>
+#include <yaml.h>
+
+#include "rollsim/case.h"
+
+/* ---- case_yaml.c: the document ---- */
+
+typedef struct rs_case_set_origin {
+  int first_node, end_node; /* nodes [first_node, end_node) were created by this --set */
+  char *key;                /* its dotted key */
+} rs_case_set_origin;
+
+typedef struct rs_case_doc {
+  yaml_document_t doc;
+  int has_doc;
+  const char *path; /* the case file as given */
+  char *dir;        /* its directory (tables are relative to it), "" for the cwd */
+  rs_case_set_origin *sets;
+  int nsets;
+  rs_msg *msg;
+} rs_case_doc;
+
+int rs_case_doc_load(rs_case_doc *d, const char *path, rs_msg *msg);
+/* Apply one --set KEY=VALUE (VALUE parsed as YAML), creating missing parent mappings. */
+int rs_case_doc_set(rs_case_doc *d, const char *assignment);
+/* Emit the (modified) document as YAML text. Consumes the document. */
+int rs_case_doc_emit(rs_case_doc *d, char **text);
+void rs_case_doc_free(rs_case_doc *d);
+yaml_node_t *rs_case_doc_root(rs_case_doc *d);
+
+/* ---- case_values.c: reading nodes ---- */
+
+/* Error about `node` (NULL: the document root) and dotted `key` (may be NULL):
+ *   "case.yaml:12: key: what"  or  "--set key: what". Returns RS_ERR_INPUT. */
+int rs_case_error(const rs_case_doc *d, const yaml_node_t *node, const char *key, const char *fmt,
+                  ...) __attribute__((format(printf, 4, 5)));
+
+int rs_case_is_null(const yaml_node_t *n);
+/* Short description of a node for "got ..." (writes into buf). */
+const char *rs_case_describe(const yaml_node_t *n, char *buf, size_t len);
+/* Scalar conversions; on error they set the message (with key and unit) and return RS_ERR_INPUT. */
+int rs_case_number(const rs_case_doc *d, const yaml_node_t *n, const char *key, double *out);
+int rs_case_text(const rs_case_doc *d, const yaml_node_t *n, const char *key, char **out);
+int rs_case_choice(const rs_case_doc *d, const yaml_node_t *n, const char *key,
+                   const char *const *choices, int *out);
+/* Keys of a mapping node are plain scalars listed in `allowed` (NULL-terminated), each once. */
+int rs_case_check_mapping(const rs_case_doc *d, const yaml_node_t *map, const char *key,
+                          const char *const *allowed);
+/* Value node of `name` in a mapping, or NULL. */
+yaml_node_t *rs_case_lookup(const rs_case_doc *d, const yaml_node_t *map, const char *name);
+/* Format a double so that it reads back exactly, shortest of %.15g / %.17g. */
+const char *rs_case_fmt(double x, char *buf, size_t len);
+
+/* ---- case_keys.c: the key table and the parsing of the document into a case ---- */
+
+typedef enum rs_case_key_kind {
+  RS_KEY_SECTION, /* a mapping of keys */
+  RS_KEY_OPAQUE,  /* a mapping accepted as is (sweep:, handled elsewhere) */
+  RS_KEY_NUMBER,  /* double */
+  RS_KEY_INTEGER, /* int */
+  RS_KEY_LONG,    /* long */
+  RS_KEY_TEXT,    /* char * */
+  RS_KEY_CHOICE,  /* int (an enum), one of `choices` */
+  RS_KEY_HISTORY, /* rs_history */
+  RS_KEY_FIELDS   /* unsigned mask of RS_FIELD_* */
+} rs_case_key_kind;
+
+enum {
+  RS_KEY_LO_OPEN = 1 << 0,  /* lo excluded */
+  RS_KEY_HI_OPEN = 1 << 1,  /* hi excluded */
+  RS_KEY_NULLABLE = 1 << 2, /* null = the default */
+  RS_KEY_DERIVED = 1 << 3,  /* not stored as given (k_rel), printed from the case */
+  RS_KEY_HI_ABSURD = 1 << 4 /* hi is a sanity bound, not a physical one */
+};
+#define RS_KEY_NO_FIELD ((size_t)-1) /* accepted and checked, nothing to store (friction.law) */
+
+/* The case being built: the public case plus what is given but not stored. */
+typedef struct rs_case_input {
+  rs_case c;
+  double k_rel;
+} rs_case_input;
+
+typedef struct rs_case_key {
+  const char *path; /* dotted key */
+  rs_case_key_kind kind;
+  size_t offset; /* into rs_case_input */
+  const char *unit;
+  double lo, hi; /* allowed range of numbers and integers (RS_KEY_*_OPEN in flags) */
+  unsigned flags;
+  const char *const *choices;
+} rs_case_key;
+
+extern const rs_case_key rs_case_keys[];
+extern const size_t rs_case_nkeys;
+extern const char *const rs_case_field_names[]; /* bit i of the mask, NULL-terminated */
+
+/* Parse the document into `in` (defaults already set); where[i] is the value node of
+ * rs_case_keys[i] when given (NULL otherwise). */
+int rs_case_parse(rs_case_doc *d, rs_case_input *in, const yaml_node_t **where);
+/* Index of a key in rs_case_keys, or -1. */
+int rs_case_key_index(const char *path);
+/* Check a number against the key's range (message with the key and unit). */
+int rs_case_check_range(const rs_case_doc *d, const yaml_node_t *n, const rs_case_key *spec,
+                        const char *key, double x);
+
+/* ---- case_history.c: a history node (number, ramp, steps, sine, table) ---- */
+int rs_case_history(const rs_case_doc *d, const yaml_node_t *n, const char *key, const char *unit,
+                    rs_history *h);
+
+#endif

@@ -1,0 +1,267 @@
+/* The case-file keys (interfaces.md "Case file (YAML)" plus solver.scaling,
+ * solver.max_steps, simulation.rolled_distance, sweep:): one table giving each
+ * key's type, field, unit and allowed range, and the walk of the document that
+ * fills an rs_case from it. Cross-key rules and derived values are in case.c. */
+#include "case_internal.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+_Static_assert(sizeof(rs_mode) == sizeof(int) && sizeof(rs_scaling) == sizeof(int) &&
+                   sizeof(rs_normal_solution) == sizeof(int) &&
+                   sizeof(rs_initial_state) == sizeof(int),
+               "choice keys are stored through int *");
+
+static const char *const normal_solution_names[] = {"discrete", "hertz", NULL};
+static const char *const mode_names[] = {"transient", "steady", NULL};
+static const char *const initial_state_names[] = {"rest", "steady", NULL};
+static const char *const scaling_names[] = {"auto", "difference", "self", NULL};
+static const char *const law_names[] = {"coulomb", NULL};
+const char *const rs_case_field_names[] = {"px",    "pn",   "slip",   "upl",
+                                           "ustar", "tauc", "regime", NULL};
+
+#define F(member) offsetof(rs_case_input, member)
+#define BIG 1e12 /* sanity bound on moduli, loads, lengths: larger is surely a typo */
+
+const rs_case_key rs_case_keys[] = {
+    {"title", RS_KEY_TEXT, F(c.title), "", 0, 0, RS_KEY_NULLABLE, NULL},
+
+    {"contact", RS_KEY_SECTION, 0, "", 0, 0, 0, NULL},
+    {"contact.dimension", RS_KEY_INTEGER, F(c.dimension), "", 2, 3, 0, NULL},
+    {"contact.normal_load", RS_KEY_HISTORY, F(c.normal_load), "N/mm", 0, BIG, RS_KEY_HI_ABSURD,
+     NULL},
+    {"contact.radius", RS_KEY_NUMBER, F(c.radius), "mm", 0, 1e9, RS_KEY_LO_OPEN | RS_KEY_HI_ABSURD,
+     NULL},
+    {"contact.normal_solution", RS_KEY_CHOICE, F(c.normal_solution), "", 0, 0, 0,
+     normal_solution_names},
+    {"contact.reference_length", RS_KEY_NUMBER, F(c.reference_length), "mm", 0, 1e9,
+     RS_KEY_LO_OPEN | RS_KEY_HI_ABSURD, NULL},
+
+    {"grid", RS_KEY_SECTION, 0, "", 0, 0, 0, NULL},
+    {"grid.cells", RS_KEY_INTEGER, F(c.cells), "", 2, 100000, 0, NULL},
+    {"grid.extent", RS_KEY_NUMBER, F(c.extent), "Hertz half-widths", 1, 1000, RS_KEY_HI_ABSURD,
+     NULL},
+
+    {"material", RS_KEY_SECTION, 0, "", 0, 0, 0, NULL},
+    {"material.shear_modulus", RS_KEY_NUMBER, F(c.shear_modulus), "N/mm^2", 0, BIG,
+     RS_KEY_LO_OPEN | RS_KEY_HI_ABSURD, NULL},
+    {"material.poisson_ratio", RS_KEY_NUMBER, F(c.poisson_ratio), "", -1, 0.5,
+     RS_KEY_LO_OPEN | RS_KEY_HI_OPEN, NULL},
+
+    {"friction", RS_KEY_SECTION, 0, "", 0, 0, 0, NULL},
+    {"friction.law", RS_KEY_CHOICE, RS_KEY_NO_FIELD, "", 0, 0, 0, law_names},
+    {"friction.mu", RS_KEY_NUMBER, F(c.mu), "", 0, 1000, RS_KEY_LO_OPEN | RS_KEY_HI_ABSURD, NULL},
+
+    {"layer", RS_KEY_SECTION, 0, "", 0, 0, 0, NULL},
+    {"layer.thickness", RS_KEY_NUMBER, F(c.layer_thickness), "mm", 0, 1e9, RS_KEY_HI_ABSURD, NULL},
+    {"layer.shear_modulus", RS_KEY_NUMBER, F(c.layer_shear_modulus), "N/mm^2", 0, BIG,
+     RS_KEY_LO_OPEN | RS_KEY_HI_ABSURD, NULL},
+
+    {"plasticity", RS_KEY_SECTION, 0, "", 0, 0, 0, NULL},
+    {"plasticity.tau_c0", RS_KEY_NUMBER, F(c.tau_c0), "N/mm^2", 0, BIG,
+     RS_KEY_LO_OPEN | RS_KEY_HI_ABSURD, NULL},
+    {"plasticity.k_tau", RS_KEY_NUMBER, F(c.k_tau), "N/mm^3", -1e15, 1e15, RS_KEY_HI_ABSURD, NULL},
+    {"plasticity.k_rel", RS_KEY_NUMBER, F(k_rel), "", -1e6, 1, RS_KEY_HI_OPEN | RS_KEY_DERIVED,
+     NULL},
+    {"plasticity.tau_c_min", RS_KEY_NUMBER, F(c.tau_c_min), "N/mm^2", 0, BIG,
+     RS_KEY_LO_OPEN | RS_KEY_HI_ABSURD | RS_KEY_NULLABLE, NULL},
+
+    {"rolling", RS_KEY_SECTION, 0, "", 0, 0, 0, NULL},
+    {"rolling.velocity", RS_KEY_HISTORY, F(c.velocity), "mm/s", 0, 1e9, RS_KEY_HI_ABSURD, NULL},
+    {"rolling.creepage", RS_KEY_HISTORY, F(c.creepage), "", -10, 10, RS_KEY_HI_ABSURD, NULL},
+    {"rolling.shift_velocity", RS_KEY_HISTORY, F(c.shift_velocity), "mm/s", -1e9, 1e9,
+     RS_KEY_HI_ABSURD, NULL},
+
+    {"simulation", RS_KEY_SECTION, 0, "", 0, 0, 0, NULL},
+    {"simulation.mode", RS_KEY_CHOICE, F(c.mode), "", 0, 0, 0, mode_names},
+    {"simulation.end_time", RS_KEY_NUMBER, F(c.end_time), "s", 0, 1e6,
+     RS_KEY_LO_OPEN | RS_KEY_HI_ABSURD | RS_KEY_NULLABLE, NULL},
+    {"simulation.rolled_distance", RS_KEY_NUMBER, F(c.rolled_distance), "mm", 0, BIG,
+     RS_KEY_LO_OPEN | RS_KEY_HI_ABSURD | RS_KEY_NULLABLE, NULL},
+    {"simulation.output_interval", RS_KEY_NUMBER, F(c.output_interval), "s", 0, 1e6,
+     RS_KEY_LO_OPEN | RS_KEY_HI_ABSURD, NULL},
+    {"simulation.initial_state", RS_KEY_CHOICE, F(c.initial_state), "", 0, 0, 0,
+     initial_state_names},
+
+    {"solver", RS_KEY_SECTION, 0, "", 0, 0, 0, NULL},
+    {"solver.rtol", RS_KEY_NUMBER, F(c.rtol), "", 0, 1, RS_KEY_LO_OPEN | RS_KEY_HI_OPEN, NULL},
+    {"solver.atol", RS_KEY_NUMBER, F(c.atol), "N/mm^2", 0, BIG, RS_KEY_LO_OPEN | RS_KEY_HI_ABSURD,
+     NULL},
+    {"solver.max_order", RS_KEY_INTEGER, F(c.max_order), "", 1, 5, 0, NULL},
+    {"solver.scaling", RS_KEY_CHOICE, F(c.scaling), "", 0, 0, 0, scaling_names},
+    {"solver.max_steps", RS_KEY_LONG, F(c.max_steps), "steps", 1, 1e15, RS_KEY_HI_ABSURD, NULL},
+
+    {"output", RS_KEY_SECTION, 0, "", 0, 0, 0, NULL},
+    {"output.file", RS_KEY_TEXT, F(c.output_file), "", 0, 0, RS_KEY_NULLABLE, NULL},
+    {"output.fields", RS_KEY_FIELDS, F(c.fields), "", 0, 0, 0, NULL},
+
+    {"sweep", RS_KEY_OPAQUE, 0, "", 0, 0, 0, NULL},
+};
+const size_t rs_case_nkeys = sizeof rs_case_keys / sizeof rs_case_keys[0];
+
+int rs_case_key_index(const char *path)
+{
+  for (size_t i = 0; i < rs_case_nkeys; i++)
+    if (!strcmp(rs_case_keys[i].path, path))
+      return (int)i;
+  return -1;
+}
+
+int rs_case_check_range(const rs_case_doc *d, const yaml_node_t *n, const rs_case_key *spec,
+                        const char *key, double x)
+{
+  const char *sp = *spec->unit ? " " : "";
+  char got[32];
+  rs_case_fmt(x, got, sizeof got);
+  if (spec->flags & RS_KEY_LO_OPEN ? !(x > spec->lo) : !(x >= spec->lo))
+    return rs_case_error(d, n, key, "must be %s %g%s%s, got %s",
+                         spec->flags & RS_KEY_LO_OPEN ? ">" : ">=", spec->lo, sp, spec->unit, got);
+  if (spec->flags & RS_KEY_HI_OPEN ? !(x < spec->hi) : !(x <= spec->hi))
+    return rs_case_error(d, n, key, "must be %s %g%s%s, got %s%s",
+                         spec->flags & RS_KEY_HI_OPEN ? "<" : "<=", spec->hi, sp, spec->unit, got,
+                         spec->flags & RS_KEY_HI_ABSURD ? " (unreasonably large: a typo?)" : "");
+  return RS_OK;
+}
+
+/* output.fields: a list of distinct names from rs_case_field_names. */
+static int parse_fields(const rs_case_doc *d, const yaml_node_t *n, const char *key, unsigned *mask)
+{
+  char got[96], names[128] = "";
+  if (n->type != YAML_SEQUENCE_NODE)
+    return rs_case_error(d, n, key, "expected a list such as [px, pn, slip], got %s",
+                         rs_case_describe(n, got, sizeof got));
+  *mask = 0;
+  for (yaml_node_item_t *it = n->data.sequence.items.start; it < n->data.sequence.items.top; it++) {
+    const yaml_node_t *item = yaml_document_get_node((yaml_document_t *)&d->doc, *it);
+    int i = 0;
+    if (item && item->type == YAML_SCALAR_NODE)
+      for (; rs_case_field_names[i]; i++)
+        if (!strcmp((const char *)item->data.scalar.value, rs_case_field_names[i]))
+          break;
+    if (!item || item->type != YAML_SCALAR_NODE || !rs_case_field_names[i]) {
+      for (int j = 0; rs_case_field_names[j]; j++)
+        strcat(strcat(names, j ? ", " : ""), rs_case_field_names[j]);
+      return rs_case_error(d, item, key, "unknown field %s (fields are %s)",
+                           rs_case_describe(item, got, sizeof got), names);
+    }
+    if (*mask & (1u << i))
+      return rs_case_error(d, item, key, "%s is listed twice", rs_case_field_names[i]);
+    *mask |= 1u << i;
+  }
+  return RS_OK;
+}
+
+/* Parse the value of key `spec` into `in`. */
+static int parse_value(const rs_case_doc *d, const rs_case_key *spec, const yaml_node_t *n,
+                       rs_case_input *in)
+{
+  void *field = spec->offset == RS_KEY_NO_FIELD ? NULL : (char *)in + spec->offset;
+  double x = 0;
+  int status, choice = 0;
+  switch (spec->kind) {
+  case RS_KEY_NUMBER:
+    if ((status = rs_case_number(d, n, spec->path, &x)) != RS_OK ||
+        (status = rs_case_check_range(d, n, spec, spec->path, x)) != RS_OK)
+      return status;
+    *(double *)field = x;
+    return RS_OK;
+  case RS_KEY_INTEGER:
+  case RS_KEY_LONG:
+    if ((status = rs_case_number(d, n, spec->path, &x)) != RS_OK)
+      return status;
+    if (x != floor(x))
+      return rs_case_error(d, n, spec->path, "expected a whole number, got %s",
+                           (const char *)n->data.scalar.value);
+    if ((status = rs_case_check_range(d, n, spec, spec->path, x)) != RS_OK)
+      return status;
+    if (spec->kind == RS_KEY_INTEGER)
+      *(int *)field = (int)x;
+    else
+      *(long *)field = (long)x;
+    return RS_OK;
+  case RS_KEY_TEXT:
+    return rs_case_text(d, n, spec->path, (char **)field);
+  case RS_KEY_CHOICE:
+    if ((status = rs_case_choice(d, n, spec->path, spec->choices, &choice)) != RS_OK)
+      return status;
+    if (field)
+      *(int *)field = choice;
+    return RS_OK;
+  case RS_KEY_HISTORY:
+    rs_history_free((rs_history *)field);
+    return rs_case_history(d, n, spec->path, spec->unit, (rs_history *)field);
+  case RS_KEY_FIELDS:
+    return parse_fields(d, n, spec->path, (unsigned *)field);
+  case RS_KEY_SECTION:
+  case RS_KEY_OPAQUE:
+    break;
+  }
+  return rs_msg_set(d->msg, RS_ERR_INTERNAL, "%s: not a value key", spec->path);
+}
+
+/* The names of the keys directly under `section` ("" for the top level). */
+static void child_names(const char *section, const char **names, size_t max)
+{
+  size_t len = strlen(section), count = 0;
+  for (size_t i = 0; i < rs_case_nkeys && count + 1 < max; i++) {
+    const char *p = rs_case_keys[i].path;
+    if (len == 0 && !strchr(p, '.'))
+      names[count++] = p;
+    else if (len && !strncmp(p, section, len) && p[len] == '.')
+      names[count++] = p + len + 1;
+  }
+  names[count] = NULL;
+}
+
+/* Parse the keys of mapping `map` (the top level when section is ""). */
+static int parse_mapping(rs_case_doc *d, const char *section, const yaml_node_t *map,
+                         rs_case_input *in, const yaml_node_t **where)
+{
+  const char *names[64];
+  child_names(section, names, 64);
+  int status = rs_case_check_mapping(d, map, *section ? section : NULL, names);
+  if (status != RS_OK)
+    return status;
+  size_t len = strlen(section);
+  for (size_t i = 0; i < rs_case_nkeys; i++) {
+    const rs_case_key *spec = &rs_case_keys[i];
+    if (len ? strncmp(spec->path, section, len) || spec->path[len] != '.'
+            : !!strchr(spec->path, '.'))
+      continue;
+    const yaml_node_t *n = rs_case_lookup(d, map, spec->path + (len ? len + 1 : 0));
+    if (!n)
+      continue;
+    char got[96];
+    switch (spec->kind) {
+    case RS_KEY_SECTION:
+      if (rs_case_is_null(n)) /* "plasticity:" with nothing under it: as if absent */
+        continue;
+      where[i] = n;
+      if ((status = parse_mapping(d, spec->path, n, in, where)) != RS_OK)
+        return status;
+      break;
+    case RS_KEY_OPAQUE:
+      if (rs_case_is_null(n))
+        continue;
+      if (n->type != YAML_MAPPING_NODE)
+        return rs_case_error(d, n, spec->path,
+                             "expected a mapping of dotted keys to value lists, got %s",
+                             rs_case_describe(n, got, sizeof got));
+      where[i] = n;
+      break;
+    default:
+      if ((spec->flags & RS_KEY_NULLABLE) && rs_case_is_null(n))
+        continue; /* null: the default */
+      where[i] = n;
+      if ((status = parse_value(d, spec, n, in)) != RS_OK)
+        return status;
+    }
+  }
+  return RS_OK;
+}
+
+int rs_case_parse(rs_case_doc *d, rs_case_input *in, const yaml_node_t **where)
+{
+  return parse_mapping(d, "", rs_case_doc_root(d), in, where);
+}

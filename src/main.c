@@ -1,0 +1,197 @@
+/* rollsim command line (interfaces.md "Command line"):
+ *   rollsim run CASE.yaml [-o OUT.nc] [--set KEY=VALUE]... [--quiet]
+ *   rollsim check CASE.yaml [--set KEY=VALUE]...
+ *   rollsim sweep CASE.yaml [-o OUT.nc] [--set ...]
+ *   rollsim --help | --version
+ * Exit codes: 0 success, 2 invalid input (nothing run), 3 solver failure (partial
+ * results kept), 4 interrupted (partial results kept), 1 internal or output error. */
+#define _POSIX_C_SOURCE 200809L
+#include <signal.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+#include <unistd.h>
+
+#include "rollsim/case.h"
+#include "rollsim/run.h"
+
+#ifndef RS_VERSION
+#define RS_VERSION "unknown"
+#endif
+
+/* The only process-wide state: set by SIGINT/SIGTERM, read between output records. */
+static volatile sig_atomic_t interrupted = 0;
+
+static void on_signal(int sig)
+{
+  (void)sig;
+  interrupted = 1;
+}
+
+static void usage(FILE *f)
+{
+  fprintf(f,
+          "usage: rollsim run CASE.yaml [-o OUT.nc] [--set KEY=VALUE]... [--quiet]\n"
+          "       rollsim check CASE.yaml [--set KEY=VALUE]...\n"
+          "       rollsim sweep CASE.yaml [-o OUT.nc] [--set KEY=VALUE]...\n"
+          "       rollsim --help | --version\n"
+          "\n"
+          "Transient 2D wheel-rail rolling contact with local plasticity (Kalker's theory\n"
+          "extended with a yield limit; SUNDIALS IDA/KINSOL, KLU, netCDF output).\n"
+          "\n"
+          "  run     solve the case, write the netCDF file (case output.file or -o), print a summary\n"
+          "  check   validate the case and print every resolved and derived parameter; run nothing\n"
+          "  sweep   run the case's sweep: block into one netCDF file\n"
+          "  -o FILE        output file (overrides output.file)\n"
+          "  --set KEY=VAL  override a case key by its dotted path, e.g. --set grid.cells=200\n"
+          "  --quiet        no progress bar\n"
+          "\n"
+          "Units: mm, N, s, N/mm^2. Exit codes: 0 ok, 2 invalid input, 3 solver failure,\n"
+          "4 interrupted, 1 internal/output error.\n");
+}
+
+static int exit_code(int status)
+{
+  switch (status) {
+  case RS_OK: return 0;
+  case RS_ERR_INPUT: return 2;
+  case RS_ERR_SOLVER: return 3;
+  case RS_ERR_INTERRUPTED: return 4;
+  default: return 1;
+  }
+}
+
+int main(int argc, char **argv)
+{
+  if (argc < 2) {
+    usage(stderr);
+    return 2;
+  }
+  if (!strcmp(argv[1], "--help") || !strcmp(argv[1], "-h")) {
+    usage(stdout);
+    return 0;
+  }
+  if (!strcmp(argv[1], "--version")) {
+    printf("rollsim %s\n", RS_VERSION);
+    return 0;
+  }
+  const char *cmd = argv[1];
+  if (strcmp(cmd, "run") && strcmp(cmd, "check") && strcmp(cmd, "sweep")) {
+    fprintf(stderr, "rollsim: unknown command '%s'\n", cmd);
+    usage(stderr);
+    return 2;
+  }
+  const char *case_path = NULL, *out_path = NULL;
+  int quiet = 0, nsets = 0;
+  const char **sets = calloc((size_t)argc, sizeof *sets);
+  if (!sets) return 1;
+  for (int i = 2; i < argc; i++) {
+    const char *a = argv[i];
+    if (!strcmp(a, "-o") || !strcmp(a, "--output")) {
+      if (++i >= argc) {
+        fprintf(stderr, "rollsim: %s needs a file name\n", a);
+        free(sets);
+        return 2;
+      }
+      out_path = argv[i];
+    } else if (!strcmp(a, "--set")) {
+      if (++i >= argc) {
+        fprintf(stderr, "rollsim: --set needs KEY=VALUE\n");
+        free(sets);
+        return 2;
+      }
+      sets[nsets++] = argv[i];
+    } else if (!strncmp(a, "--set=", 6)) {
+      sets[nsets++] = a + 6;
+    } else if (!strcmp(a, "--quiet") || !strcmp(a, "-q")) {
+      quiet = 1;
+    } else if (a[0] == '-' && a[1] != '\0') {
+      fprintf(stderr, "rollsim: unknown option '%s'\n", a);
+      free(sets);
+      return 2;
+    } else if (!case_path) {
+      case_path = a;
+    } else {
+      fprintf(stderr, "rollsim: more than one case file ('%s' and '%s')\n", case_path, a);
+      free(sets);
+      return 2;
+    }
+  }
+  if (!case_path) {
+    fprintf(stderr, "rollsim %s: missing CASE.yaml\n", cmd);
+    free(sets);
+    return 2;
+  }
+  for (int k = 0; k < nsets; k++) {
+    if (!strchr(sets[k], '=')) {
+      fprintf(stderr, "rollsim: --set %s: expected KEY=VALUE\n", sets[k]);
+      free(sets);
+      return 2;
+    }
+  }
+
+  rs_case c;
+  rs_msg msg = {{0}};
+  int status = rs_case_load(&c, case_path, sets, nsets, &msg);
+  free(sets);
+  if (status != RS_OK) {
+    fprintf(stderr, "%s\n", msg.text);
+    return exit_code(status);
+  }
+
+  if (!strcmp(cmd, "check")) {
+    rs_case_print(&c, stdout);
+    status = rs_run_print_derived(&c, stdout, &msg);
+    if (status != RS_OK) fprintf(stderr, "%s: %s\n", case_path, msg.text);
+    rs_case_free(&c);
+    return exit_code(status == RS_ERR_SOLVER ? RS_ERR_INPUT : status);
+  }
+  if (!strcmp(cmd, "sweep")) {
+    fprintf(stderr, "rollsim sweep: sweeps are not implemented yet; use run with --set\n");
+    rs_case_free(&c);
+    return 2;
+  }
+
+  struct sigaction sa;
+  memset(&sa, 0, sizeof sa);
+  sa.sa_handler = on_signal;
+  sigaction(SIGINT, &sa, NULL);
+  sigaction(SIGTERM, &sa, NULL);
+
+  char history[2048];
+  const time_t now = time(NULL);
+  char date[64];
+  strftime(date, sizeof date, "%Y-%m-%dT%H:%M:%SZ", gmtime(&now));
+  int len = snprintf(history, sizeof history, "%s: rollsim %s", date, RS_VERSION);
+  for (int i = 1; i < argc && len > 0 && (size_t)len < sizeof history; i++)
+    len += snprintf(history + len, sizeof history - (size_t)len, " %s", argv[i]);
+
+  rs_run_opts o = {.output_path = out_path,
+                   .history = history,
+                   .progress = !quiet && isatty(STDERR_FILENO),
+                   .interrupt_flag = &interrupted};
+  rs_run_result res;
+  status = rs_run(&c, &o, &res, &msg);
+  if (status != RS_OK) fprintf(stderr, "rollsim: %s: %s\n", case_path, msg.text);
+  if (res.records > 0) {
+    const rs_diag *d = &res.final;
+    const double ratio = d->Fn > 0 ? d->Fx / (res.mu * d->Fn) : 0.0;
+    printf("%s\n", c.title && *c.title ? c.title : case_path);
+    printf("  F_x/(mu F_n) = %.6f   (F_x = %.6g N/mm, F_n = %.6g N/mm, mu = %g) at t = %.6g s\n",
+           ratio, d->Fx, d->Fn, res.mu, res.time);
+    printf("  cells E/H/S/P = %d/%d/%d/%d\n", d->count[RS_EXTERIOR], d->count[RS_ADHESION],
+           d->count[RS_SLIP], d->count[RS_PLASTIC]);
+    if (c.mode == RS_MODE_TRANSIENT)
+      printf("  IDA steps %ld, Newton iterations %ld, failed solves %ld, error-test fails %ld\n",
+             res.stats.steps, res.stats.nonlin_iters, res.stats.nonlin_fails,
+             res.stats.err_test_fails);
+    else
+      printf("  Newton iterations %ld\n", res.stats.nonlin_iters);
+    printf("  wall time %.3f s\n", res.wall_seconds);
+    printf("  output: %s (%zu records)%s\n", res.file, res.records,
+           status == RS_OK ? "" : " -- incomplete, see status attribute");
+  }
+  rs_case_free(&c);
+  return exit_code(status);
+}

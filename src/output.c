@@ -1,0 +1,421 @@
+/* netCDF output (rollsim/output.h, interfaces.md "Output file (netCDF, CF-1.10)").
+ *
+ * Crash safety: the file must stay readable, holding every record written so far, if the
+ * process is killed (SIGKILL) at any moment. Nothing here can make a kill wait, so the file
+ * is laid out and written in an order where every prefix of the write() calls leaves a
+ * valid file:
+ *
+ *  - Format: classic 64-bit offset (CDF-2), not netCDF-4/HDF5. A classic file is a header
+ *    plus flat arrays; readers take the record count from one 4-byte field (numrecs, at
+ *    offset 4), which a single write() either changes or not. HDF5 updates B-trees and its
+ *    superblock in several places and a kill between them can leave the file unreadable.
+ *  - Creation: the file is built under PATH.part (header and x written and synced) and
+ *    renamed to PATH, so PATH never names a file without a complete header.
+ *  - Records: netCDF's posix I/O layer (without NC_SHARE) keeps one buffer of at most two
+ *    blocks; numrecs is only written by nc_sync, which pages out the buffered record data
+ *    before it reads the header block to update numrecs, then writes that block. The record
+ *    section is aligned to two blocks (r_align below), so record data never shares a
+ *    buffer (hence a write()) with numrecs: the data of record n reach the file before
+ *    numrecs becomes n+1. A kill in between leaves numrecs = n and the half-written record
+ *    beyond what readers see. (Checked with strace and by tests/check_output_crash.py.)
+ *  - Header rewrites (status attribute): the status text has a fixed, NUL-padded length
+ *    (RS_OUTPUT_STATUS_LEN), so the rewrite is done in data mode and the header keeps its
+ *    size and layout; only the status bytes change and a torn write can at worst mix old
+ *    and new status text. Extra header space is reserved anyway (nc__enddef h_minfree) so
+ *    that a future attribute change never needs to move the data.
+ *  - The last record variable is always a double (the scalars follow the fields), so a file
+ *    with n complete records is as long as its header says (no trailing padding missing).
+ *
+ * nc_sync does not fsync: the data are in the kernel's page cache, which survives a killed
+ * process (not a power failure). */
+#define _POSIX_C_SOURCE 200809L
+
+#include "rollsim/output.h"
+
+#include <errno.h>
+#include <netcdf.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <sys/types.h>
+
+#include "rollsim/case.h"
+
+#ifndef RS_VERSION
+#define RS_VERSION "unknown"
+#endif
+
+/* I/O block size passed to netCDF; its buffer holds at most two blocks. */
+#define RS_IO_BLOCK ((size_t)4096)
+/* Free header space reserved beyond the case text (nc__enddef h_minfree). */
+#define RS_HEADER_RESERVE ((size_t)4096)
+
+/* (time, x) fields: interfaces.md table. The regime field is stored as NC_BYTE. */
+typedef struct field_var {
+  unsigned bit;          /* RS_FIELD_* */
+  const char *name;
+  const char *units;
+  const char *long_name;
+  size_t member;         /* offsetof(rs_record, array), for the double fields */
+} field_var;
+
+#define N_FIELDS 7
+#define REGIME_FIELD 6
+static const field_var field_vars[N_FIELDS] = {
+    {RS_FIELD_PX, "px", "N/mm2", "tangential traction on body 1", offsetof(rs_record, px)},
+    {RS_FIELD_PN, "pn", "N/mm2", "normal pressure", offsetof(rs_record, pn)},
+    {RS_FIELD_SLIP, "slip", "1", "relative slip v_s/V (slip velocity in mm/s when V = 0)",
+     offsetof(rs_record, slip)},
+    {RS_FIELD_UPL, "upl", "mm", "plastic displacement", offsetof(rs_record, upl)},
+    {RS_FIELD_USTAR, "ustar", "mm", "accumulated plastic deformation",
+     offsetof(rs_record, ustar)},
+    {RS_FIELD_TAUC, "tauc", "N/mm2", "current yield limit", offsetof(rs_record, tauc)},
+    {RS_FIELD_REGIME, "regime", "1", "contact regime of the cell", 0},
+};
+
+/* Scalars per output time (model.md §7). Units depend on the dimension: per unit width
+ * in 2D. traction_coefficient is computed here (Fx/Fn). */
+typedef struct scalar_var {
+  const char *name;
+  nc_type type;          /* NC_DOUBLE or NC_INT */
+  size_t member;         /* offsetof(rs_record, value); unused for traction_coefficient */
+  const char *units_2d, *units_3d;
+  const char *long_name;
+} scalar_var;
+
+#define N_SCALARS 12
+#define TRACTION_SCALAR 2
+static const scalar_var scalar_vars[N_SCALARS] = {
+    {"Fx", NC_DOUBLE, offsetof(rs_record, Fx), "N/mm", "N", "total tangential force on body 1"},
+    {"Fn", NC_DOUBLE, offsetof(rs_record, Fn), "N/mm", "N", "total normal force on body 1"},
+    {"traction_coefficient", NC_DOUBLE, 0, "1", "1", "traction coefficient Fx/Fn"},
+    {"creepage", NC_DOUBLE, offsetof(rs_record, creepage), "1", "1", "creepage"},
+    {"velocity", NC_DOUBLE, offsetof(rs_record, velocity), "mm/s", "mm/s", "rolling velocity"},
+    {"n_exterior", NC_INT, offsetof(rs_record, n_exterior), "1", "1",
+     "number of cells outside the contact area"},
+    {"n_adhesion", NC_INT, offsetof(rs_record, n_adhesion), "1", "1",
+     "number of cells in adhesion"},
+    {"n_slip", NC_INT, offsetof(rs_record, n_slip), "1", "1", "number of cells in slip"},
+    {"n_plastic", NC_INT, offsetof(rs_record, n_plastic), "1", "1",
+     "number of cells in plastic flow"},
+    {"frictional_power", NC_DOUBLE, offsetof(rs_record, frictional_power), "N mm/s/mm",
+     "N mm/s", "frictional power dissipated by slip"},
+    {"plastic_power", NC_DOUBLE, offsetof(rs_record, plastic_power), "N mm/s/mm", "N mm/s",
+     "plastic power dissipated"},
+    {"elastic_energy", NC_DOUBLE, offsetof(rs_record, elastic_energy), "N mm/mm", "N mm",
+     "elastic energy"},
+};
+
+struct rs_output {
+  int ncid;
+  char *path;            /* as given; error messages name it */
+  size_t nx;
+  unsigned fields;
+  size_t records;        /* records written and synced */
+  int time_id, x_id;
+  int field_id[N_FIELDS];   /* -1 when not in the mask */
+  int scalar_id[N_SCALARS];
+};
+
+static int nc_failure(rs_msg *msg, const char *path, const char *what, int err)
+{
+  return rs_msg_set(msg, RS_ERR_OUTPUT, "output file %s: %s: %s", path, what, nc_strerror(err));
+}
+
+static int put_text(int ncid, int varid, const char *name, const char *text)
+{
+  return nc_put_att_text(ncid, varid, name, strlen(text), text);
+}
+
+/* The status attribute text, NUL-padded to its fixed length. */
+static void status_text(char buf[RS_OUTPUT_STATUS_LEN], const char *status)
+{
+  memset(buf, 0, RS_OUTPUT_STATUS_LEN);
+  if (status) {
+    size_t n = strlen(status);
+    memcpy(buf, status, n < RS_OUTPUT_STATUS_LEN - 1 ? n : RS_OUTPUT_STATUS_LEN - 1);
+  }
+}
+
+/* mkdir -p for the directory part of path (results/<case>.nc by default). */
+static int make_parent_dirs(const char *path, rs_msg *msg)
+{
+  char *dir = strdup(path);
+  if (!dir)
+    return rs_msg_set(msg, RS_ERR_OUTPUT, "output file %s: out of memory", path);
+  int status = RS_OK;
+  char *slash = strrchr(dir, '/');
+  if (slash && slash != dir) {
+    *slash = '\0';
+    for (char *p = dir + 1;; p++) {
+      if (*p != '/' && *p != '\0')
+        continue;
+      char saved = *p;
+      *p = '\0';
+      if (mkdir(dir, 0777) != 0 && errno != EEXIST) {
+        status = rs_msg_set(msg, RS_ERR_OUTPUT, "output file %s: cannot create directory %s: %s",
+                            path, dir, strerror(errno));
+        break;
+      }
+      *p = saved;
+      if (saved == '\0')
+        break;
+    }
+  }
+  free(dir);
+  return status;
+}
+
+/* Dimensions, variables and attributes (define mode). Returns a netCDF error code and
+ * the name of what failed in *what. */
+static int define_file(rs_output *out, const rs_output_spec *spec, const char **what)
+{
+  const int ncid = out->ncid;
+  const int three_d = spec->dimension == 3;
+  int err, time_dim, x_dim;
+
+  *what = "defining global attributes";
+  if ((err = put_text(ncid, NC_GLOBAL, "Conventions", "CF-1.10")) ||
+      (err = put_text(ncid, NC_GLOBAL, "title", spec->title ? spec->title : "")) ||
+      (err = put_text(ncid, NC_GLOBAL, "source", "rollsim " RS_VERSION)) ||
+      (err = put_text(ncid, NC_GLOBAL, "history", spec->history ? spec->history : "")) ||
+      (err = put_text(ncid, NC_GLOBAL, "case", spec->case_text ? spec->case_text : "")))
+    return err;
+  char status[RS_OUTPUT_STATUS_LEN];
+  status_text(status, "running");
+  if ((err = nc_put_att_text(ncid, NC_GLOBAL, "status", RS_OUTPUT_STATUS_LEN, status)))
+    return err;
+
+  *what = "defining dimensions";
+  if ((err = nc_def_dim(ncid, "time", NC_UNLIMITED, &time_dim)) ||
+      (err = nc_def_dim(ncid, "x", spec->nx, &x_dim)))
+    return err;
+
+  *what = "defining coordinate variables";
+  if ((err = nc_def_var(ncid, "time", NC_DOUBLE, 1, &time_dim, &out->time_id)) ||
+      (err = put_text(ncid, out->time_id, "units", "s")) ||
+      (err = put_text(ncid, out->time_id, "long_name", "time since start")) ||
+      (err = put_text(ncid, out->time_id, "standard_name", "time")) ||
+      (err = put_text(ncid, out->time_id, "axis", "T")))
+    return err;
+  if ((err = nc_def_var(ncid, "x", NC_DOUBLE, 1, &x_dim, &out->x_id)) ||
+      (err = put_text(ncid, out->x_id, "units", "mm")) ||
+      (err = put_text(ncid, out->x_id, "long_name", "cell centre, rolling direction")) ||
+      (err = put_text(ncid, out->x_id, "axis", "X")))
+    return err;
+
+  /* Fields first, scalars last: the last record variable is a double (see top). */
+  *what = "defining field variables";
+  const int field_dims[2] = {time_dim, x_dim};
+  for (int f = 0; f < N_FIELDS; f++) {
+    const field_var *fv = &field_vars[f];
+    out->field_id[f] = -1;
+    if (!(spec->fields & fv->bit))
+      continue;
+    const nc_type type = f == REGIME_FIELD ? NC_BYTE : NC_DOUBLE;
+    int id;
+    if ((err = nc_def_var(ncid, fv->name, type, 2, field_dims, &id)) ||
+        (err = put_text(ncid, id, "units", fv->units)) ||
+        (err = put_text(ncid, id, "long_name", fv->long_name)))
+      return err;
+    if (f == REGIME_FIELD) {
+      static const signed char flag_values[4] = {0, 1, 2, 3};
+      if ((err = nc_put_att_schar(ncid, id, "flag_values", NC_BYTE, 4, flag_values)) ||
+          (err = put_text(ncid, id, "flag_meanings", "exterior adhesion slip plastic")))
+        return err;
+    }
+    out->field_id[f] = id;
+  }
+
+  *what = "defining scalar variables";
+  for (int s = 0; s < N_SCALARS; s++) {
+    const scalar_var *sv = &scalar_vars[s];
+    int id;
+    if ((err = nc_def_var(ncid, sv->name, sv->type, 1, &time_dim, &id)) ||
+        (err = put_text(ncid, id, "units", three_d ? sv->units_3d : sv->units_2d)) ||
+        (err = put_text(ncid, id, "long_name", sv->long_name)))
+      return err;
+    out->scalar_id[s] = id;
+  }
+
+  /* Record data are written in full every time: no fill pass needed. */
+  int old_fill;
+  *what = "setting the fill mode";
+  return nc_set_fill(ncid, NC_NOFILL, &old_fill);
+}
+
+int rs_output_create(rs_output **outp, const rs_output_spec *spec, rs_msg *msg)
+{
+  *outp = NULL;
+  if (!spec || !spec->path || !*spec->path)
+    return rs_msg_set(msg, RS_ERR_OUTPUT, "output file: no path given");
+  if (spec->nx == 0 || !spec->x || (spec->dimension != 2 && spec->dimension != 3))
+    return rs_msg_set(msg, RS_ERR_INTERNAL,
+                      "output file %s: invalid grid (nx = %zu, dimension = %d)", spec->path,
+                      spec->nx, spec->dimension);
+
+  rs_output *out = calloc(1, sizeof *out);
+  const size_t path_len = strlen(spec->path);
+  char *part = malloc(path_len + sizeof ".part");
+  if (!out || !part || !(out->path = strdup(spec->path))) {
+    free(part);
+    if (out)
+      free(out->path);
+    free(out);
+    return rs_msg_set(msg, RS_ERR_OUTPUT, "output file %s: out of memory", spec->path);
+  }
+  memcpy(part, spec->path, path_len);
+  memcpy(part + path_len, ".part", sizeof ".part");
+  out->nx = spec->nx;
+  out->fields = spec->fields;
+
+  int status = make_parent_dirs(spec->path, msg);
+  if (status != RS_OK) {
+    free(part);
+    free(out->path);
+    free(out);
+    return status;
+  }
+
+  size_t block = RS_IO_BLOCK;
+  int err = nc__create(part, NC_CLOBBER | NC_64BIT_OFFSET, 0, &block, &out->ncid);
+  if (err != NC_NOERR) {
+    status = nc_failure(msg, spec->path, "cannot create", err);
+    free(part);
+    free(out->path);
+    free(out);
+    return status;
+  }
+  if (block == 0)
+    block = RS_IO_BLOCK;
+
+  const char *what = "";
+  err = define_file(out, spec, &what);
+  if (err == NC_NOERR) {
+    /* Records start on a multiple of two I/O blocks, beyond the buffer holding numrecs. */
+    const size_t h_minfree =
+        RS_HEADER_RESERVE + (spec->case_text ? strlen(spec->case_text) : 0);
+    what = "writing the header";
+    err = nc__enddef(out->ncid, h_minfree, 4, 0, 2 * block);
+  }
+  if (err == NC_NOERR) {
+    what = "writing x";
+    err = nc_put_var_double(out->ncid, out->x_id, spec->x);
+  }
+  if (err == NC_NOERR) {
+    what = "syncing";
+    err = nc_sync(out->ncid);
+  }
+  if (err != NC_NOERR) {
+    status = nc_failure(msg, spec->path, what, err);
+  } else if (rename(part, spec->path) != 0) {
+    status = rs_msg_set(msg, RS_ERR_OUTPUT, "output file %s: cannot rename %s to it: %s",
+                        spec->path, part, strerror(errno));
+  }
+  if (status != RS_OK) {
+    (void)nc_close(out->ncid); /* already failing: the first error is the one reported */
+    (void)remove(part);
+    free(part);
+    free(out->path);
+    free(out);
+    return status;
+  }
+  free(part);
+  *outp = out;
+  return RS_OK;
+}
+
+/* The array of field f in rec (NULL when the caller has none). */
+static const void *field_data(const rs_record *rec, int f)
+{
+  if (f == REGIME_FIELD)
+    return rec->regime;
+  return *(const double *const *)((const char *)rec + field_vars[f].member);
+}
+
+int rs_output_write(rs_output *out, const rs_record *rec, rs_msg *msg)
+{
+  const int ncid = out->ncid;
+  const size_t start[2] = {out->records, 0};
+  const size_t count[2] = {1, out->nx};
+  int err;
+
+  /* Refuse before writing anything: a put at index n already makes n+1 the record count
+   * netCDF will write on the next sync or close. */
+  for (int f = 0; f < N_FIELDS; f++)
+    if (out->field_id[f] >= 0 && !field_data(rec, f))
+      return rs_msg_set(msg, RS_ERR_INTERNAL,
+                        "output file %s: record %zu has no data for field %s", out->path,
+                        out->records, field_vars[f].name);
+
+  if ((err = nc_put_var1_double(ncid, out->time_id, start, &rec->time)))
+    goto fail;
+
+  for (int f = 0; f < N_FIELDS; f++) {
+    if (out->field_id[f] < 0)
+      continue;
+    const void *data = field_data(rec, f);
+    err = f == REGIME_FIELD ? nc_put_vara_schar(ncid, out->field_id[f], start, count, data)
+                            : nc_put_vara_double(ncid, out->field_id[f], start, count, data);
+    if (err)
+      goto fail;
+  }
+
+  for (int s = 0; s < N_SCALARS; s++) {
+    const scalar_var *sv = &scalar_vars[s];
+    const char *member = (const char *)rec + sv->member;
+    if (s == TRACTION_SCALAR) {
+      const double mu = rec->Fn != 0.0 ? rec->Fx / rec->Fn : 0.0; /* NaN-free */
+      err = nc_put_var1_double(ncid, out->scalar_id[s], start, &mu);
+    } else if (sv->type == NC_INT) {
+      err = nc_put_var1_int(ncid, out->scalar_id[s], start, (const int *)member);
+    } else {
+      err = nc_put_var1_double(ncid, out->scalar_id[s], start, (const double *)member);
+    }
+    if (err)
+      goto fail;
+  }
+
+  /* Data first, then numrecs: one nc_sync does both, in that order (see top). */
+  if ((err = nc_sync(ncid)))
+    goto fail;
+  out->records++;
+  return RS_OK;
+
+fail:
+  /* An I/O error (e.g. disk full) part-way: the record may be incomplete on disk. */
+  return rs_msg_set(msg, RS_ERR_OUTPUT, "output file %s: writing record %zu (t = %g s): %s",
+                    out->path, out->records, rec->time, nc_strerror(err));
+}
+
+size_t rs_output_records(const rs_output *out)
+{
+  return out ? out->records : 0;
+}
+
+int rs_output_set_status(rs_output *out, const char *status, rs_msg *msg)
+{
+  char text[RS_OUTPUT_STATUS_LEN];
+  status_text(text, status);
+  /* Same size as before: allowed in data mode, and the header keeps its layout. */
+  int err = nc_put_att_text(out->ncid, NC_GLOBAL, "status", RS_OUTPUT_STATUS_LEN, text);
+  if (err)
+    return nc_failure(msg, out->path, "setting the status attribute", err);
+  if ((err = nc_sync(out->ncid)))
+    return nc_failure(msg, out->path, "syncing the status attribute", err);
+  return RS_OK;
+}
+
+int rs_output_close(rs_output *out, rs_msg *msg)
+{
+  if (!out)
+    return RS_OK;
+  int status = RS_OK;
+  int err = nc_close(out->ncid);
+  if (err)
+    status = nc_failure(msg, out->path, "closing", err);
+  free(out->path);
+  free(out);
+  return status;
+}

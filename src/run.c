@@ -1,0 +1,225 @@
+#define _POSIX_C_SOURCE 200809L
+/* rs_run: one case end to end (see rollsim/run.h). Records go to the netCDF file
+ * as they are computed; the status attribute tells a reader how the run ended. */
+#include "rollsim/run.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "rollsim/output.h"
+
+static double wall_clock(void)
+{
+  struct timespec ts;
+  clock_gettime(CLOCK_MONOTONIC, &ts);
+  return ts.tv_sec + 1e-9 * ts.tv_nsec;
+}
+
+typedef struct run_state {
+  const rs_case *c;
+  rs_model m;
+  rs_work w;
+  double *y, *yp, *slip, *tauc;
+  signed char *regime;
+  rs_output *out;
+} run_state;
+
+static int write_record(run_state *s, double t, rs_diag *d, rs_msg *msg)
+{
+  const int n = s->m.n;
+  rs_model_diagnostics(&s->m, &s->w, t, s->y, s->yp, d, s->slip, s->tauc, s->regime);
+  rs_record rec = {.time = t,
+                   .Fx = d->Fx,
+                   .Fn = d->Fn,
+                   .creepage = d->creepage,
+                   .velocity = d->velocity,
+                   .n_exterior = d->count[RS_EXTERIOR],
+                   .n_adhesion = d->count[RS_ADHESION],
+                   .n_slip = d->count[RS_SLIP],
+                   .n_plastic = d->count[RS_PLASTIC],
+                   .frictional_power = d->frictional_power,
+                   .plastic_power = d->plastic_power,
+                   .elastic_energy = d->elastic_energy,
+                   .px = s->y,
+                   .pn = s->m.pn,
+                   .slip = s->slip,
+                   .upl = s->y + n,
+                   .ustar = s->y + 2 * n,
+                   .tauc = s->tauc,
+                   .regime = s->regime};
+  return rs_output_write(s->out, &rec, msg);
+}
+
+static void progress(double t, double t_end, long steps, double started)
+{
+  const int width = 30;
+  const double frac = t_end > 0 ? fmin(1.0, t / t_end) : 1.0;
+  const double elapsed = wall_clock() - started;
+  const double eta = frac > 0 ? elapsed * (1.0 - frac) / frac : 0.0;
+  char bar[64];
+  int k = (int)(frac * width);
+  for (int i = 0; i < width; i++) bar[i] = i < k ? '#' : '.';
+  bar[width] = '\0';
+  fprintf(stderr, "\r[%s] t = %.4g / %.4g s  steps %ld  ETA %.0f s ", bar, t, t_end, steps, eta);
+  fflush(stderr);
+}
+
+static void free_state(run_state *s)
+{
+  rs_work_free(&s->w);
+  free(s->y);
+  free(s->yp);
+  free(s->slip);
+  free(s->tauc);
+  free(s->regime);
+  if (s->m.x) rs_model_free(&s->m);
+}
+
+/* Solver loop for transient mode: one record per output interval, the last time
+ * always stored. */
+static int run_transient(run_state *s, const rs_run_opts *o, rs_run_result *res, double started,
+                         rs_msg *msg)
+{
+  const rs_case *c = s->c;
+  rs_transient_opts topts = {.rtol = c->rtol,
+                             .atol = c->atol,
+                             .max_order = c->max_order,
+                             .max_steps = c->max_steps,
+                             .max_newton = 10,
+                             .t_stop = fmin(rs_model_next_breakpoint(&s->m, 0.0), c->end_time)};
+  rs_transient *tr = NULL;
+  int status = rs_model_consistent_rates(&s->m, &s->w, 0.0, s->y, s->yp, msg);
+  if (status == RS_OK) status = rs_transient_create(&tr, &s->m, 0.0, s->y, s->yp, &topts, msg);
+  if (status != RS_OK) return status;
+  /* Output times k*dt (the end time always stored); IDA stops at every breakpoint
+   * of an input history and restarts from consistent rates there. */
+  const double t_end = c->end_time;
+  const long nrec = (long)ceil(t_end / c->output_interval - 1e-9);
+  double t = 0.0, bp = topts.t_stop;
+  long k = 1;
+  while (status == RS_OK && k <= nrec) {
+    const double t_out = k == nrec ? t_end : k * c->output_interval;
+    const double target = fmin(t_out, bp);
+    status = rs_transient_advance(tr, target, s->y, s->yp, msg);
+    if (status != RS_OK) break;
+    t = target;
+    if (t == t_out) {
+      status = write_record(s, t, &res->final, msg);
+      res->time = t;
+      res->records++;
+      k++;
+    }
+    if (status == RS_OK && t == bp && t < t_end) {
+      bp = fmin(rs_model_next_breakpoint(&s->m, t), t_end);
+      status = rs_model_consistent_rates(&s->m, &s->w, t, s->y, s->yp, msg);
+      if (status == RS_OK) status = rs_transient_restart(tr, t, s->y, s->yp, bp, msg);
+    }
+    rs_transient_get_stats(tr, &res->stats);
+    if (o->progress) progress(t, t_end, res->stats.steps, started);
+    if (status == RS_OK && o->interrupt_flag && *o->interrupt_flag)
+      status = rs_msg_set(msg, RS_ERR_INTERRUPTED, "interrupted at t = %.6g s", t);
+  }
+  if (o->progress) fputc('\n', stderr);
+  rs_transient_free(tr);
+  return status;
+}
+
+int rs_run(const rs_case *c, const rs_run_opts *o, rs_run_result *res, rs_msg *msg)
+{
+  const double started = wall_clock();
+  memset(res, 0, sizeof *res);
+  run_state s = {.c = c};
+  int status = rs_model_create(&s.m, c, msg);
+  if (status != RS_OK) return status;
+  const int n = s.m.n;
+  res->mu = s.m.mu;
+  s.y = calloc((size_t)s.m.neq, sizeof *s.y);
+  s.yp = calloc((size_t)s.m.neq, sizeof *s.yp);
+  s.slip = calloc((size_t)n, sizeof *s.slip);
+  s.tauc = calloc((size_t)n, sizeof *s.tauc);
+  s.regime = calloc((size_t)n, sizeof *s.regime);
+  if (!s.y || !s.yp || !s.slip || !s.tauc || !s.regime || rs_work_create(&s.w, n) != RS_OK) {
+    free_state(&s);
+    return rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory for %d cells", n);
+  }
+  const char *path = o->output_path ? o->output_path : c->output_file;
+  snprintf(res->file, sizeof res->file, "%s", path);
+  /* The yield limit is infinite without plasticity: not written then. */
+  const unsigned fields = c->has_plasticity ? c->fields : (c->fields & ~(unsigned)RS_FIELD_TAUC);
+  rs_output_spec spec = {.path = path,
+                         .title = c->title ? c->title : "",
+                         .case_text = c->yaml_text ? c->yaml_text : "",
+                         .history = o->history ? o->history : "",
+                         .dimension = c->dimension,
+                         .nx = (size_t)n,
+                         .x = s.m.x,
+                         .fields = fields};
+  status = rs_output_create(&s.out, &spec, msg);
+  if (status != RS_OK) {
+    free_state(&s);
+    return status;
+  }
+
+  /* Initial state: rest (no traction, fresh material) or steady rolling. */
+  if (c->mode == RS_MODE_STEADY || c->initial_state == RS_START_STEADY) {
+    rs_steady *st = NULL;
+    status = rs_steady_create(&st, &s.m, msg);
+    if (status == RS_OK) status = rs_steady_solve(st, 0.0, s.y, &res->stats, msg);
+    rs_steady_free(st);
+  }
+  if (status == RS_OK) {
+    status = write_record(&s, 0.0, &res->final, msg);
+    res->records = 1;
+  }
+  if (status == RS_OK && c->mode == RS_MODE_TRANSIENT)
+    status = run_transient(&s, o, res, started, msg);
+
+  char why[RS_MSG_LEN + 16];
+  if (status == RS_OK)
+    snprintf(why, sizeof why, "complete");
+  else if (status == RS_ERR_INTERRUPTED)
+    snprintf(why, sizeof why, "interrupted");
+  else
+    snprintf(why, sizeof why, "failed: %s", msg->text);
+  rs_msg tmp;
+  if (status != RS_ERR_OUTPUT) rs_output_set_status(s.out, why, &tmp);
+  int close_status = rs_output_close(s.out, status == RS_OK ? msg : &tmp);
+  if (status == RS_OK) status = close_status;
+  res->wall_seconds = wall_clock() - started;
+  free_state(&s);
+  return status;
+}
+
+int rs_run_print_derived(const rs_case *c, FILE *out, rs_msg *msg)
+{
+  rs_model m;
+  int status = rs_model_create(&m, c, msg);
+  if (status != RS_OK) return status;
+  int in_contact = 0;
+  double fn = 0.0;
+  for (int i = 0; i < m.n; i++) {
+    in_contact += m.pn[i] > 0.0;
+    fn += m.pn[i] * m.dx;
+  }
+  fprintf(out, "# derived\n");
+  fprintf(out, "hertz.half_width: %.6g  # mm, a = sqrt(4 q R (1-nu)/(pi G))\n", m.hertz_a);
+  fprintf(out, "hertz.peak_pressure: %.6g  # N/mm^2, p0 = 2 q/(pi a)\n", m.hertz_p0);
+  fprintf(out, "grid.dx: %.6g  # mm (a/%.4g)\n", m.dx, m.hertz_a / m.dx);
+  fprintf(out, "grid.potential_contact: [%.6g, %.6g]  # mm\n", m.x[0] - 0.5 * m.dx,
+          m.x[m.n - 1] + 0.5 * m.dx);
+  fprintf(out, "normal.cells_in_contact: %d\n", in_contact);
+  fprintf(out, "normal.total_force: %.9g  # N/mm\n", fn);
+  fprintf(out, "normal.max_pressure: %.6g  # N/mm^2\n", m.pn[m.n / 2]);
+  fprintf(out, "layer.flexibility: %.6g  # mm/(N/mm^2), h3/G3\n", m.layer_flex);
+  fprintf(out, "solver.r_steady: %.6g  # N s/mm^3, semismooth scaling at t = 0\n",
+          rs_history_eval(&m.velocity, 0.0) > 0.0 ? rs_model_scaling(&m, 0.0, 0.0) : 0.0);
+  const double V = rs_history_eval(&m.velocity, 0.0);
+  if (V > 0.0)
+    fprintf(out, "simulation.rolled_distance_total: %.6g  # mm (%.4g contact lengths)\n",
+            V * c->end_time, V * c->end_time / (2.0 * m.hertz_a));
+  rs_model_free(&m);
+  return RS_OK;
+}
