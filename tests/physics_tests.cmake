@@ -2,3 +2,4 @@
 rs_unit_test(test_normal_hertz)
 rs_unit_test(test_carter_steady)
 rs_unit_test(test_transient_to_steady)
+rs_unit_test(test_hou_single_cell)

@@ -1,0 +1,30 @@
+# End-to-end runs of the rollsim command line.
+set(RS_OUT ${CMAKE_CURRENT_BINARY_DIR}/cli_out)
+
+add_test(NAME cli_help COMMAND ${RS_BIN} --help)
+set_tests_properties(cli_help PROPERTIES PASS_REGULAR_EXPRESSION "usage: rollsim run CASE.yaml")
+add_test(NAME cli_version COMMAND ${RS_BIN} --version)
+set_tests_properties(cli_version PROPERTIES PASS_REGULAR_EXPRESSION "rollsim ${PROJECT_VERSION}")
+add_test(NAME cli_check_default COMMAND ${RS_BIN} check ${RS_CASES}/default.yaml)
+# a = sqrt(4 q R (1-nu)/(pi G)) = 1.00001 mm for q = 178.9 N/mm, R = 500 mm, G = 82000, nu = 0.28
+set_tests_properties(cli_check_default PROPERTIES PASS_REGULAR_EXPRESSION "hertz.half_width: 1.00001")
+
+add_test(NAME cli_run_default COMMAND ${RS_BIN} run ${RS_CASES}/default.yaml -o ${RS_OUT}/default.nc --quiet)
+add_test(NAME cli_run_carter COMMAND ${RS_BIN} run ${RS_CASES}/carter2d.yaml -o ${RS_OUT}/carter2d.nc --quiet)
+set_tests_properties(cli_run_default PROPERTIES FIXTURES_SETUP cli_default)
+set_tests_properties(cli_run_carter PROPERTIES FIXTURES_SETUP cli_carter)
+add_test(NAME cli_transient_reaches_steady
+         COMMAND ${SYSTEM_PYTHON3} ${RS_TESTS}/check_cli_runs.py transient_vs_steady
+                 ${RS_OUT}/default.nc ${RS_OUT}/carter2d.nc)
+set_tests_properties(cli_transient_reaches_steady PROPERTIES FIXTURES_REQUIRED "cli_default;cli_carter")
+
+# --set reaches the physics: mu = 0.6 halves |xi| R/(mu a): a'/a = 0.8, F_x/(mu F_n) = 0.36.
+add_test(NAME cli_run_set_mu COMMAND ${RS_BIN} run ${RS_CASES}/carter2d.yaml --set friction.mu=0.6
+                                     -o ${RS_OUT}/carter_mu06.nc --quiet)
+set_tests_properties(cli_run_set_mu PROPERTIES FIXTURES_SETUP cli_mu06)
+add_test(NAME cli_set_mu_carter COMMAND ${SYSTEM_PYTHON3} ${RS_TESTS}/check_cli_runs.py carter
+                                        ${RS_OUT}/carter_mu06.nc 0.6 -2.4e-4)
+set_tests_properties(cli_set_mu_carter PROPERTIES FIXTURES_REQUIRED cli_mu06)
+add_test(NAME cli_carter_default_mu COMMAND ${SYSTEM_PYTHON3} ${RS_TESTS}/check_cli_runs.py carter
+                                            ${RS_OUT}/carter2d.nc 0.3 -2.4e-4)
+set_tests_properties(cli_carter_default_mu PROPERTIES FIXTURES_REQUIRED cli_carter)
