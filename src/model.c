@@ -207,19 +207,32 @@ int rs_model_eval(const rs_model *m, rs_work *w, double t, const double *y, cons
       Fp = p[i];
       Fupl = r * mpl;
     } else {
-      const double arg_f = p[i] - r * w->vslip[i];
-      if (fabs(arg_f) <= g) {
-        Fp = r * w->vslip[i];
-      } else {
+      /* Both projections active at once: slip and flow with |p| = g = tau_c. With
+       * hardening (or softening) the yield row fixes u* and the flow follows from
+       * the u* row: a legitimate state (a cell that has just hardened up to g).
+       * Without it (k_tau = 0, or on the floor tau_c_min) the split between slip
+       * and flow is undetermined (singular Jacobian): the lower bound decides,
+       * slip where g <= tau_c, flow where tau_c < g. On the boundary of that region
+       * the choice agrees with the plain projections, so F stays continuous there. */
+      const double arg_f = p[i] - r * w->vslip[i], arg_pl = p[i] + r * mpl;
+      int slip = fabs(arg_f) > g, yield = fabs(arg_pl) > tauc;
+      if (slip && yield && !(yield_slope(m, us[i]) > 0.0 && g > m->tau_c0)) {
+        if (g <= tauc)
+          yield = 0;
+        else
+          slip = 0;
+      }
+      if (slip) {
         br |= RS_BRANCH_SLIP;
         Fp = p[i] - g * sign_of(arg_f);
-      }
-      const double arg_pl = p[i] + r * mpl;
-      if (fabs(arg_pl) <= tauc) {
-        Fupl = -r * mpl;
       } else {
+        Fp = r * w->vslip[i];
+      }
+      if (yield) {
         br |= RS_BRANCH_YIELD;
         Fupl = p[i] - tauc * sign_of(arg_pl);
+      } else {
+        Fupl = -r * mpl;
       }
     }
     w->branch[i] = br;

@@ -20,7 +20,7 @@ typedef struct nls_content {
   void *kmem;
   N_Vector uscale, fscale;
   double *ybuf, *ypbuf;
-  long last_iters, conv_fails;
+  long last_iters, last_fails; /* of the last solve only: IDA accumulates both */
 } nls_content;
 
 #define CONTENT(nls) ((nls_content *)(nls)->content)
@@ -91,6 +91,7 @@ static int nls_solve(SUNNonlinearSolver nls, N_Vector y0, N_Vector ycor, N_Vecto
   long iters = 0;
   KINGetNumNonlinSolvIters(c->kmem, &iters);
   c->last_iters = iters;
+  c->last_fails = 0;
   int ok = flag >= 0;
   if (flag == KIN_STEP_LT_STPTOL) {
     double fnorm = 1e300;
@@ -98,7 +99,7 @@ static int nls_solve(SUNNonlinearSolver nls, N_Vector y0, N_Vector ycor, N_Vecto
     ok = fnorm <= tol;
   }
   if (!ok) {
-    c->conv_fails++;
+    c->last_fails = 1;
     return SUN_NLS_CONV_RECVR; /* IDA reduces the step and tries again */
   }
   return SUN_NLS_SUCCESS;
@@ -160,7 +161,7 @@ static int nls_getcuriter(SUNNonlinearSolver nls, int *iter)
 
 static int nls_getnumconvfails(SUNNonlinearSolver nls, long *fails)
 {
-  *fails = CONTENT(nls)->conv_fails;
+  *fails = CONTENT(nls)->last_fails; /* IDA accumulates */
   return SUN_NLS_SUCCESS;
 }
 

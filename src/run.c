@@ -91,8 +91,7 @@ static int run_transient(run_state *s, const rs_run_opts *o, rs_run_result *res,
                              .max_newton = 10,
                              .t_stop = fmin(rs_model_next_breakpoint(&s->m, 0.0), c->end_time)};
   rs_transient *tr = NULL;
-  int status = rs_model_consistent_rates(&s->m, &s->w, 0.0, s->y, s->yp, msg);
-  if (status == RS_OK) status = rs_transient_create(&tr, &s->m, 0.0, s->y, s->yp, &topts, msg);
+  int status = rs_transient_create(&tr, &s->m, 0.0, s->y, s->yp, &topts, msg);
   if (status != RS_OK) return status;
   /* Output times k*dt (the end time always stored); IDA stops at every breakpoint
    * of an input history and restarts from consistent rates there. */
@@ -104,12 +103,19 @@ static int run_transient(run_state *s, const rs_run_opts *o, rs_run_result *res,
     const double t_out = k == nrec ? t_end : k * c->output_interval;
     const double target = fmin(t_out, bp);
     status = rs_transient_advance(tr, target, s->y, s->yp, msg);
-    if (status != RS_OK) break;
+    if (status != RS_OK) {
+      rs_transient_get_stats(tr, &res->stats); /* the summary counts the failed attempt */
+      break;
+    }
     t = target;
     if (t == t_out) {
-      status = write_record(s, t, &res->final, msg);
-      res->time = t;
-      res->records++;
+      rs_diag d;
+      status = write_record(s, t, &d, msg);
+      if (status == RS_OK) { /* the summary describes the last record in the file */
+        res->final = d;
+        res->time = t;
+        res->records++;
+      }
       k++;
     }
     if (status == RS_OK && t == bp && t < t_end) {
@@ -170,9 +176,13 @@ int rs_run(const rs_case *c, const rs_run_opts *o, rs_run_result *res, rs_msg *m
     if (status == RS_OK) status = rs_steady_solve(st, 0.0, s.y, &res->stats, msg);
     rs_steady_free(st);
   }
+  /* Rates at t = 0: zero in steady rolling at constant inputs, else consistent
+   * (they set the regimes of the first record and start IDA). */
+  if (status == RS_OK && c->mode == RS_MODE_TRANSIENT)
+    status = rs_model_consistent_rates(&s.m, &s.w, 0.0, s.y, s.yp, msg);
   if (status == RS_OK) {
     status = write_record(&s, 0.0, &res->final, msg);
-    res->records = 1;
+    res->records = status == RS_OK;
   }
   if (status == RS_OK && c->mode == RS_MODE_TRANSIENT)
     status = run_transient(&s, o, res, started, msg);

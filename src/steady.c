@@ -104,25 +104,24 @@ fail:
   return rs_msg_set(msg, RS_ERR_INTERNAL, "could not set up the steady solver (SUNDIALS/KLU)");
 }
 
-int rs_steady_solve(rs_steady *s, double t, double *y, rs_stats *stats, rs_msg *msg)
+/* Newton (plain, then with line search) from y; RS_OK and the solution in y, or
+ * RS_ERR_SOLVER with y unchanged. */
+static int newton(rs_steady *s, double *y, rs_stats *stats, int *kin_flag)
 {
   const rs_model *m = s->m;
-  const double V = rs_history_eval(&m->velocity, t);
-  if (!(V > 0.0))
-    return rs_msg_set(msg, RS_ERR_INPUT, "steady rolling needs a rolling velocity > 0 (got %g mm/s at t = %g s)", V, t);
-  s->t = t;
   double *u = N_VGetArrayPointer(s->u);
   int flag = 0;
   const int strategies[2] = {KIN_NONE, KIN_LINESEARCH};
-  long iters_total = 0, fevals_total = 0;
   for (int k = 0; k < 2; k++) {
     memcpy(u, y, (size_t)m->neq * sizeof *u);
     flag = KINSol(s->kmem, s->u, strategies[k], s->uscale, s->fscale);
     long iters = 0, fevals = 0;
     KINGetNumNonlinSolvIters(s->kmem, &iters);
     KINGetNumFuncEvals(s->kmem, &fevals);
-    iters_total += iters;
-    fevals_total += fevals;
+    if (stats) {
+      stats->nonlin_iters += iters;
+      stats->res_evals += fevals;
+    }
     if (flag == KIN_STEP_LT_STPTOL) { /* stalled: accept only a small residual */
       double fnorm = INFINITY;
       KINGetFuncNorm(s->kmem, &fnorm);
@@ -130,19 +129,76 @@ int rs_steady_solve(rs_steady *s, double t, double *y, rs_stats *stats, rs_msg *
     }
     if (flag >= 0) break;
   }
+  *kin_flag = flag;
+  if (flag < 0) return RS_ERR_SOLVER;
+  memcpy(y, u, (size_t)m->neq * sizeof *u);
+  return RS_OK;
+}
+
+/* Fallback when Newton cycles between active sets (seen with moderate hardening,
+ * model.md §9): pseudo-transient continuation, i.e. roll the material through the
+ * contact at the inputs of time t (the physical transient, which settles on the
+ * steady state), trying Newton from the rolled state after every few contact
+ * lengths. */
+static int pseudo_transient(rs_steady *s, double t, double *y, rs_stats *stats, rs_msg *msg)
+{
+  rs_model frozen = *s->m; /* shallow copy with the inputs held at their values at t */
+  const rs_model *m = s->m;
+  frozen.velocity = (rs_history){.kind = RS_HISTORY_CONSTANT, .value = rs_history_eval(&m->velocity, t)};
+  frozen.creepage = (rs_history){.kind = RS_HISTORY_CONSTANT, .value = rs_history_eval(&m->creepage, t)};
+  frozen.shift = (rs_history){.kind = RS_HISTORY_CONSTANT, .value = rs_history_eval(&m->shift, t)};
+  const double V = frozen.velocity.value, contact_length = 2.0 * m->hertz_a;
+  const double chunk = 4.0 * contact_length / V, max_time = 400.0 * contact_length / V;
+  double *z = calloc((size_t)m->neq, sizeof *z), *zp = calloc((size_t)m->neq, sizeof *zp);
+  rs_work w = {0};
+  int status = (z && zp && rs_work_create(&w, m->n) == RS_OK) ? RS_OK : RS_ERR_INTERNAL;
+  rs_transient *tr = NULL;
+  rs_transient_opts o = {.rtol = 1e-6, .atol = 1e-6, .max_order = 5, .max_steps = 1000000,
+                         .max_newton = 10, .t_stop = INFINITY};
+  if (status == RS_OK) status = rs_model_consistent_rates(&frozen, &w, 0.0, z, zp, msg);
+  if (status == RS_OK) status = rs_transient_create(&tr, &frozen, 0.0, z, zp, &o, msg);
+  int kin_flag = 0;
+  double tau = 0.0;
+  while (status == RS_OK) {
+    tau += chunk;
+    if (tau > max_time) {
+      status = rs_msg_set(msg, RS_ERR_SOLVER,
+                          "steady solver: Newton cycles between contact regimes and the material "
+                          "rolled %.0f contact lengths without settling (t = %g s)",
+                          max_time * V / contact_length, t);
+      break;
+    }
+    status = rs_transient_advance(tr, tau, z, zp, msg);
+    if (status != RS_OK) break;
+    memcpy(y, z, (size_t)m->neq * sizeof *y);
+    if (newton(s, y, stats, &kin_flag) == RS_OK) break;
+  }
+  if (tr && stats) {
+    rs_stats st;
+    rs_transient_get_stats(tr, &st);
+    stats->steps += st.steps;
+    stats->nonlin_iters += st.nonlin_iters;
+  }
+  rs_transient_free(tr);
+  rs_work_free(&w);
+  free(z);
+  free(zp);
+  return status;
+}
+
+int rs_steady_solve(rs_steady *s, double t, double *y, rs_stats *stats, rs_msg *msg)
+{
+  const rs_model *m = s->m;
+  const double V = rs_history_eval(&m->velocity, t);
+  if (!(V > 0.0))
+    return rs_msg_set(msg, RS_ERR_INPUT, "steady rolling needs a rolling velocity > 0 (got %g mm/s at t = %g s)", V, t);
+  s->t = t;
+  int kin_flag = 0;
+  int status = newton(s, y, stats, &kin_flag);
+  if (status != RS_OK) status = pseudo_transient(s, t, y, stats, msg);
   if (stats) {
-    stats->nonlin_iters += iters_total;
-    stats->res_evals += fevals_total;
     stats->jac_evals = s->ls.jac_evals;
     stats->klu_analyses = s->ls.analyses;
   }
-  if (flag < 0) {
-    char *name = KINGetReturnFlagName(flag);
-    rs_msg_set(msg, RS_ERR_SOLVER, "steady solver (KINSOL) did not converge at t = %g s: %s", t,
-               name ? name : "unknown failure");
-    free(name);
-    return RS_ERR_SOLVER;
-  }
-  memcpy(y, u, (size_t)m->neq * sizeof *u);
-  return RS_OK;
+  return status;
 }
