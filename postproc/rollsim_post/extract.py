@@ -1,0 +1,332 @@
+"""The numbers behind every figure and export, separate from plotting so tests can check them.
+
+Nothing here draws; each function takes an open RunFile (runfile.py) or file paths and returns
+arrays.
+"""
+import csv
+import itertools
+import os
+import sys
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from . import PostError
+from .runfile import RunFile, case_value
+
+# ---- records and grids ---------------------------------------------------------------------
+
+
+def nearest_record(times, t):
+    """Index of the stored record whose time is nearest to t. On an exact tie (t midway between
+    two records) the earlier record wins; t outside the stored range gives the first/last record."""
+    times = np.asarray(times, dtype=np.float64)
+    if times.size == 0:
+        raise ValueError("no records")
+    return int(np.argmin(np.abs(times - float(t))))
+
+
+def record_indices(run, requested_times=None):
+    """Record indices for the requested times (nearest stored record each); default: the last."""
+    run.require_records()
+    times = run.values("time")
+    if not requested_times:
+        return [len(times) - 1]
+    return [nearest_record(times, t) for t in requested_times]
+
+
+def cell_edges(centres):
+    """Edges of the cells (or records) around the given centres: midpoints inside, half a spacing
+    beyond the first and last centre. A single centre gets edges +-0.5 (in its own units) unless
+    a positive value makes a relative width more sensible (+-5 %)."""
+    c = np.asarray(centres, dtype=np.float64)
+    if c.size == 1:
+        half = 0.05 * abs(c[0]) if c[0] != 0.0 else 0.5
+        return np.array([c[0] - half, c[0] + half])
+    mid = 0.5 * (c[1:] + c[:-1])
+    return np.concatenate(([c[0] - (mid[0] - c[0])], mid, [c[-1] + (c[-1] - mid[-1])]))
+
+
+def regime_runs(regime_row):
+    """Contiguous runs of equal regime along x: list of (first cell, last cell + 1, value)."""
+    r = np.asarray(regime_row)
+    runs = []
+    start = 0
+    for i in range(1, r.size + 1):
+        if i == r.size or r[i] != r[start]:
+            runs.append((start, i, int(r[start])))
+            start = i
+    return runs
+
+
+# ---- traction (Figure 7 style) -------------------------------------------------------------
+
+
+@dataclass
+class TractionProfile:
+    """p_x, the traction bound g = mu p_n and (if stored) tau_c along x at one record."""
+    index: int
+    time: float
+    mu: float
+    x: np.ndarray
+    px: np.ndarray
+    pn: np.ndarray
+    g: np.ndarray
+    tauc: np.ndarray = None
+    regime: np.ndarray = None
+    regime_flags: tuple = None
+
+
+def traction_profile(run, index, mu=None):
+    """The TractionProfile of record `index`; mu from the case attribute unless given."""
+    mu = run.mu() if mu is None else float(mu)
+    px = run.variable("px")[index, :]
+    pn = run.variable("pn")[index, :]
+    prof = TractionProfile(
+        index=int(index),
+        time=float(run.variable("time")[index]),
+        mu=mu,
+        x=run.values("x"),
+        px=np.ma.filled(np.ma.asarray(px, dtype=np.float64), np.nan),
+        pn=np.ma.filled(np.ma.asarray(pn, dtype=np.float64), np.nan),
+        g=None,
+    )
+    prof.g = mu * prof.pn
+    if run.has("tauc"):
+        prof.tauc = np.ma.filled(np.ma.asarray(run.variable("tauc")[index, :], np.float64), np.nan)
+    if run.has("regime"):
+        prof.regime = np.ma.filled(np.ma.asarray(run.variable("regime")[index, :]), -1).astype(int)
+        prof.regime_flags = run.regime_flags()
+    return prof
+
+
+# ---- x-t maps ------------------------------------------------------------------------------
+
+
+@dataclass
+class FieldMap:
+    """A (time, x) field with cell and record edges, ready for pcolormesh."""
+    name: str
+    units: str
+    long_name: str
+    x_edges: np.ndarray
+    t_edges: np.ndarray
+    values: np.ndarray  # (n_time, n_x)
+
+
+def field_map(run, name):
+    run.require_records()
+    dims = run.dims(name)
+    if dims != ("time", "x"):
+        raise PostError(f"{run.path}: variable '{name}' has dimensions {dims}, expected (time, x)")
+    return FieldMap(name, run.units(name), run.long_name(name), cell_edges(run.values("x")),
+                    cell_edges(run.values("time")), run.values(name))
+
+
+def regime_map(run):
+    """Regime over (time, x) as integers (-1 where not stored) plus its flags."""
+    fmap = field_map(run, "regime")
+    fmap.values = np.where(np.isnan(fmap.values), -1, fmap.values).astype(int)
+    return fmap, run.regime_flags()
+
+
+# ---- time histories ------------------------------------------------------------------------
+
+HISTORY_VARIABLES = ["time", "traction_coefficient", "creepage", "velocity", "n_exterior",
+                     "n_adhesion", "n_slip", "n_plastic", "frictional_power", "plastic_power"]
+
+
+def history(run):
+    """The scalar time histories the history figure shows, by variable name, plus units."""
+    run.require_records()
+    data = {name: run.values(name) for name in HISTORY_VARIABLES}
+    units = {name: run.units(name) for name in HISTORY_VARIABLES}
+    return data, units
+
+
+# ---- creep curves --------------------------------------------------------------------------
+
+CREEPAGE_KEY = "rolling.creepage"
+
+
+@dataclass
+class CreepSeries:
+    """One line of a creep curve: traction coefficient against creepage, sorted by creepage."""
+    label: str
+    creepage: np.ndarray
+    traction: np.ndarray
+    sources: list = field(default_factory=list)  # one "file" or "file[i,j]" per point
+
+    def sort(self):
+        order = np.argsort(self.creepage, kind="stable")
+        self.creepage = self.creepage[order]
+        self.traction = self.traction[order]
+        self.sources = [self.sources[i] for i in order]
+        return self
+
+
+def single_run_point(run):
+    """(creepage, traction coefficient) at the last stored record of a single-run file."""
+    run.require_records()
+    creepage = float(run.variable("creepage")[-1])
+    traction = float(run.variable("traction_coefficient")[-1])
+    return creepage, traction
+
+
+def _fmt(value):
+    return f"{value:g}" if isinstance(value, (float, int, np.floating, np.integer)) else str(value)
+
+
+def sweep_series(run, prefix=None, var="traction_coefficient", x_key=CREEPAGE_KEY):
+    """Series from a sweep file: the dimension of `x_key` (rolling.creepage) is the abscissa,
+    every combination of the other swept keys is one series, in the file's coordinate order.
+    If `var` also has a time dimension the last record is used. Points that are missing (fill
+    values, e.g. failed sweep points) are dropped."""
+    dims = list(run.dims(var))
+    values = run.values(var)
+    if "time" in dims:
+        values = np.take(values, -1, axis=dims.index("time"))
+        dims.remove("time")
+    x_dim = None
+    for d in dims:
+        if run.sweep_key(d) == x_key or d == x_key.replace(".", "_"):
+            x_dim = d
+    if x_dim is None:
+        swept = ", ".join(run.sweep_key(d) for d in dims) or "none"
+        raise PostError(f"{run.path}: sweep file does not sweep {x_key} (swept keys: {swept}); "
+                        f"creepcurve needs {x_key} as a sweep dimension")
+    creepage = run.coordinate(x_dim)
+    others = [d for d in dims if d != x_dim]
+    # Move the creepage axis last so each series is values[combination of others, :].
+    values = np.moveaxis(values, dims.index(x_dim), -1)
+    values = values.reshape([len(run.ds.dimensions[d]) for d in others] + [creepage.size])
+    coords = {d: run.coordinate(d) for d in others}
+    series = []
+    for combo in itertools.product(*[range(len(coords[d])) for d in others]):
+        parts = [f"{run.sweep_key(d)} = {_fmt(coords[d][i])}" for d, i in zip(others, combo)]
+        label = ", ".join(parts) if parts else (prefix or run.title or os.path.basename(run.path))
+        if parts and prefix:
+            label = f"{prefix}: {label}"
+        y = values[combo]
+        ok = ~np.isnan(y) & ~np.isnan(creepage)
+        idx = [f"{run.path}[{','.join(str(i) for i in combo + (k,))}]" for k in range(y.size)]
+        s = CreepSeries(label, creepage[ok].copy(), y[ok].copy(), [s for s, k in zip(idx, ok) if k])
+        series.append(s.sort())
+    return series
+
+
+def creep_series(paths, labels=None, group_by=None):
+    """Creep-curve series from single-run and sweep files.
+
+    Single-run files give one point each (last record); files with the same label form one series.
+    The label is, in order of precedence: labels[i] (labels holds one label for all files or one per
+    file), "KEY = value" of the case key `group_by`, the file's title, the file name. Series appear
+    in the order of their first file; with group_by they are sorted by the key's value instead.
+    A sweep file contributes its own series (see sweep_series), with labels[i] as a prefix.
+    Points in each series are sorted by creepage."""
+    labels = list(labels or [])
+    if labels and len(labels) not in (1, len(paths)):
+        raise PostError(f"--label given {len(labels)} times for {len(paths)} files: "
+                        "give it once (all files) or once per file")
+    series = []  # in order of first appearance
+    by_label = {}
+    group_values = {}
+    for i, path in enumerate(paths):
+        label = labels[i] if len(labels) == len(paths) else (labels[0] if labels else None)
+        value = None
+        with RunFile(path) as run:
+            if run.is_sweep():
+                series.extend(sweep_series(run, prefix=label))
+                continue
+            creepage, traction = single_run_point(run)
+            if label is None and group_by:
+                value = case_value(run.case(), group_by)
+                label = f"{group_by} = {_fmt(value) if value is not None else '(default)'}"
+            if label is None:
+                label = run.title or os.path.basename(path)
+        if label not in by_label:
+            by_label[label] = CreepSeries(label, np.empty(0), np.empty(0), [])
+            series.append(by_label[label])
+            if group_by:
+                group_values[label] = value
+        s = by_label[label]
+        s.creepage = np.append(s.creepage, creepage)
+        s.traction = np.append(s.traction, traction)
+        s.sources.append(path)
+    for s in series:
+        s.sort()
+    if group_by and not labels:
+        def numeric(label):
+            v = group_values.get(label)
+            return (0, float(v), "") if isinstance(v, (int, float)) else (1, 0.0, str(v))
+        series.sort(key=lambda s: numeric(s.label))
+    return series
+
+
+# ---- CSV export ----------------------------------------------------------------------------
+
+
+def export_table(run, names):
+    """Columns for a CSV of the variables `names`.
+
+    The rows run over every combination of the dimensions the variables use, in the file's
+    dimension order (time before x), the last dimension varying fastest. The first columns hold
+    the coordinate values of those dimensions (coordinate variable, else the index), then one
+    column per variable, broadcast over the dimensions it lacks. So time-only variables give one
+    row per record (time, a, b, ...), (time, x) variables give the long format (time, x, value).
+    Returns (header, columns), each column a masked array of the stored type."""
+    if not names:
+        raise PostError("export: no variables given (--var NAME...)")
+    order = list(run.ds.dimensions)
+    used = set()
+    for name in names:
+        used.update(run.dims(name))
+    row_dims = [d for d in order if d in used]
+    shape = [len(run.ds.dimensions[d]) for d in row_dims]
+    grids = dict(zip(row_dims, (g.ravel() for g in np.indices(shape)))) if row_dims else {}
+    nrows = int(np.prod(shape)) if row_dims else 1
+
+    header, columns = [], []
+    for d in row_dims:
+        var = run.ds.variables.get(d)
+        coord = run.raw(d) if var is not None and tuple(var.dimensions) == (d,) else \
+            np.ma.asarray(np.arange(shape[row_dims.index(d)]))
+        header.append(d)
+        columns.append(coord[grids[d]])
+    for name in dict.fromkeys(names):  # keep order, drop repeats
+        if name in row_dims:
+            continue  # already a coordinate column
+        data = run.raw(name)
+        dims = run.dims(name)
+        if dims:
+            col = data[tuple(grids[d] for d in dims)]
+        else:
+            col = np.ma.resize(data, nrows)
+        header.append(name)
+        columns.append(col)
+    return header, columns
+
+
+def _cell(value, masked):
+    if masked:
+        return ""
+    if isinstance(value, float):
+        return repr(value)  # shortest text that reads back to the same double
+    return str(value)
+
+
+def write_csv(out, header, columns):
+    """Write the table to the path `out` ('-' = stdout). Floats are written with repr(), which
+    reads back to the identical double; missing values are empty cells."""
+    cols = [(np.ma.getdata(c).tolist(), np.ma.getmaskarray(c).tolist()) for c in columns]
+    nrows = len(cols[0][0]) if cols else 0
+    f = sys.stdout if out == "-" else open(out, "w", newline="")
+    try:
+        w = csv.writer(f, lineterminator="\n")
+        w.writerow(header)
+        for r in range(nrows):
+            w.writerow([_cell(v[r], m[r]) for v, m in cols])
+    finally:
+        if f is not sys.stdout:
+            f.close()
+    return nrows

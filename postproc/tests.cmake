@@ -1,0 +1,137 @@
+# Post-processing (postproc/rollsim_post.py, issue 5): fixtures from rollsim runs and synthetic
+# files, every subcommand writing a figure, numeric checks of the extraction code, error exits.
+# Included from tests/CMakeLists.txt (RS_BIN, RS_CASES, SYSTEM_PYTHON3).
+
+set(PP_DIR ${CMAKE_CURRENT_LIST_DIR})
+set(PP_TOOL ${PP_DIR}/rollsim_post.py)
+set(PP_TESTS ${PP_DIR}/tests)
+set(PP_OUT ${CMAKE_CURRENT_BINARY_DIR}/postproc)
+file(MAKE_DIRECTORY ${PP_OUT})
+
+if(NOT SYSTEM_PYTHON3)
+  message(STATUS "postproc tests: no system python3, disabled")
+  return()
+endif()
+execute_process(COMMAND ${SYSTEM_PYTHON3} -c "import netCDF4, numpy, matplotlib"
+  RESULT_VARIABLE PP_PY_MISSING OUTPUT_QUIET ERROR_QUIET)
+if(PP_PY_MISSING)
+  message(STATUS "postproc tests: ${SYSTEM_PYTHON3} lacks netCDF4/numpy/matplotlib, disabled")
+  return()
+endif()
+
+# matplotlib writes a font cache; keep it in the build tree (HOME may be read-only in CI).
+set(PP_ENV "MPLCONFIGDIR=${PP_OUT}/mplconfig;MPLBACKEND=Agg")
+set(PP_RUN ${SYSTEM_PYTHON3} ${PP_TOOL})
+set(PP_CHECK ${SYSTEM_PYTHON3} ${PP_TESTS}/cli_check.py)
+
+# ---- fixtures ----------------------------------------------------------------------------------
+
+# Elastic Carter start-up from rest (135 records, about 1.5 s).
+set(PP_DEFAULT ${CMAKE_CURRENT_BINARY_DIR}/pp_default.nc)
+add_test(NAME pp_run_default
+  COMMAND ${RS_BIN} run ${RS_CASES}/default.yaml -o ${PP_DEFAULT} --quiet)
+set_tests_properties(pp_run_default PROPERTIES FIXTURES_SETUP pp_default)
+
+# Plastic Carter case (tau_c0 = 35 N/mm2, hardening k_rel = 0.6, mu = 0.5, xi = -4e-4) rolled
+# from rest over 10 mm (5 contact lengths, 0.5 s). A steady plastic run would do, but
+# `rollsim run` in steady mode does not converge with plasticity yet (KIN_LSETUP_FAIL /
+# KIN_LINESEARCH_NONCONV), so the transient supplies the plastic fields.
+set(PP_PLASTIC ${CMAKE_CURRENT_BINARY_DIR}/pp_plastic.nc)
+add_test(NAME pp_run_plastic
+  COMMAND ${RS_BIN} run ${RS_CASES}/default.yaml -o ${PP_PLASTIC} --quiet
+    --set "title=\"Carter 2D from rest, plastic: tau_c0 = 35, k_rel = 0.6, mu = 0.5\""
+    --set plasticity.tau_c0=35 --set plasticity.k_rel=0.6 --set friction.mu=0.5
+    --set rolling.creepage=-4e-4 --set simulation.rolled_distance=10
+    --set "output.fields=[px,pn,slip,upl,ustar,tauc,regime]")
+set_tests_properties(pp_run_plastic PROPERTIES FIXTURES_SETUP pp_plastic)
+
+# Steady elastic Carter runs for creep curves: two series (mu = 0.3 and 0.2, told apart by the
+# title), a few milliseconds each. PP_CREEP_FILES lists them in a deliberately unsorted order.
+set(PP_CREEP_FILES "")
+foreach(point "0.3;-1e-3" "0.2;-5e-4" "0.3;-1e-4" "0.3;-5e-4" "0.2;-2e-3" "0.3;-2.4e-4" "0.2;-1e-4")
+  list(GET point 0 mu)
+  list(GET point 1 xi)
+  set(name pp_creep_mu${mu}_xi${xi})
+  add_test(NAME pp_run_creep_mu${mu}_xi${xi}
+    COMMAND ${RS_BIN} run ${RS_CASES}/carter2d.yaml -o ${CMAKE_CURRENT_BINARY_DIR}/${name}.nc
+      --quiet --set "title=\"Carter steady, mu = ${mu}\"" --set friction.mu=${mu}
+      --set rolling.creepage=${xi})
+  set_tests_properties(pp_run_creep_mu${mu}_xi${xi} PROPERTIES FIXTURES_SETUP pp_creep)
+  list(APPEND PP_CREEP_FILES ${CMAKE_CURRENT_BINARY_DIR}/${name}.nc)
+endforeach()
+
+# Synthetic sweep files (the layout of interfaces.md; rollsim sweep is not there yet) and a run
+# file without records.
+set(PP_SYNTH ${PP_OUT}/synthetic)
+add_test(NAME pp_make_synthetic COMMAND ${SYSTEM_PYTHON3} ${PP_TESTS}/make_fixtures.py ${PP_SYNTH})
+set_tests_properties(pp_make_synthetic PROPERTIES FIXTURES_SETUP pp_synthetic)
+
+# ---- figures: each subcommand writes a non-empty file ------------------------------------------
+# Size threshold 20 kB: an empty set of axes with tick labels at these sizes and 150 dpi is
+# 14 kB as PNG; every figure with data here is 30-130 kB.
+
+function(pp_figure name fixtures out)
+  add_test(NAME ${name}
+    COMMAND ${PP_CHECK} --out ${PP_OUT}/${out} --min-bytes 20000 -- ${PP_RUN} ${ARGN}
+      -o ${PP_OUT}/${out})
+  set_tests_properties(${name} PROPERTIES FIXTURES_REQUIRED "${fixtures}" ENVIRONMENT "${PP_ENV}")
+endfunction()
+
+pp_figure(pp_fig_traction pp_default traction.png traction ${PP_DEFAULT} --time 3e-4 1.3e-3)
+pp_figure(pp_fig_traction_plastic pp_plastic traction_plastic.png traction ${PP_PLASTIC})
+pp_figure(pp_fig_regimes pp_default regimes.png regimes ${PP_DEFAULT})
+pp_figure(pp_fig_regimes_plastic pp_plastic regimes_plastic.png regimes ${PP_PLASTIC})
+pp_figure(pp_fig_history pp_default history.png history ${PP_DEFAULT})
+pp_figure(pp_fig_plastic pp_plastic plastic.png plastic ${PP_PLASTIC})
+pp_figure(pp_fig_creepcurve pp_creep creepcurve.png creepcurve ${PP_CREEP_FILES})
+pp_figure(pp_fig_creepcurve_sweep "pp_creep;pp_synthetic" creepcurve_sweep.png creepcurve --abs
+  ${PP_SYNTH}/sweep_krel_creep.nc ${PP_SYNTH}/sweep_creep_tau.nc ${PP_CREEP_FILES})
+# Steady file (one record): the x-t map and histories degenerate to one row / one point.
+list(GET PP_CREEP_FILES 0 PP_STEADY)
+pp_figure(pp_fig_history_steady pp_creep history_steady.png history ${PP_STEADY})
+
+# Format from the extension: SVG and PDF carry their signatures.
+add_test(NAME pp_fig_svg COMMAND ${PP_CHECK} --out ${PP_OUT}/history.svg --min-bytes 20000
+  --head "<svg" -- ${PP_RUN} history ${PP_DEFAULT} -o ${PP_OUT}/history.svg)
+add_test(NAME pp_fig_pdf COMMAND ${PP_CHECK} --out ${PP_OUT}/regimes.pdf --min-bytes 5000
+  --head "%PDF" -- ${PP_RUN} regimes ${PP_DEFAULT} -o ${PP_OUT}/regimes.pdf)
+set_tests_properties(pp_fig_svg pp_fig_pdf PROPERTIES
+  FIXTURES_REQUIRED pp_default ENVIRONMENT "${PP_ENV}")
+
+# ---- numbers through the extraction code -------------------------------------------------------
+
+set(PP_NUM ${SYSTEM_PYTHON3} ${PP_TESTS}/check_postproc.py)
+add_test(NAME pp_check_export COMMAND ${PP_NUM} export ${PP_DEFAULT} ${PP_OUT})
+add_test(NAME pp_check_export_plastic COMMAND ${PP_NUM} export ${PP_PLASTIC} ${PP_OUT}/plastic)
+add_test(NAME pp_check_nearest COMMAND ${PP_NUM} nearest ${PP_DEFAULT})
+add_test(NAME pp_check_bound COMMAND ${PP_NUM} bound ${PP_DEFAULT} 0.3)
+add_test(NAME pp_check_creep COMMAND ${PP_NUM} creep ${PP_CREEP_FILES})
+add_test(NAME pp_check_sweep COMMAND ${PP_NUM} sweep ${PP_SYNTH})
+set_tests_properties(pp_check_export pp_check_nearest pp_check_bound
+  PROPERTIES FIXTURES_REQUIRED pp_default)
+set_tests_properties(pp_check_export_plastic PROPERTIES FIXTURES_REQUIRED pp_plastic)
+set_tests_properties(pp_check_creep PROPERTIES FIXTURES_REQUIRED pp_creep)
+set_tests_properties(pp_check_sweep PROPERTIES FIXTURES_REQUIRED pp_synthetic)
+
+# ---- errors: one line on stderr naming the file/variable, exit status 2 ------------------------
+
+function(pp_error name fixtures regex)
+  add_test(NAME ${name} COMMAND ${PP_CHECK} --exit 2 --stderr "${regex}" -- ${PP_RUN} ${ARGN})
+  set_tests_properties(${name} PROPERTIES ENVIRONMENT "${PP_ENV}")
+  if(fixtures)
+    set_tests_properties(${name} PROPERTIES FIXTURES_REQUIRED "${fixtures}")
+  endif()
+endfunction()
+
+pp_error(pp_err_missing_file "" "pp_no_such\\.nc: no such file"
+  traction ${PP_OUT}/pp_no_such.nc -o ${PP_OUT}/never.png)
+pp_error(pp_err_not_netcdf "" "default\\.yaml: not a netCDF file"
+  export ${RS_CASES}/default.yaml --var Fx --csv ${PP_OUT}/never.csv)
+pp_error(pp_err_missing_var pp_default "pp_default\\.nc: no variable 'no_such_var'"
+  export ${PP_DEFAULT} --var Fx no_such_var --csv ${PP_OUT}/never.csv)
+pp_error(pp_err_plastic_fields pp_default "pp_default\\.nc: no variable 'ustar' or 'tauc'"
+  plastic ${PP_DEFAULT} -o ${PP_OUT}/never.png)
+pp_error(pp_err_no_records pp_synthetic "no_records\\.nc: no records stored \\(status: failed"
+  traction ${PP_SYNTH}/no_records.nc -o ${PP_OUT}/never.png)
+pp_error(pp_err_format pp_default "never\\.jpg: unsupported figure format"
+  history ${PP_DEFAULT} -o ${PP_OUT}/never.jpg)
