@@ -31,6 +31,7 @@
 #define _POSIX_C_SOURCE 200809L
 
 #include "rollsim/output.h"
+#include "output_internal.h"
 
 #include <errno.h>
 #include <netcdf.h>
@@ -118,18 +119,18 @@ struct rs_output {
   int scalar_id[N_SCALARS];
 };
 
-static int nc_failure(rs_msg *msg, const char *path, const char *what, int err)
+int rs_output_nc_failure(rs_msg *msg, const char *path, const char *what, int err)
 {
   return rs_msg_set(msg, RS_ERR_OUTPUT, "output file %s: %s: %s", path, what, nc_strerror(err));
 }
 
-static int put_text(int ncid, int varid, const char *name, const char *text)
+int rs_output_put_text(int ncid, int varid, const char *name, const char *text)
 {
   return nc_put_att_text(ncid, varid, name, strlen(text), text);
 }
 
 /* The status attribute text, NUL-padded to its fixed length. */
-static void status_text(char buf[RS_OUTPUT_STATUS_LEN], const char *status)
+void rs_output_status_text(char buf[RS_OUTPUT_STATUS_LEN], const char *status)
 {
   memset(buf, 0, RS_OUTPUT_STATUS_LEN);
   if (status) {
@@ -139,7 +140,7 @@ static void status_text(char buf[RS_OUTPUT_STATUS_LEN], const char *status)
 }
 
 /* mkdir -p for the directory part of path (results/<case>.nc by default). */
-static int make_parent_dirs(const char *path, rs_msg *msg)
+int rs_output_make_parent_dirs(const char *path, rs_msg *msg)
 {
   char *dir = strdup(path);
   if (!dir)
@@ -176,14 +177,14 @@ static int define_file(rs_output *out, const rs_output_spec *spec, const char **
   int err, time_dim, x_dim;
 
   *what = "defining global attributes";
-  if ((err = put_text(ncid, NC_GLOBAL, "Conventions", "CF-1.10")) ||
-      (err = put_text(ncid, NC_GLOBAL, "title", spec->title ? spec->title : "")) ||
-      (err = put_text(ncid, NC_GLOBAL, "source", "rollsim " RS_VERSION)) ||
-      (err = put_text(ncid, NC_GLOBAL, "history", spec->history ? spec->history : "")) ||
-      (err = put_text(ncid, NC_GLOBAL, "case", spec->case_text ? spec->case_text : "")))
+  if ((err = rs_output_put_text(ncid, NC_GLOBAL, "Conventions", "CF-1.10")) ||
+      (err = rs_output_put_text(ncid, NC_GLOBAL, "title", spec->title ? spec->title : "")) ||
+      (err = rs_output_put_text(ncid, NC_GLOBAL, "source", "rollsim " RS_VERSION)) ||
+      (err = rs_output_put_text(ncid, NC_GLOBAL, "history", spec->history ? spec->history : "")) ||
+      (err = rs_output_put_text(ncid, NC_GLOBAL, "case", spec->case_text ? spec->case_text : "")))
     return err;
   char status[RS_OUTPUT_STATUS_LEN];
-  status_text(status, "running");
+  rs_output_status_text(status, "running");
   if ((err = nc_put_att_text(ncid, NC_GLOBAL, "status", RS_OUTPUT_STATUS_LEN, status)))
     return err;
 
@@ -194,15 +195,15 @@ static int define_file(rs_output *out, const rs_output_spec *spec, const char **
 
   *what = "defining coordinate variables";
   if ((err = nc_def_var(ncid, "time", NC_DOUBLE, 1, &time_dim, &out->time_id)) ||
-      (err = put_text(ncid, out->time_id, "units", "s")) ||
-      (err = put_text(ncid, out->time_id, "long_name", "time since start")) ||
-      (err = put_text(ncid, out->time_id, "standard_name", "time")) ||
-      (err = put_text(ncid, out->time_id, "axis", "T")))
+      (err = rs_output_put_text(ncid, out->time_id, "units", "s")) ||
+      (err = rs_output_put_text(ncid, out->time_id, "long_name", "time since start")) ||
+      (err = rs_output_put_text(ncid, out->time_id, "standard_name", "time")) ||
+      (err = rs_output_put_text(ncid, out->time_id, "axis", "T")))
     return err;
   if ((err = nc_def_var(ncid, "x", NC_DOUBLE, 1, &x_dim, &out->x_id)) ||
-      (err = put_text(ncid, out->x_id, "units", "mm")) ||
-      (err = put_text(ncid, out->x_id, "long_name", "cell centre, rolling direction")) ||
-      (err = put_text(ncid, out->x_id, "axis", "X")))
+      (err = rs_output_put_text(ncid, out->x_id, "units", "mm")) ||
+      (err = rs_output_put_text(ncid, out->x_id, "long_name", "cell centre, rolling direction")) ||
+      (err = rs_output_put_text(ncid, out->x_id, "axis", "X")))
     return err;
 
   /* Fields first, scalars last: the last record variable is a double (see top). */
@@ -216,13 +217,13 @@ static int define_file(rs_output *out, const rs_output_spec *spec, const char **
     const nc_type type = f == REGIME_FIELD ? NC_BYTE : NC_DOUBLE;
     int id;
     if ((err = nc_def_var(ncid, fv->name, type, 2, field_dims, &id)) ||
-        (err = put_text(ncid, id, "units", fv->units)) ||
-        (err = put_text(ncid, id, "long_name", fv->long_name)))
+        (err = rs_output_put_text(ncid, id, "units", fv->units)) ||
+        (err = rs_output_put_text(ncid, id, "long_name", fv->long_name)))
       return err;
     if (f == REGIME_FIELD) {
       static const signed char flag_values[4] = {0, 1, 2, 3};
       if ((err = nc_put_att_schar(ncid, id, "flag_values", NC_BYTE, 4, flag_values)) ||
-          (err = put_text(ncid, id, "flag_meanings", "exterior adhesion slip plastic")))
+          (err = rs_output_put_text(ncid, id, "flag_meanings", "exterior adhesion slip plastic")))
         return err;
     }
     out->field_id[f] = id;
@@ -233,8 +234,8 @@ static int define_file(rs_output *out, const rs_output_spec *spec, const char **
     const scalar_var *sv = &scalar_vars[s];
     int id;
     if ((err = nc_def_var(ncid, sv->name, sv->type, 1, &time_dim, &id)) ||
-        (err = put_text(ncid, id, "units", three_d ? sv->units_3d : sv->units_2d)) ||
-        (err = put_text(ncid, id, "long_name", sv->long_name)))
+        (err = rs_output_put_text(ncid, id, "units", three_d ? sv->units_3d : sv->units_2d)) ||
+        (err = rs_output_put_text(ncid, id, "long_name", sv->long_name)))
       return err;
     out->scalar_id[s] = id;
   }
@@ -254,6 +255,12 @@ int rs_output_create(rs_output **outp, const rs_output_spec *spec, rs_msg *msg)
     return rs_msg_set(msg, RS_ERR_INTERNAL,
                       "output file %s: invalid grid (nx = %zu, dimension = %d)", spec->path,
                       spec->nx, spec->dimension);
+  /* The file is built under PATH.part and renamed over PATH: never over a device, pipe or
+   * directory (as root, `-o /dev/null` would otherwise replace /dev/null). */
+  struct stat st;
+  if (stat(spec->path, &st) == 0 && !S_ISREG(st.st_mode))
+    return rs_msg_set(msg, RS_ERR_OUTPUT, "output file %s: exists and is not a regular file (%s)",
+                      spec->path, S_ISDIR(st.st_mode) ? "a directory" : "a device, pipe or socket");
 
   rs_output *out = calloc(1, sizeof *out);
   const size_t path_len = strlen(spec->path);
@@ -270,7 +277,7 @@ int rs_output_create(rs_output **outp, const rs_output_spec *spec, rs_msg *msg)
   out->nx = spec->nx;
   out->fields = spec->fields;
 
-  int status = make_parent_dirs(spec->path, msg);
+  int status = rs_output_make_parent_dirs(spec->path, msg);
   if (status != RS_OK) {
     free(part);
     free(out->path);
@@ -281,7 +288,7 @@ int rs_output_create(rs_output **outp, const rs_output_spec *spec, rs_msg *msg)
   size_t block = RS_IO_BLOCK;
   int err = nc__create(part, NC_CLOBBER | NC_64BIT_OFFSET, 0, &block, &out->ncid);
   if (err != NC_NOERR) {
-    status = nc_failure(msg, spec->path, "cannot create", err);
+    status = rs_output_nc_failure(msg, spec->path, "cannot create", err);
     free(part);
     free(out->path);
     free(out);
@@ -308,7 +315,7 @@ int rs_output_create(rs_output **outp, const rs_output_spec *spec, rs_msg *msg)
     err = nc_sync(out->ncid);
   }
   if (err != NC_NOERR) {
-    status = nc_failure(msg, spec->path, what, err);
+    status = rs_output_nc_failure(msg, spec->path, what, err);
   } else if (rename(part, spec->path) != 0) {
     status = rs_msg_set(msg, RS_ERR_OUTPUT, "output file %s: cannot rename %s to it: %s",
                         spec->path, part, strerror(errno));
@@ -397,13 +404,13 @@ size_t rs_output_records(const rs_output *out)
 int rs_output_set_status(rs_output *out, const char *status, rs_msg *msg)
 {
   char text[RS_OUTPUT_STATUS_LEN];
-  status_text(text, status);
+  rs_output_status_text(text, status);
   /* Same size as before: allowed in data mode, and the header keeps its layout. */
   int err = nc_put_att_text(out->ncid, NC_GLOBAL, "status", RS_OUTPUT_STATUS_LEN, text);
   if (err)
-    return nc_failure(msg, out->path, "setting the status attribute", err);
+    return rs_output_nc_failure(msg, out->path, "setting the status attribute", err);
   if ((err = nc_sync(out->ncid)))
-    return nc_failure(msg, out->path, "syncing the status attribute", err);
+    return rs_output_nc_failure(msg, out->path, "syncing the status attribute", err);
   return RS_OK;
 }
 
@@ -414,7 +421,7 @@ int rs_output_close(rs_output *out, rs_msg *msg)
   int status = RS_OK;
   int err = nc_close(out->ncid);
   if (err)
-    status = nc_failure(msg, out->path, "closing", err);
+    status = rs_output_nc_failure(msg, out->path, "closing", err);
   free(out->path);
   free(out);
   return status;

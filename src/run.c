@@ -50,7 +50,7 @@ static int write_record(run_state *s, double t, rs_diag *d, rs_msg *msg)
                    .ustar = s->y + 2 * n,
                    .tauc = s->tauc,
                    .regime = s->regime};
-  return rs_output_write(s->out, &rec, msg);
+  return s->out ? rs_output_write(s->out, &rec, msg) : RS_OK;
 }
 
 static void progress(double t, double t_end, long steps, double started)
@@ -163,7 +163,7 @@ int rs_run(const rs_case *c, const rs_run_opts *o, rs_run_result *res, rs_msg *m
                          .nx = (size_t)n,
                          .x = s.m.x,
                          .fields = fields};
-  status = rs_output_create(&s.out, &spec, msg);
+  status = o->no_output ? RS_OK : rs_output_create(&s.out, &spec, msg);
   if (status != RS_OK) {
     free_state(&s);
     return status;
@@ -195,7 +195,7 @@ int rs_run(const rs_case *c, const rs_run_opts *o, rs_run_result *res, rs_msg *m
   else
     snprintf(why, sizeof why, "failed: %s", msg->text);
   rs_msg tmp;
-  if (status != RS_ERR_OUTPUT) rs_output_set_status(s.out, why, &tmp);
+  if (s.out && status != RS_ERR_OUTPUT) rs_output_set_status(s.out, why, &tmp);
   int close_status = rs_output_close(s.out, status == RS_OK ? msg : &tmp);
   if (status == RS_OK) status = close_status;
   res->wall_seconds = wall_clock() - started;

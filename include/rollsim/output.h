@@ -53,4 +53,29 @@ int rs_output_set_status(rs_output *out, const char *status, rs_msg *msg);
 /* Close the file (status is left as it is) and free. NULL is allowed. */
 int rs_output_close(rs_output *out, rs_msg *msg);
 
+
+/* ---- Sweep files: one dimension per swept key, scalar results over them ---- */
+typedef struct rs_sweep_output rs_sweep_output;
+
+typedef struct rs_sweep_output_spec {
+  const char *path, *title, *case_text, *history;
+  int dimension;          /* units of forces: 2 -> N/mm, 3 -> N */
+  int naxes;
+  const char *const *keys;     /* dotted case keys [naxes]; variable names get '_' for '.' */
+  const int *sizes;            /* [naxes] */
+  const double *const *values; /* coordinate values [naxes][sizes[a]] */
+} rs_sweep_output_spec;
+
+/* The scalar results of one sweep point (NaN where the point failed). */
+typedef struct rs_sweep_point {
+  double Fx, Fn, creepage, velocity;
+  int n_exterior, n_adhesion, n_slip, n_plastic;
+  double frictional_power, plastic_power, elastic_energy;
+  int converged;
+} rs_sweep_point;
+
+int rs_sweep_output_create(rs_sweep_output **out, const rs_sweep_output_spec *spec, rs_msg *msg);
+/* Write the point at flat index (row-major over the axes, last fastest) and sync. */
+int rs_sweep_output_write(rs_sweep_output *out, size_t index, const rs_sweep_point *pt, rs_msg *msg);
+int rs_sweep_output_close(rs_sweep_output *out, const char *status, rs_msg *msg);
 #endif

@@ -14,6 +14,7 @@ typedef struct rs_run_opts {
   const char *output_path;  /* overrides case output.file when non-NULL */
   const char *history;      /* netCDF history attribute (command line and date) */
   int progress;             /* draw a progress bar on stderr */
+  int no_output;            /* compute only (sweep points): no netCDF file */
   /* Set asynchronously (signal handler) to stop at the next output record. */
   volatile sig_atomic_t *interrupt_flag;
 } rs_run_opts;

@@ -1,0 +1,45 @@
+/* Sweeps (interfaces.md "Sweeps"): the case's `sweep:` block maps dotted case keys
+ * to value lists (or {linspace: [from, to, n]}); `rollsim sweep` runs every
+ * combination and writes one netCDF file with one dimension per swept key.
+ * Steady sweeps continue from the previous point along the last key (creep-force
+ * curves: continuation in creepage). */
+#ifndef ROLLSIM_SWEEP_H
+#define ROLLSIM_SWEEP_H
+
+#include <stddef.h>
+#include "rollsim/case.h"
+#include "rollsim/run.h"
+#include "rollsim/status.h"
+
+typedef struct rs_sweep_axis {
+  char *key;      /* dotted case key, e.g. "rolling.creepage" */
+  int n;          /* number of values */
+  double *values; /* [n] */
+} rs_sweep_axis;
+
+typedef struct rs_sweep {
+  int naxes;
+  rs_sweep_axis *axes; /* in file order; the last varies fastest */
+  size_t npoints;      /* product of the axis lengths */
+} rs_sweep;
+
+/* Read the sweep block of a case file (after the --set assignments). Errors name
+ * file:line and the key; every swept value is validated by loading the case with it. */
+int rs_sweep_load(rs_sweep *s, const char *path, const char *const *sets, int nsets, rs_msg *msg);
+void rs_sweep_free(rs_sweep *s);
+
+/* Point results (the scalars of the sweep file). */
+typedef struct rs_sweep_result {
+  size_t points_done, points_failed;
+  double wall_seconds;
+  long newton_iters;
+  char file[1024];
+} rs_sweep_result;
+
+/* Run every point; write `path` (case output.file when NULL). Returns RS_OK,
+ * RS_ERR_SOLVER when some points failed (their results are NaN), RS_ERR_INTERRUPTED,
+ * RS_ERR_OUTPUT or RS_ERR_INPUT. */
+int rs_sweep_run(const rs_sweep *s, const char *case_path, const char *const *sets, int nsets,
+                 const rs_run_opts *o, rs_sweep_result *res, rs_msg *msg);
+
+#endif

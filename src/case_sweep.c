@@ -1,0 +1,139 @@
+#define _POSIX_C_SOURCE 200809L
+/* The sweep: block of a case file (rollsim/sweep.h): dotted keys mapped to value
+ * lists or {linspace: [from, to, n]}, checked against the key table and by loading
+ * the case with each value. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "case_internal.h"
+#include "rollsim/sweep.h"
+
+void rs_sweep_free(rs_sweep *s)
+{
+  for (int i = 0; i < s->naxes; i++) {
+    free(s->axes[i].key);
+    free(s->axes[i].values);
+  }
+  free(s->axes);
+  memset(s, 0, sizeof *s);
+}
+
+static int read_values(const rs_case_doc *d, const yaml_node_t *v, const char *key, rs_sweep_axis *ax)
+{
+  char ctx[256];
+  snprintf(ctx, sizeof ctx, "sweep.%s", key);
+  if (v->type == YAML_MAPPING_NODE) {
+    static const char *const allowed[] = {"linspace", NULL};
+    if (rs_case_check_mapping(d, v, ctx, allowed) != RS_OK) return RS_ERR_INPUT;
+    const yaml_node_t *ls = rs_case_lookup(d, v, "linspace");
+    if (!ls || ls->type != YAML_SEQUENCE_NODE ||
+        ls->data.sequence.items.top - ls->data.sequence.items.start != 3)
+      return rs_case_error(d, ls ? ls : v, ctx, "linspace needs [from, to, count]");
+    double a, b, cnt;
+    yaml_node_item_t *it = ls->data.sequence.items.start;
+    yaml_document_t *doc = (yaml_document_t *)&d->doc;
+    if (rs_case_number(d, yaml_document_get_node(doc, it[0]), ctx, &a) ||
+        rs_case_number(d, yaml_document_get_node(doc, it[1]), ctx, &b) ||
+        rs_case_number(d, yaml_document_get_node(doc, it[2]), ctx, &cnt))
+      return RS_ERR_INPUT;
+    if (!(cnt >= 1 && cnt <= 100000 && cnt == floor(cnt)))
+      return rs_case_error(d, ls, ctx, "linspace count must be a whole number in 1..100000, got %g", cnt);
+    ax->n = (int)cnt;
+    ax->values = malloc((size_t)ax->n * sizeof *ax->values);
+    if (!ax->values) return rs_msg_set(d->msg, RS_ERR_INTERNAL, "out of memory");
+    for (int k = 0; k < ax->n; k++) ax->values[k] = ax->n == 1 ? a : a + (b - a) * k / (ax->n - 1);
+    return RS_OK;
+  }
+  if (v->type != YAML_SEQUENCE_NODE)
+    return rs_case_error(d, v, ctx, "expected a list of values or {linspace: [from, to, count]}");
+  const int n = (int)(v->data.sequence.items.top - v->data.sequence.items.start);
+  if (n < 1) return rs_case_error(d, v, ctx, "empty list of values");
+  ax->n = n;
+  ax->values = malloc((size_t)n * sizeof *ax->values);
+  if (!ax->values) return rs_msg_set(d->msg, RS_ERR_INTERNAL, "out of memory");
+  for (int k = 0; k < n; k++) {
+    const yaml_node_t *item =
+        yaml_document_get_node((yaml_document_t *)&d->doc, v->data.sequence.items.start[k]);
+    if (rs_case_number(d, item, ctx, &ax->values[k]) != RS_OK) return RS_ERR_INPUT;
+  }
+  return RS_OK;
+}
+
+int rs_sweep_load(rs_sweep *s, const char *path, const char *const *sets, int nsets, rs_msg *msg)
+{
+  memset(s, 0, sizeof *s);
+  rs_case_doc d;
+  memset(&d, 0, sizeof d);
+  int status = rs_case_doc_load(&d, path, msg);
+  for (int i = 0; status == RS_OK && i < nsets; i++) status = rs_case_doc_set(&d, sets[i]);
+  const yaml_node_t *root = status == RS_OK ? rs_case_doc_root(&d) : NULL;
+  const yaml_node_t *sw = root ? rs_case_lookup(&d, root, "sweep") : NULL;
+  if (status == RS_OK && (!sw || rs_case_is_null(sw)))
+    status = rs_msg_set(msg, RS_ERR_INPUT, "%s: the case has no sweep: block (use rollsim run)", path);
+  if (status == RS_OK && sw->type != YAML_MAPPING_NODE)
+    status = rs_case_error(&d, sw, "sweep", "expected a mapping of dotted keys to value lists");
+  if (status == RS_OK) {
+    const int n = (int)(sw->data.mapping.pairs.top - sw->data.mapping.pairs.start);
+    s->axes = calloc((size_t)(n > 0 ? n : 1), sizeof *s->axes);
+    if (!s->axes) status = rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory");
+    if (status == RS_OK && n == 0) status = rs_case_error(&d, sw, "sweep", "no keys to sweep");
+    s->npoints = 1;
+    for (int i = 0; status == RS_OK && i < n; i++) {
+      const yaml_node_pair_t *pr = &sw->data.mapping.pairs.start[i];
+      const yaml_node_t *k = yaml_document_get_node(&d.doc, pr->key);
+      const yaml_node_t *v = yaml_document_get_node(&d.doc, pr->value);
+      if (k->type != YAML_SCALAR_NODE) {
+        status = rs_case_error(&d, k, "sweep", "keys must be dotted case keys");
+        break;
+      }
+      const char *key = (const char *)k->data.scalar.value;
+      const int idx = rs_case_key_index(key);
+      if (idx < 0 || (rs_case_keys[idx].kind != RS_KEY_NUMBER && rs_case_keys[idx].kind != RS_KEY_INTEGER &&
+                      rs_case_keys[idx].kind != RS_KEY_HISTORY && rs_case_keys[idx].kind != RS_KEY_LONG)) {
+        status = rs_case_error(&d, k, "sweep", "%s is not a numeric case key", key);
+        break;
+      }
+      for (int j = 0; j < i; j++)
+        if (!strcmp(s->axes[j].key, key)) status = rs_case_error(&d, k, "sweep", "%s is swept twice", key);
+      if (status != RS_OK) break;
+      s->axes[i].key = strdup(key);
+      if (!s->axes[i].key) {
+        status = rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory");
+        break;
+      }
+      s->naxes = i + 1;
+      status = read_values(&d, v, key, &s->axes[i]);
+      s->npoints *= (size_t)s->axes[i].n;
+    }
+  }
+  rs_case_doc_free(&d);
+  if (status != RS_OK) {
+    rs_sweep_free(s);
+    return status;
+  }
+  /* Every value must give a valid case: load it once with the value as a --set. */
+  const char **all = calloc((size_t)nsets + 1, sizeof *all);
+  if (!all) {
+    rs_sweep_free(s);
+    return rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory");
+  }
+  for (int i = 0; i < nsets; i++) all[i] = sets[i];
+  char assign[512], num[64];
+  for (int a = 0; status == RS_OK && a < s->naxes; a++)
+    for (int k = 0; status == RS_OK && k < s->axes[a].n; k++) {
+      snprintf(assign, sizeof assign, "%s=%s", s->axes[a].key, rs_case_fmt(s->axes[a].values[k], num, sizeof num));
+      all[nsets] = assign;
+      rs_case c;
+      rs_msg inner;
+      status = rs_case_load(&c, path, all, nsets + 1, &inner);
+      if (status == RS_OK)
+        rs_case_free(&c);
+      else
+        rs_msg_set(msg, status, "%s: sweep: %s = %s: %s", path, s->axes[a].key, num, inner.text);
+    }
+  free(all);
+  if (status != RS_OK) rs_sweep_free(s);
+  return status;
+}

@@ -1,0 +1,185 @@
+/* rollsim sweep (rollsim/sweep.h): every combination of the swept values, one
+ * netCDF file. Steady points continue from the solution of the previous point
+ * along the last axis (the creepage of a creep-force curve), which keeps Newton
+ * within reach of the active set. */
+#define _POSIX_C_SOURCE 200809L
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "rollsim/model.h"
+#include "rollsim/output.h"
+#include "rollsim/solver.h"
+#include "rollsim/sweep.h"
+
+static double now(void)
+{
+  struct timespec ts;
+  clock_gettime(CLOCK_MONOTONIC, &ts);
+  return ts.tv_sec + 1e-9 * ts.tv_nsec;
+}
+
+static void fill_point(rs_sweep_point *pt, const rs_diag *d)
+{
+  pt->Fx = d->Fx;
+  pt->Fn = d->Fn;
+  pt->creepage = d->creepage;
+  pt->velocity = d->velocity;
+  pt->n_exterior = d->count[RS_EXTERIOR];
+  pt->n_adhesion = d->count[RS_ADHESION];
+  pt->n_slip = d->count[RS_SLIP];
+  pt->n_plastic = d->count[RS_PLASTIC];
+  pt->frictional_power = d->frictional_power;
+  pt->plastic_power = d->plastic_power;
+  pt->elastic_energy = d->elastic_energy;
+  pt->converged = 1;
+}
+
+/* One steady point, warm-started from y (length neq of this grid) when warm. */
+static int steady_point(const rs_case *c, double **y, int *ny, int warm, rs_diag *d, long *iters,
+                        rs_msg *msg)
+{
+  rs_model m;
+  int status = rs_model_create(&m, c, msg);
+  if (status != RS_OK) return status;
+  if (!warm || *ny != m.neq) {
+    free(*y);
+    *y = calloc((size_t)m.neq, sizeof **y);
+    *ny = m.neq;
+  }
+  double *yp = calloc((size_t)m.neq, sizeof *yp);
+  rs_work w = {0};
+  rs_steady *st = NULL;
+  rs_stats stats = {0};
+  if (!*y || !yp || rs_work_create(&w, m.n) != RS_OK)
+    status = rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory");
+  if (status == RS_OK) status = rs_steady_create(&st, &m, msg);
+  if (status == RS_OK) status = rs_steady_solve(st, 0.0, *y, &stats, msg);
+  if (status == RS_OK) rs_model_diagnostics(&m, &w, 0.0, *y, yp, d, NULL, NULL, NULL);
+  *iters += stats.nonlin_iters;
+  rs_steady_free(st);
+  rs_work_free(&w);
+  free(yp);
+  rs_model_free(&m);
+  return status;
+}
+
+int rs_sweep_run(const rs_sweep *s, const char *case_path, const char *const *sets, int nsets,
+                 const rs_run_opts *o, rs_sweep_result *res, rs_msg *msg)
+{
+  const double started = now();
+  memset(res, 0, sizeof *res);
+  rs_case base;
+  int status = rs_case_load(&base, case_path, sets, nsets, msg);
+  if (status != RS_OK) return status;
+  const char *path = o->output_path ? o->output_path : base.output_file;
+  snprintf(res->file, sizeof res->file, "%s", path);
+
+  const char **keys = calloc((size_t)s->naxes, sizeof *keys);
+  int *sizes = calloc((size_t)s->naxes, sizeof *sizes);
+  const double **values = calloc((size_t)s->naxes, sizeof *values);
+  const char **all = calloc((size_t)(nsets + s->naxes), sizeof *all);
+  char(*assign)[256] = calloc((size_t)s->naxes, sizeof *assign);
+  if (!keys || !sizes || !values || !all || !assign) {
+    status = rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory");
+    goto done;
+  }
+  for (int a = 0; a < s->naxes; a++) {
+    keys[a] = s->axes[a].key;
+    sizes[a] = s->axes[a].n;
+    values[a] = s->axes[a].values;
+  }
+  for (int i = 0; i < nsets; i++) all[i] = sets[i];
+  rs_sweep_output_spec spec = {.path = path,
+                               .title = base.title,
+                               .case_text = base.yaml_text,
+                               .history = o->history,
+                               .dimension = base.dimension,
+                               .naxes = s->naxes,
+                               .keys = keys,
+                               .sizes = sizes,
+                               .values = values};
+  rs_sweep_output *out = NULL;
+  status = rs_sweep_output_create(&out, &spec, msg);
+  if (status != RS_OK) goto done;
+
+  double *y = NULL;
+  int ny = 0;
+  rs_msg point_msg = {{0}};
+  for (size_t p = 0; p < s->npoints && status == RS_OK; p++) {
+    size_t rest = p;
+    int last_index = 0;
+    for (int a = s->naxes - 1; a >= 0; a--) {
+      const int k = (int)(rest % (size_t)s->axes[a].n);
+      rest /= (size_t)s->axes[a].n;
+      if (a == s->naxes - 1) last_index = k;
+      snprintf(assign[a], sizeof assign[a], "%s=%.17g", s->axes[a].key, s->axes[a].values[k]);
+      all[nsets + a] = assign[a];
+    }
+    rs_case c;
+    rs_sweep_point pt;
+    memset(&pt, 0, sizeof pt);
+    rs_diag d;
+    int ps = rs_case_load(&c, case_path, all, nsets + s->naxes, &point_msg);
+    if (ps == RS_OK) {
+      if (c.mode == RS_MODE_STEADY) {
+        ps = steady_point(&c, &y, &ny, last_index > 0, &d, &res->newton_iters, &point_msg);
+      } else {
+        rs_run_opts po = *o;
+        po.no_output = 1;
+        po.progress = 0;
+        rs_run_result rr;
+        ps = rs_run(&c, &po, &rr, &point_msg);
+        d = rr.final;
+        res->newton_iters += rr.stats.nonlin_iters;
+      }
+      rs_case_free(&c);
+    }
+    if (ps == RS_OK) {
+      fill_point(&pt, &d);
+      res->points_done++;
+    } else if (ps == RS_ERR_SOLVER) {
+      pt.Fx = pt.Fn = pt.creepage = pt.velocity = NAN;
+      pt.frictional_power = pt.plastic_power = pt.elastic_energy = NAN;
+      pt.n_exterior = pt.n_adhesion = pt.n_slip = pt.n_plastic = -1;
+      res->points_failed++;
+      fprintf(stderr, "rollsim sweep: point %zu (%s): %s\n", p, assign[s->naxes - 1], point_msg.text);
+      free(y); /* no warm start from a failed point */
+      y = NULL;
+      ny = 0;
+    } else {
+      status = rs_msg_set(msg, ps, "sweep point %zu: %s", p, point_msg.text);
+      break;
+    }
+    status = rs_sweep_output_write(out, p, &pt, msg);
+    if (o->progress) {
+      fprintf(stderr, "\rsweep: %zu/%zu points, %zu failed, %.1f s ", p + 1, s->npoints,
+              res->points_failed, now() - started);
+      fflush(stderr);
+    }
+    if (status == RS_OK && o->interrupt_flag && *o->interrupt_flag)
+      status = rs_msg_set(msg, RS_ERR_INTERRUPTED, "interrupted after %zu of %zu points", p + 1, s->npoints);
+  }
+  if (o->progress) fputc('\n', stderr);
+  free(y);
+  if (status == RS_OK && res->points_failed > 0)
+    status = rs_msg_set(msg, RS_ERR_SOLVER, "%zu of %zu sweep points did not converge (NaN in the file)",
+                        res->points_failed, s->npoints);
+  char why[RS_MSG_LEN + 16];
+  snprintf(why, sizeof why, "%s%s", status == RS_OK ? "complete" : status == RS_ERR_INTERRUPTED ? "interrupted" : "failed: ",
+           status == RS_OK || status == RS_ERR_INTERRUPTED ? "" : msg->text);
+  rs_msg tmp;
+  int cs = rs_sweep_output_close(out, why, status == RS_OK ? msg : &tmp);
+  if (status == RS_OK) status = cs;
+done:
+  res->wall_seconds = now() - started;
+  free(keys);
+  free(sizes);
+  free(values);
+  free(all);
+  free(assign);
+  rs_case_free(&base);
+  return status;
+}
