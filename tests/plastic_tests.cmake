@@ -1,0 +1,30 @@
+# Local plasticity end to end (issue: the paper's model): sweeps, regimes, trends.
+set(RS_PL ${CMAKE_CURRENT_BINARY_DIR}/plastic_out)
+
+# Figure 7 set (steady, sweep over k_rel) and one transient run from rest.
+add_test(NAME plastic_fig7_sweep COMMAND ${RS_BIN} sweep ${RS_CASES}/carter_plast.yaml -o ${RS_PL}/fig7.nc --quiet)
+add_test(NAME plastic_steady_run COMMAND ${RS_BIN} run ${RS_CASES}/carter_plast.yaml --set plasticity.k_rel=0.6
+                                         -o ${RS_PL}/steady_k06.nc --quiet)
+add_test(NAME plastic_transient_run
+         COMMAND ${RS_BIN} run ${RS_CASES}/carter_plast.yaml --set plasticity.k_rel=0.6
+                 --set simulation.mode=transient --set simulation.rolled_distance=12
+                 --set simulation.output_interval=1e-5 -o ${RS_PL}/transient_k06.nc --quiet)
+set_tests_properties(plastic_steady_run PROPERTIES FIXTURES_SETUP pl_steady)
+set_tests_properties(plastic_transient_run PROPERTIES FIXTURES_SETUP pl_transient)
+add_test(NAME plastic_regimes_steady COMMAND ${SYSTEM_PYTHON3} ${RS_TESTS}/check_plastic.py regimes
+                                             ${RS_PL}/steady_k06.nc 1e-9)
+set_tests_properties(plastic_regimes_steady PROPERTIES FIXTURES_REQUIRED pl_steady)
+# rtol of the case: 1e-6 (interfaces.md default)
+add_test(NAME plastic_regimes_transient COMMAND ${SYSTEM_PYTHON3} ${RS_TESTS}/check_plastic.py regimes
+                                                ${RS_PL}/transient_k06.nc 1e-6)
+set_tests_properties(plastic_regimes_transient PROPERTIES FIXTURES_REQUIRED pl_transient)
+
+# Figure 9 trends on a reduced sweep, with the saturation bound from a k_rel = 0 run.
+add_test(NAME plastic_trends_sweep COMMAND ${RS_BIN} sweep ${RS_TESTS}/cases/creep_trends.yaml -o ${RS_PL}/trends.nc --quiet)
+add_test(NAME plastic_trends_saturated
+         COMMAND ${RS_BIN} run ${RS_TESTS}/cases/creep_trends.yaml --set plasticity.k_rel=0
+                 --set rolling.creepage=-0.02 -o ${RS_PL}/trends_sat.nc --quiet)
+set_tests_properties(plastic_trends_sweep plastic_trends_saturated PROPERTIES FIXTURES_SETUP pl_trends)
+add_test(NAME plastic_trends COMMAND ${SYSTEM_PYTHON3} ${RS_TESTS}/check_plastic.py trends
+                                     ${RS_PL}/trends.nc ${RS_PL}/trends_sat.nc)
+set_tests_properties(plastic_trends PROPERTIES FIXTURES_REQUIRED pl_trends)
