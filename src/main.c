@@ -15,6 +15,7 @@
 
 #include "rollsim/case.h"
 #include "rollsim/run.h"
+#include "rollsim/sweep.h"
 
 #ifndef RS_VERSION
 #define RS_VERSION "unknown"
@@ -134,28 +135,27 @@ int main(int argc, char **argv)
   rs_case c;
   rs_msg msg = {{0}};
   int status = rs_case_load(&c, case_path, sets, nsets, &msg);
-  free(sets);
   if (status != RS_OK) {
     fprintf(stderr, "%s\n", msg.text);
+    free(sets);
     return exit_code(status);
   }
 
   if (!strcmp(cmd, "check")) {
+    free(sets);
     rs_case_print(&c, stdout);
     status = rs_run_print_derived(&c, stdout, &msg);
     if (status != RS_OK) fprintf(stderr, "%s: %s\n", case_path, msg.text);
     rs_case_free(&c);
     return exit_code(status == RS_ERR_SOLVER ? RS_ERR_INPUT : status);
   }
-  if (!strcmp(cmd, "sweep")) {
-    fprintf(stderr, "rollsim sweep: sweeps are not implemented yet; use run with --set\n");
-    rs_case_free(&c);
-    return 2;
-  }
-
   struct sigaction sa;
   memset(&sa, 0, sizeof sa);
   sa.sa_handler = on_signal;
+  /* The flag is read between output records, and one output interval can take minutes of
+   * solver work: a second SIGINT/SIGTERM then ends the process at once (default action; the
+   * file stays valid with the records written so far, status "running"). */
+  sa.sa_flags = SA_RESETHAND;
   sigaction(SIGINT, &sa, NULL);
   sigaction(SIGTERM, &sa, NULL);
 
@@ -171,6 +171,28 @@ int main(int argc, char **argv)
                    .history = history,
                    .progress = !quiet && isatty(STDERR_FILENO),
                    .interrupt_flag = &interrupted};
+  if (!strcmp(cmd, "sweep")) {
+    rs_case_free(&c);
+    rs_sweep sw;
+    status = rs_sweep_load(&sw, case_path, sets, nsets, &msg);
+    if (status != RS_OK) {
+      fprintf(stderr, "%s\n", msg.text);
+      free(sets);
+      return exit_code(status);
+    }
+    rs_sweep_result sres;
+    status = rs_sweep_run(&sw, case_path, sets, nsets, &o, &sres, &msg);
+    free(sets);
+    if (status != RS_OK) fprintf(stderr, "rollsim: %s: %s\n", case_path, msg.text);
+    printf("sweep over");
+    for (int a = 0; a < sw.naxes; a++) printf(" %s (%d)", sw.axes[a].key, sw.axes[a].n);
+    printf(": %zu points solved, %zu failed, Newton iterations %ld, wall time %.3f s\n",
+           sres.points_done, sres.points_failed, sres.newton_iters, sres.wall_seconds);
+    printf("  output: %s\n", sres.file);
+    rs_sweep_free(&sw);
+    return exit_code(status);
+  }
+  free(sets);
   rs_run_result res;
   status = rs_run(&c, &o, &res, &msg);
   if (status != RS_OK) fprintf(stderr, "rollsim: %s: %s\n", case_path, msg.text);

@@ -29,7 +29,7 @@ static int kin_residual(N_Vector ycor, N_Vector f, void *data)
 {
   nls_content *c = data;
   const int flag = c->sysfn(ycor, f, c->ida_mem);
-  return flag == 0 ? 0 : 1; /* recoverable: KINSOL/IDA try again */
+  return flag < 0 ? -1 : (flag > 0 ? 1 : 0); /* > 0 recoverable: KINSOL/IDA try again */
 }
 
 static int kin_jacobian(N_Vector ycor, N_Vector f, SUNMatrix J, void *data, N_Vector t1,
@@ -92,6 +92,7 @@ static int nls_solve(SUNNonlinearSolver nls, N_Vector y0, N_Vector ycor, N_Vecto
   KINGetNumNonlinSolvIters(c->kmem, &iters);
   c->last_iters = iters;
   c->last_fails = 0;
+  if (flag == KIN_SYSFUNC_FAIL) return -1; /* the residual refused (interrupt): IDA stops */
   int ok = flag >= 0;
   if (flag == KIN_STEP_LT_STPTOL) {
     double fnorm = 1e300;

@@ -89,7 +89,8 @@ static int run_transient(run_state *s, const rs_run_opts *o, rs_run_result *res,
                              .max_order = c->max_order,
                              .max_steps = c->max_steps,
                              .max_newton = 10,
-                             .t_stop = fmin(rs_model_next_breakpoint(&s->m, 0.0), c->end_time)};
+                             .t_stop = fmin(rs_model_next_breakpoint(&s->m, 0.0), c->end_time),
+                             .interrupt = o->interrupt_flag};
   rs_transient *tr = NULL;
   int status = rs_transient_create(&tr, &s->m, 0.0, s->y, s->yp, &topts, msg);
   if (status != RS_OK) return status;

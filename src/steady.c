@@ -92,8 +92,8 @@ int rs_steady_create(rs_steady **out, const rs_model *m, rs_msg *msg)
   flag |= KINSetJacFn(s->kmem, steady_jacobian);
   flag |= KINSetMaxSetupCalls(s->kmem, 1);       /* exact Newton */
   flag |= KINSetMaxNewtonStep(s->kmem, 1e12);    /* steps from p = 0 are large */
-  flag |= KINSetFuncNormTol(s->kmem, 1e-12);
-  flag |= KINSetScaledStepTol(s->kmem, 1e-15);
+  flag |= KINSetFuncNormTol(s->kmem, 1e-10); /* relative to the largest bound; roundoff is ~1e-12 */
+  flag |= KINSetScaledStepTol(s->kmem, 1e-13);
   flag |= KINSetNumMaxIters(s->kmem, 200);
   flag |= KINSetErrHandlerFn(s->kmem, rs_sundials_silent, NULL);
   if (flag != 0) goto fail;

@@ -21,6 +21,7 @@ struct rs_transient {
   rs_work work;
   double cj; /* of the step being solved: sets the residual scaling r */
   double t;
+  volatile sig_atomic_t *interrupt;
   rs_stats before_restart; /* IDA's counters of the segments before the last IDAReInit */
 };
 
@@ -38,6 +39,7 @@ static void ida_counters(const rs_transient *tr, rs_stats *st)
 static int dae_residual(sunrealtype t, N_Vector y, N_Vector yp, N_Vector rr, void *data)
 {
   rs_transient *tr = data;
+  if (tr->interrupt && *tr->interrupt) return -1; /* unrecoverable: IDA stops at once */
   return rs_model_eval(tr->m, &tr->work, t, N_VGetArrayPointer(y), N_VGetArrayPointer(yp), tr->cj,
                        N_VGetArrayPointer(rr), NULL);
 }
@@ -64,6 +66,7 @@ int rs_transient_create(rs_transient **out, const rs_model *m, double t0, const 
   if (!tr) return rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory (transient solver)");
   tr->m = m;
   tr->t = t0;
+  tr->interrupt = o->interrupt;
   const int n = m->n;
   if (SUNContext_Create(NULL, &tr->ctx) != 0) goto fail;
   tr->y = N_VNew_Serial(m->neq, tr->ctx);
@@ -106,6 +109,10 @@ int rs_transient_advance(rs_transient *tr, double tout, double *y, double *yp, r
 {
   sunrealtype tret = tr->t;
   const int flag = IDASolve(tr->ida, tout, &tret, tr->y, tr->yp, IDA_NORMAL);
+  if (flag < 0 && tr->interrupt && *tr->interrupt) {
+    IDAGetCurrentTime(tr->ida, &tret);
+    return rs_msg_set(msg, RS_ERR_INTERRUPTED, "interrupted at t = %.6g s", tret);
+  }
   if (flag < 0) {
     char *name = IDAGetReturnFlagName(flag);
     sunrealtype h = 0.0;

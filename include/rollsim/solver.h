@@ -6,6 +6,8 @@
 #ifndef ROLLSIM_SOLVER_H
 #define ROLLSIM_SOLVER_H
 
+#include <signal.h>
+
 #include "rollsim/model.h"
 #include "rollsim/status.h"
 
@@ -37,6 +39,7 @@ typedef struct rs_transient_opts {
   long max_steps;     /* per call of rs_transient_advance */
   int max_newton;     /* Newton iterations per step (KINSOL), default 10 */
   double t_stop;      /* IDA never steps beyond this time (INFINITY: no limit) */
+  volatile sig_atomic_t *interrupt; /* set asynchronously: stop at once (may be NULL) */
 } rs_transient_opts;
 
 /* y0, yp0: a consistent initial state (see rs_model_consistent_rates). */
