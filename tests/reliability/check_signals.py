@@ -30,6 +30,21 @@ def wait_for(path, proc, timeout=20.0):
         time.sleep(0.005)
 
 
+def wait_for_records(path, proc, n, timeout=30.0):
+    """Wait until the file holds n records (the run is loaded or slow on a busy machine)."""
+    end = time.monotonic() + timeout
+    while True:
+        assert proc.poll() is None, f"rollsim ended ({proc.returncode}) before writing {n} records"
+        assert time.monotonic() < end, f"{path}: {n} records not written within {timeout} s"
+        try:
+            with netCDF4.Dataset(path) as ds:
+                if len(ds.dimensions["time"]) >= n:
+                    return
+        except OSError:
+            pass
+        time.sleep(0.01)
+
+
 def trial(rollsim, case, out, sig, delay):
     path = os.path.join(out, f"{sig.name}.nc")
     proc = subprocess.Popen([rollsim, "run", case, "-o", path, "--quiet",
@@ -37,6 +52,7 @@ def trial(rollsim, case, out, sig, delay):
                             stdout=subprocess.PIPE, stderr=subprocess.PIPE)
     try:
         wait_for(path, proc)
+        wait_for_records(path, proc, 2)
         time.sleep(delay)
         assert proc.poll() is None, f"rollsim ended ({proc.returncode}) before the signal"
         proc.send_signal(sig)
