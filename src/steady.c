@@ -19,15 +19,24 @@ struct rs_steady {
   N_Vector u, uscale, fscale;
   rs_linsys ls;
   rs_work work;
-  double *yp_zero;
+  double *yp;     /* y' seen by the residual: 0, or cj (y - y_prev) in pseudo-time steps */
+  double *y_prev; /* start of the current pseudo-time step */
+  double cj;      /* 0: steady; 1/dtau: a backward-Euler step of the rolling transient */
   double t;
 };
+
+/* y' = cj (y - y_prev) (backward Euler) or 0 (steady). */
+static double *rates(rs_steady *s, const double *u)
+{
+  for (int i = 0; i < s->m->neq; i++) s->yp[i] = s->cj > 0.0 ? s->cj * (u[i] - s->y_prev[i]) : 0.0;
+  return s->yp;
+}
 
 static int steady_residual(N_Vector u, N_Vector f, void *data)
 {
   rs_steady *s = data;
-  return rs_model_eval(s->m, &s->work, s->t, N_VGetArrayPointer(u), s->yp_zero, 0.0,
-                       N_VGetArrayPointer(f), NULL);
+  const double *y = N_VGetArrayPointer(u);
+  return rs_model_eval(s->m, &s->work, s->t, y, rates(s, y), s->cj, N_VGetArrayPointer(f), NULL);
 }
 
 static int steady_jacobian(N_Vector u, N_Vector f, SUNMatrix J, void *data, N_Vector t1,
@@ -38,7 +47,8 @@ static int steady_jacobian(N_Vector u, N_Vector f, SUNMatrix J, void *data, N_Ve
   (void)t1;
   (void)t2;
   rs_steady *s = data;
-  return rs_linsys_assemble(&s->ls, s->m, &s->work, s->t, N_VGetArrayPointer(u), s->yp_zero, 0.0);
+  const double *y = N_VGetArrayPointer(u);
+  return rs_linsys_assemble(&s->ls, s->m, &s->work, s->t, y, rates(s, y), s->cj);
 }
 
 void rs_steady_free(rs_steady *s)
@@ -50,7 +60,8 @@ void rs_steady_free(rs_steady *s)
   if (s->uscale) N_VDestroy(s->uscale);
   if (s->fscale) N_VDestroy(s->fscale);
   rs_work_free(&s->work);
-  free(s->yp_zero);
+  free(s->yp);
+  free(s->y_prev);
   if (s->ctx) SUNContext_Free(&s->ctx);
   free(s);
 }
@@ -66,8 +77,9 @@ int rs_steady_create(rs_steady **out, const rs_model *m, rs_msg *msg)
   s->u = N_VNew_Serial(m->neq, s->ctx);
   s->uscale = N_VNew_Serial(m->neq, s->ctx);
   s->fscale = N_VNew_Serial(m->neq, s->ctx);
-  s->yp_zero = calloc((size_t)m->neq, sizeof *s->yp_zero);
-  if (!s->u || !s->uscale || !s->fscale || !s->yp_zero) goto fail;
+  s->yp = calloc((size_t)m->neq, sizeof *s->yp);
+  s->y_prev = calloc((size_t)m->neq, sizeof *s->y_prev);
+  if (!s->u || !s->uscale || !s->fscale || !s->yp || !s->y_prev) goto fail;
   if (rs_work_create(&s->work, n) != RS_OK) goto fail;
   if (rs_linsys_create(&s->ls, m, s->u, s->ctx) != RS_OK) goto fail;
 
@@ -94,7 +106,7 @@ int rs_steady_create(rs_steady **out, const rs_model *m, rs_msg *msg)
   flag |= KINSetMaxNewtonStep(s->kmem, 1e12);    /* steps from p = 0 are large */
   flag |= KINSetFuncNormTol(s->kmem, 1e-10); /* relative to the largest bound; roundoff is ~1e-12 */
   flag |= KINSetScaledStepTol(s->kmem, 1e-13);
-  flag |= KINSetNumMaxIters(s->kmem, 200);
+  flag |= KINSetNumMaxIters(s->kmem, 50);
   flag |= KINSetErrHandlerFn(s->kmem, rs_sundials_silent, NULL);
   if (flag != 0) goto fail;
   *out = s;
@@ -133,6 +145,48 @@ static int newton(rs_steady *s, double *y, rs_stats *stats, int *kin_flag)
   if (flag < 0) return RS_ERR_SOLVER;
   memcpy(y, u, (size_t)m->neq * sizeof *u);
   return RS_OK;
+}
+
+/* First fallback when Newton cycles between active sets (seen with moderate
+ * hardening): pseudo-transient continuation with backward-Euler steps of the
+ * rolling transient, F(y, (y - y_prev)/dtau) = 0, each solved by the same exact
+ * Newton (the c_j terms make it better conditioned and keep the active set close
+ * to the previous one), dtau growing geometrically from one cell passage; after
+ * every step, steady Newton is tried from the new state. */
+static int pseudo_time_steps(rs_steady *s, double *y, rs_stats *stats)
+{
+  const rs_model *m = s->m;
+  const double V = rs_history_eval(&m->velocity, s->t), cell_time = m->dx / V;
+  double dtau = cell_time;
+  int status = RS_ERR_SOLVER, kin_flag = 0;
+  double *z = malloc((size_t)m->neq * sizeof *z);
+  if (!z) return RS_ERR_INTERNAL;
+  memcpy(z, y, (size_t)m->neq * sizeof *z);
+  for (int step = 0; step < 200 && status != RS_OK; step++) {
+    memcpy(s->y_prev, z, (size_t)m->neq * sizeof *z);
+    s->cj = 1.0 / dtau;
+    if (newton(s, z, stats, &kin_flag) != RS_OK) { /* step too ambitious: shorter */
+      memcpy(z, s->y_prev, (size_t)m->neq * sizeof *z);
+      dtau *= 0.25;
+      if (dtau < 1e-3 * cell_time) break;
+      continue;
+    }
+    /* Try steady Newton once the pseudo-time step changes the tractions little. */
+    double change = 0.0, size = 0.0;
+    for (int i = 0; i < m->n; i++) {
+      change = fmax(change, fabs(z[i] - s->y_prev[i]));
+      size = fmax(size, fabs(z[i]));
+    }
+    if (change <= 1e-2 * size) {
+      s->cj = 0.0;
+      memcpy(y, z, (size_t)m->neq * sizeof *y);
+      status = newton(s, y, stats, &kin_flag);
+    }
+    dtau *= 3.0;
+  }
+  s->cj = 0.0;
+  free(z);
+  return status;
 }
 
 /* Fallback when Newton cycles between active sets (seen with moderate hardening,
@@ -194,8 +248,17 @@ int rs_steady_solve(rs_steady *s, double t, double *y, rs_stats *stats, rs_msg *
     return rs_msg_set(msg, RS_ERR_INPUT, "steady rolling needs a rolling velocity > 0 (got %g mm/s at t = %g s)", V, t);
   s->t = t;
   int kin_flag = 0;
+  s->cj = 0.0;
+  double *start = malloc((size_t)m->neq * sizeof *start);
+  if (!start) return rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory");
+  memcpy(start, y, (size_t)m->neq * sizeof *start);
   int status = newton(s, y, stats, &kin_flag);
-  if (status != RS_OK) status = pseudo_transient(s, t, y, stats, msg);
+  if (status != RS_OK) status = pseudo_time_steps(s, y, stats);
+  if (status == RS_ERR_SOLVER) {
+    memcpy(y, start, (size_t)m->neq * sizeof *y);
+    status = pseudo_transient(s, t, y, stats, msg);
+  }
+  free(start);
   if (stats) {
     stats->jac_evals = s->ls.jac_evals;
     stats->klu_analyses = s->ls.analyses;
