@@ -3,6 +3,8 @@
 transient_vs_steady TRANSIENT.nc STEADY.nc
     The default case (Carter, rolled 20 contact lengths from rest) ends within
     1e-4 of the steady solution of the same grid (verification.md §3).
+final_matches RUN.nc STEADY.nc TOL
+    A transient run at constant final inputs ends at the steady solution of the same grid.
 carter STEADY.nc MU XI
     Steady F_x/(mu F_n) against Carter's 1 - (1 - |xi| R/(mu a))^2 (R = 500 mm,
     a = 1.000 mm): the first-order scheme is within 1 % at dx = a/47.6
@@ -55,10 +57,19 @@ def carter(path, mu, xi):
     check(f"steady F_x/(mu F_n) at mu = {mu}, xi = {xi} vs Carter", ratio, want, 0.01 * want)
 
 
+def final_matches(tpath, spath, tol):
+    t = open_complete(tpath)
+    s = open_complete(spath)
+    check(f"{tpath}: final F_x relative to the steady F_x of {spath}",
+          float(t["Fx"][-1]) / float(s["Fx"][-1]), 1.0, tol)
+
+
 if __name__ == "__main__":
     cmd = sys.argv[1]
     if cmd == "transient_vs_steady":
         transient_vs_steady(sys.argv[2], sys.argv[3])
+    elif cmd == "final_matches":
+        final_matches(sys.argv[2], sys.argv[3], float(sys.argv[4]))
     elif cmd == "carter":
         carter(sys.argv[2], float(sys.argv[3]), float(sys.argv[4]))
     else:

@@ -28,3 +28,13 @@ set_tests_properties(cli_set_mu_carter PROPERTIES FIXTURES_REQUIRED cli_mu06)
 add_test(NAME cli_carter_default_mu COMMAND ${SYSTEM_PYTHON3} ${RS_TESTS}/check_cli_runs.py carter
                                             ${RS_OUT}/carter2d.nc 0.3 -2.4e-4)
 set_tests_properties(cli_carter_default_mu PROPERTIES FIXTURES_REQUIRED cli_carter)
+
+# Start-up from standstill (velocity ramp): after the ramp the wheel rolls 120 mm at
+# constant inputs, about 60 contact lengths, far beyond the ~18 needed to come within
+# 1e-4 of steady rolling (test_transient_to_steady): the end is the steady Carter state.
+add_test(NAME cli_run_startup COMMAND ${RS_BIN} run ${RS_CASES}/startup.yaml -o ${RS_OUT}/startup.nc --quiet)
+set_tests_properties(cli_run_startup PROPERTIES FIXTURES_SETUP cli_startup)
+add_test(NAME cli_startup_reaches_steady COMMAND ${SYSTEM_PYTHON3} ${RS_TESTS}/check_cli_runs.py final_matches
+                                                 ${RS_OUT}/startup.nc ${RS_OUT}/carter2d.nc 1e-4)
+set_tests_properties(cli_startup_reaches_steady PROPERTIES FIXTURES_REQUIRED "cli_startup;cli_carter")
+add_test(NAME cli_run_sine_creepage COMMAND ${RS_BIN} run ${RS_CASES}/sine_creepage.yaml -o ${RS_OUT}/sine.nc --quiet)
