@@ -23,6 +23,10 @@ static double sign_of(double v) { return v > 0.0 ? 1.0 : (v < 0.0 ? -1.0 : 0.0);
 int rs_model_create(rs_model *m, const rs_case *c, rs_msg *msg)
 {
   memset(m, 0, sizeof *m);
+  if (!rs_history_is_constant(&c->normal_load))
+    return rs_msg_set(msg, RS_ERR_INPUT,
+                      "contact.normal_load: a varying normal load is not supported yet; give a "
+                      "constant load in N/mm");
   const int n = c->cells;
   m->n = n;
   m->neq = 3 * n;
