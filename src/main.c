@@ -1,5 +1,5 @@
 /* rollsim command line (interfaces.md "Command line"):
- *   rollsim run CASE.yaml [-o OUT.nc] [--set KEY=VALUE]... [--quiet]
+ *   rollsim run CASE.yaml [-o OUT.nc] [--restart OLD.nc] [--set KEY=VALUE]... [--quiet]
  *   rollsim check CASE.yaml [--set KEY=VALUE]...
  *   rollsim sweep CASE.yaml [-o OUT.nc] [--set ...]
  *   rollsim --help | --version
@@ -33,7 +33,7 @@ static void on_signal(int sig)
 static void usage(FILE *f)
 {
   fprintf(f,
-          "usage: rollsim run CASE.yaml [-o OUT.nc] [--set KEY=VALUE]... [--quiet]\n"
+          "usage: rollsim run CASE.yaml [-o OUT.nc] [--restart OLD.nc] [--set KEY=VALUE]... [--quiet]\n"
           "       rollsim check CASE.yaml [--set KEY=VALUE]...\n"
           "       rollsim sweep CASE.yaml [-o OUT.nc] [--set KEY=VALUE]...\n"
           "       rollsim --help | --version\n"
@@ -45,6 +45,9 @@ static void usage(FILE *f)
           "  check   validate the case and print every resolved and derived parameter; run nothing\n"
           "  sweep   run the case's sweep: block into one netCDF file\n"
           "  -o FILE        output file (overrides output.file)\n"
+          "  --restart OLD.nc  (run, transient) continue from the last record of an earlier run's\n"
+          "                 file: its state (fields px, upl, ustar) and time, up to the case's end\n"
+          "                 time, into a new file; same grid and output times as the old run\n"
           "  --set KEY=VAL  override a case key by its dotted path, e.g. --set grid.cells=200\n"
           "  --quiet        no progress bar\n"
           "\n"
@@ -83,7 +86,7 @@ int main(int argc, char **argv)
     usage(stderr);
     return 2;
   }
-  const char *case_path = NULL, *out_path = NULL;
+  const char *case_path = NULL, *out_path = NULL, *restart_path = NULL;
   int quiet = 0, nsets = 0;
   const char **sets = calloc((size_t)argc, sizeof *sets);
   if (!sets) return 1;
@@ -96,6 +99,26 @@ int main(int argc, char **argv)
         return 2;
       }
       out_path = argv[i];
+    } else if (!strcmp(a, "--restart") || !strncmp(a, "--restart=", 10)) {
+      if (strcmp(cmd, "run")) {
+        fprintf(stderr, "rollsim %s: --restart applies to 'rollsim run' only\n", cmd);
+        free(sets);
+        return 2;
+      }
+      if (a[9] == '=') {
+        restart_path = a + 10;
+      } else if (++i >= argc) {
+        fprintf(stderr, "rollsim: --restart needs a file name\n");
+        free(sets);
+        return 2;
+      } else {
+        restart_path = argv[i];
+      }
+      if (!*restart_path) {
+        fprintf(stderr, "rollsim: --restart needs a file name\n");
+        free(sets);
+        return 2;
+      }
     } else if (!strcmp(a, "--set")) {
       if (++i >= argc) {
         fprintf(stderr, "rollsim: --set needs KEY=VALUE\n");
@@ -169,6 +192,7 @@ int main(int argc, char **argv)
 
   rs_run_opts o = {.output_path = out_path,
                    .history = history,
+                   .restart_path = restart_path,
                    .progress = !quiet && isatty(STDERR_FILENO),
                    .interrupt_flag = &interrupted};
   if (!strcmp(cmd, "sweep")) {

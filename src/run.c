@@ -7,9 +7,11 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <time.h>
 
 #include "rollsim/output.h"
+#include "rollsim/restart.h"
 
 static double wall_clock(void)
 {
@@ -78,10 +80,10 @@ static void free_state(run_state *s)
   if (s->m.x) rs_model_free(&s->m);
 }
 
-/* Solver loop for transient mode: one record per output interval, the last time
- * always stored. */
-static int run_transient(run_state *s, const rs_run_opts *o, rs_run_result *res, double started,
-                         rs_msg *msg)
+/* Solver loop for transient mode from t0 (0, or the time of a restart file's last
+ * record): one record per output interval k*dt after t0, the last time always stored. */
+static int run_transient(run_state *s, const rs_run_opts *o, rs_run_result *res, double t0,
+                         double started, rs_msg *msg)
 {
   const rs_case *c = s->c;
   rs_transient_opts topts = {.rtol = c->rtol,
@@ -89,17 +91,19 @@ static int run_transient(run_state *s, const rs_run_opts *o, rs_run_result *res,
                              .max_order = c->max_order,
                              .max_steps = c->max_steps,
                              .max_newton = 10,
-                             .t_stop = fmin(rs_model_next_breakpoint(&s->m, 0.0), c->end_time),
+                             .t_stop = fmin(rs_model_next_breakpoint(&s->m, t0), c->end_time),
                              .interrupt = o->interrupt_flag};
   rs_transient *tr = NULL;
-  int status = rs_transient_create(&tr, &s->m, 0.0, s->y, s->yp, &topts, msg);
+  int status = rs_transient_create(&tr, &s->m, t0, s->y, s->yp, &topts, msg);
   if (status != RS_OK) return status;
-  /* Output times k*dt (the end time always stored); IDA stops at every breakpoint
-   * of an input history and restarts from consistent rates there. */
+  /* Output times k*dt (the end time always stored), the same grid whether the run
+   * started at 0 or was restarted at t0, so that the records of a restarted run fall on
+   * those of the uninterrupted one; IDA stops at every breakpoint of an input history
+   * and restarts from consistent rates there. */
   const double t_end = c->end_time;
   const long nrec = (long)ceil(t_end / c->output_interval - 1e-9);
-  double t = 0.0, bp = topts.t_stop;
-  long k = 1;
+  double t = t0, bp = topts.t_stop;
+  long k = (long)floor(t0 / c->output_interval + 1e-9) + 1; /* first output time after t0 */
   while (status == RS_OK && k <= nrec) {
     const double t_out = k == nrec ? t_end : k * c->output_interval;
     const double target = fmin(t_out, bp);
@@ -134,6 +138,36 @@ static int run_transient(run_state *s, const rs_run_opts *o, rs_run_result *res,
   return status;
 }
 
+/* Restart: check the request and read the state at the old run's last record into s->y
+ * (before the output file is created: an invalid restart writes nothing, exit 2). */
+static int read_restart(run_state *s, const rs_run_opts *o, const char *out_path, double *t0,
+                        rs_msg *msg)
+{
+  const rs_case *c = s->c;
+  if (c->mode != RS_MODE_TRANSIENT)
+    return rs_msg_set(msg, RS_ERR_INPUT,
+                      "--restart %s: restart applies to transient runs (simulation.mode: "
+                      "transient), this case is steady",
+                      o->restart_path);
+  /* Writing the continuation over the file it starts from would destroy the old
+   * records (the output file is created by renaming over its path). */
+  struct stat st_old, st_new;
+  if (!o->no_output && stat(o->restart_path, &st_old) == 0 && stat(out_path, &st_new) == 0 &&
+      st_old.st_dev == st_new.st_dev && st_old.st_ino == st_new.st_ino)
+    return rs_msg_set(msg, RS_ERR_INPUT,
+                      "--restart %s: it is also the output file; choose another one with -o",
+                      o->restart_path);
+  int status = rs_restart_read(o->restart_path, (size_t)s->m.n, s->m.x, t0, s->y, msg);
+  if (status != RS_OK) return status;
+  if (*t0 >= c->end_time - 1e-9 * c->output_interval)
+    return rs_msg_set(msg, RS_ERR_INPUT,
+                      "--restart %s: nothing left to run: its last record is at t = %.9g s, "
+                      "the case ends at t = %.9g s (raise simulation.rolled_distance or "
+                      "simulation.end_time)",
+                      o->restart_path, *t0, c->end_time);
+  return RS_OK;
+}
+
 int rs_run(const rs_case *c, const rs_run_opts *o, rs_run_result *res, rs_msg *msg)
 {
   const double started = wall_clock();
@@ -154,39 +188,58 @@ int rs_run(const rs_case *c, const rs_run_opts *o, rs_run_result *res, rs_msg *m
   }
   const char *path = o->output_path ? o->output_path : c->output_file;
   snprintf(res->file, sizeof res->file, "%s", path);
+  double t0 = 0.0;
+  char *history = NULL; /* the history attribute, naming the restart file */
+  if (o->restart_path) {
+    status = read_restart(&s, o, path, &t0, msg);
+    const char *base = o->history ? o->history : "";
+    const size_t len = strlen(base) + strlen(o->restart_path) + 96;
+    if (status == RS_OK && !(history = malloc(len)))
+      status = rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory");
+    if (status != RS_OK) {
+      free_state(&s);
+      return status;
+    }
+    snprintf(history, len, "%s%s(restart from %s at t = %.9g s)", base, *base ? " " : "",
+             o->restart_path, t0);
+  }
   /* The yield limit is infinite without plasticity: not written then. */
   const unsigned fields = c->has_plasticity ? c->fields : (c->fields & ~(unsigned)RS_FIELD_TAUC);
   rs_output_spec spec = {.path = path,
                          .title = c->title ? c->title : "",
                          .case_text = c->yaml_text ? c->yaml_text : "",
-                         .history = o->history ? o->history : "",
+                         .history = history ? history : o->history ? o->history : "",
                          .dimension = c->dimension,
                          .nx = (size_t)n,
                          .x = s.m.x,
                          .fields = fields};
   status = o->no_output ? RS_OK : rs_output_create(&s.out, &spec, msg);
+  free(history);
   if (status != RS_OK) {
     free_state(&s);
     return status;
   }
 
-  /* Initial state: rest (no traction, fresh material) or steady rolling. */
-  if (c->mode == RS_MODE_STEADY || c->initial_state == RS_START_STEADY) {
+  /* Initial state: rest (no traction, fresh material), steady rolling, or the restart
+   * file's last record (already in s.y). */
+  if (!o->restart_path && (c->mode == RS_MODE_STEADY || c->initial_state == RS_START_STEADY)) {
     rs_steady *st = NULL;
     status = rs_steady_create(&st, &s.m, msg);
     if (status == RS_OK) status = rs_steady_solve(st, 0.0, s.y, &res->stats, msg);
     rs_steady_free(st);
   }
-  /* Rates at t = 0: zero in steady rolling at constant inputs, else consistent
-   * (they set the regimes of the first record and start IDA). */
+  /* Rates at t0: zero in steady rolling at constant inputs, else consistent
+   * (they set the regimes of the first record and start IDA). A restart recomputes them
+   * from the stored state: the file holds no rates. */
   if (status == RS_OK && c->mode == RS_MODE_TRANSIENT)
-    status = rs_model_consistent_rates(&s.m, &s.w, 0.0, s.y, s.yp, msg);
+    status = rs_model_consistent_rates(&s.m, &s.w, t0, s.y, s.yp, msg);
   if (status == RS_OK) {
-    status = write_record(&s, 0.0, &res->final, msg);
+    status = write_record(&s, t0, &res->final, msg);
     res->records = status == RS_OK;
+    res->time = t0;
   }
   if (status == RS_OK && c->mode == RS_MODE_TRANSIENT)
-    status = run_transient(&s, o, res, started, msg);
+    status = run_transient(&s, o, res, t0, started, msg);
 
   char why[RS_MSG_LEN + 16];
   if (status == RS_OK)

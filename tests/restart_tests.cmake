@@ -1,0 +1,89 @@
+# Restart (issue 4 item 3): `rollsim run CASE --restart OLD.nc` continues from the last
+# record of OLD.nc. An interrupted-then-restarted run must equal the uninterrupted one.
+#
+# Tolerance: the restart re-creates IDA from the stored state with freshly computed
+# consistent rates, so IDA's step-size and order history (and its interpolation at the
+# output times) differ from the uninterrupted run: the two agree to the solver's accuracy,
+# not bitwise. That accuracy is a multiple of rtol: at the default rtol = atol = 1e-6 each
+# run's own global error, measured against an rtol = 1e-10 reference, is ~3e-6 in F_x and
+# ~2e-5 in px (max-norm relative to max|px|), and restart and uninterrupted runs differ by
+# ~1e-6 / ~5e-6. So the runs below use rtol = atol = 1e-8, where they differ by ~1e-8 in
+# F_x and px (~3e-7 in upl/ustar), and are checked to 1e-6: a restart that lost or
+# misplaced any part of the state (traction, plastic displacement, accumulated
+# deformation, time, output grid) would differ by orders of magnitude more.
+set(RS_RST ${CMAKE_CURRENT_BINARY_DIR}/restart_out)
+set(RS_RST_CHECK ${SYSTEM_PYTHON3} ${RS_TESTS}/check_restart.py)
+set(RS_RST_TOL --set solver.rtol=1e-8 --set solver.atol=1e-8)
+
+# Elastic: default.yaml rolled 6 mm (A), and 3 mm (B, ends at t = 1e-4 s, on the output
+# grid) restarted to 6 mm (C).
+set(RS_RST_EL ${RS_CASES}/default.yaml --set simulation.rolled_distance=6
+              --set "output.fields=[px,pn,slip,upl,ustar,regime]" ${RS_RST_TOL} --quiet)
+add_test(NAME restart_elastic_full COMMAND ${RS_BIN} run ${RS_RST_EL} -o ${RS_RST}/el_full.nc)
+add_test(NAME restart_elastic_first COMMAND ${RS_BIN} run ${RS_RST_EL}
+              --set simulation.rolled_distance=3 -o ${RS_RST}/el_first.nc)
+add_test(NAME restart_elastic_rest COMMAND ${RS_BIN} run ${RS_RST_EL}
+              --restart ${RS_RST}/el_first.nc -o ${RS_RST}/el_rest.nc)
+set_tests_properties(restart_elastic_full PROPERTIES FIXTURES_SETUP rst_el)
+set_tests_properties(restart_elastic_first PROPERTIES FIXTURES_SETUP rst_el_first)
+set_tests_properties(restart_elastic_rest PROPERTIES FIXTURES_REQUIRED rst_el_first FIXTURES_SETUP rst_el)
+add_test(NAME restart_elastic_agrees COMMAND ${RS_RST_CHECK} agree ${RS_RST}/el_full.nc
+              ${RS_RST}/el_first.nc ${RS_RST}/el_rest.nc 1e-6 px)
+set_tests_properties(restart_elastic_agrees PROPERTIES FIXTURES_REQUIRED "rst_el;rst_el_first")
+
+# Plastic (u_pl and u* must carry over): carter_plast.yaml transient, k_rel = 0.6,
+# rolled 6 mm against 3 + 3 mm.
+set(RS_RST_PL ${RS_CASES}/carter_plast.yaml --set simulation.mode=transient
+              --set plasticity.k_rel=0.6 --set simulation.rolled_distance=6
+              --set simulation.output_interval=1e-5 ${RS_RST_TOL} --quiet)
+add_test(NAME restart_plastic_full COMMAND ${RS_BIN} run ${RS_RST_PL} -o ${RS_RST}/pl_full.nc)
+add_test(NAME restart_plastic_first COMMAND ${RS_BIN} run ${RS_RST_PL}
+              --set simulation.rolled_distance=3 -o ${RS_RST}/pl_first.nc)
+add_test(NAME restart_plastic_rest COMMAND ${RS_BIN} run ${RS_RST_PL}
+              --restart ${RS_RST}/pl_first.nc -o ${RS_RST}/pl_rest.nc)
+set_tests_properties(restart_plastic_full PROPERTIES FIXTURES_SETUP rst_pl)
+set_tests_properties(restart_plastic_first PROPERTIES FIXTURES_SETUP rst_pl_first)
+set_tests_properties(restart_plastic_rest PROPERTIES FIXTURES_REQUIRED rst_pl_first FIXTURES_SETUP rst_pl)
+add_test(NAME restart_plastic_agrees COMMAND ${RS_RST_CHECK} agree ${RS_RST}/pl_full.nc
+              ${RS_RST}/pl_first.nc ${RS_RST}/pl_rest.nc 1e-6 px upl ustar)
+set_tests_properties(restart_plastic_agrees PROPERTIES FIXTURES_REQUIRED "rst_pl;rst_pl_first")
+
+# Invalid restarts: exit 2, a message naming the problem, no output file.
+# A file without upl (default.yaml writes px, pn, slip, regime).
+add_test(NAME restart_nofields_first COMMAND ${RS_BIN} run ${RS_CASES}/default.yaml
+              --set simulation.rolled_distance=3 -o ${RS_RST}/nofields.nc --quiet)
+set_tests_properties(restart_nofields_first PROPERTIES FIXTURES_SETUP rst_nofields)
+add_test(NAME restart_error_missing_field COMMAND ${RS_RST_CHECK} error "has no variable 'upl'"
+              ${RS_BIN} run ${RS_CASES}/default.yaml --set simulation.rolled_distance=6
+              --restart ${RS_RST}/nofields.nc -o ${RS_RST}/err_field.nc --quiet)
+set_tests_properties(restart_error_missing_field PROPERTIES FIXTURES_REQUIRED rst_nofields)
+# Grid mismatch: 50 cells against the old run's 100.
+add_test(NAME restart_error_grid COMMAND ${RS_RST_CHECK} error "its grid has 100 cells, the case has 50"
+              ${RS_BIN} run ${RS_RST_EL} --set grid.cells=50
+              --restart ${RS_RST}/el_first.nc -o ${RS_RST}/err_grid.nc)
+# Same number of cells, different x (grid.extent).
+add_test(NAME restart_error_grid_x COMMAND ${RS_RST_CHECK} error "its grid differs"
+              ${RS_BIN} run ${RS_RST_EL} --set grid.extent=1.1
+              --restart ${RS_RST}/el_first.nc -o ${RS_RST}/err_gridx.nc)
+# Nothing left to run: the old run already reached the case's end time.
+add_test(NAME restart_error_nothing_left COMMAND ${RS_RST_CHECK} error "nothing left to run"
+              ${RS_BIN} run ${RS_RST_EL} --set simulation.rolled_distance=3
+              --restart ${RS_RST}/el_first.nc -o ${RS_RST}/err_done.nc)
+# Steady mode.
+add_test(NAME restart_error_steady COMMAND ${RS_RST_CHECK} error "restart applies to transient runs"
+              ${RS_BIN} run ${RS_RST_EL} --set simulation.mode=steady
+              --restart ${RS_RST}/el_first.nc -o ${RS_RST}/err_steady.nc)
+# Missing file.
+add_test(NAME restart_error_no_file COMMAND ${RS_RST_CHECK} error "restart file ${RS_RST}/no_such.nc: cannot open"
+              ${RS_BIN} run ${RS_RST_EL} --restart ${RS_RST}/no_such.nc -o ${RS_RST}/err_nofile.nc)
+# The restart file as the output file would destroy the old records.
+add_test(NAME restart_error_same_file COMMAND ${RS_RST_CHECK} error "it is also the output file"
+              ${RS_BIN} run ${RS_RST_EL} --restart ${RS_RST}/el_first.nc -o ${RS_RST}/el_first.nc)
+# Only for run.
+add_test(NAME restart_error_sweep COMMAND ${RS_RST_CHECK} error "--restart applies to 'rollsim run' only"
+              ${RS_BIN} sweep ${RS_CASES}/carter_plast.yaml --restart ${RS_RST}/el_first.nc)
+set_tests_properties(restart_error_grid restart_error_grid_x restart_error_nothing_left
+                     restart_error_steady restart_error_same_file restart_error_sweep
+                     PROPERTIES FIXTURES_REQUIRED rst_el_first)
+add_test(NAME restart_help COMMAND ${RS_BIN} --help)
+set_tests_properties(restart_help PROPERTIES PASS_REGULAR_EXPRESSION "--restart OLD.nc")
