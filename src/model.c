@@ -14,9 +14,8 @@
 #include <string.h>
 
 #include "rollsim/normal.h"
+#include "util.h"
 
-extern void dgesv_(const int *n, const int *nrhs, double *a, const int *lda, int *ipiv,
-                   double *b, const int *ldb, int *info);
 
 static double sign_of(double v) { return v > 0.0 ? 1.0 : (v < 0.0 ? -1.0 : 0.0); }
 

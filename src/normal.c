@@ -8,9 +8,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* LAPACK: general dense LU solve. */
-extern void dgesv_(const int *n, const int *nrhs, double *a, const int *lda, int *ipiv,
-                   double *b, const int *ldb, int *info);
+#include "util.h"
+
 
 void rs_hertz2d(double load, double radius, double shear_modulus, double poisson_ratio,
                 double *a, double *p0)

@@ -12,13 +12,7 @@
 
 #include "rollsim/output.h"
 #include "rollsim/restart.h"
-
-static double wall_clock(void)
-{
-  struct timespec ts;
-  clock_gettime(CLOCK_MONOTONIC, &ts);
-  return ts.tv_sec + 1e-9 * ts.tv_nsec;
-}
+#include "util.h"
 
 typedef struct run_state {
   const rs_case *c;
@@ -59,7 +53,7 @@ static void progress(double t, double t_end, long steps, double started)
 {
   const int width = 30;
   const double frac = t_end > 0 ? fmin(1.0, t / t_end) : 1.0;
-  const double elapsed = wall_clock() - started;
+  const double elapsed = rs_wall_clock() - started;
   const double eta = frac > 0 ? elapsed * (1.0 - frac) / frac : 0.0;
   char bar[64];
   int k = (int)(frac * width);
@@ -170,7 +164,7 @@ static int read_restart(run_state *s, const rs_run_opts *o, const char *out_path
 
 int rs_run(const rs_case *c, const rs_run_opts *o, rs_run_result *res, rs_msg *msg)
 {
-  const double started = wall_clock();
+  const double started = rs_wall_clock();
   memset(res, 0, sizeof *res);
   run_state s = {.c = c};
   int status = rs_model_create(&s.m, c, msg);
@@ -252,7 +246,7 @@ int rs_run(const rs_case *c, const rs_run_opts *o, rs_run_result *res, rs_msg *m
   if (s.out && status != RS_ERR_OUTPUT) rs_output_set_status(s.out, why, &tmp);
   int close_status = rs_output_close(s.out, status == RS_OK ? msg : &tmp);
   if (status == RS_OK) status = close_status;
-  res->wall_seconds = wall_clock() - started;
+  res->wall_seconds = rs_wall_clock() - started;
   free_state(&s);
   return status;
 }

@@ -13,13 +13,7 @@
 #include "rollsim/output.h"
 #include "rollsim/solver.h"
 #include "rollsim/sweep.h"
-
-static double now(void)
-{
-  struct timespec ts;
-  clock_gettime(CLOCK_MONOTONIC, &ts);
-  return ts.tv_sec + 1e-9 * ts.tv_nsec;
-}
+#include "util.h"
 
 static void fill_point(rs_sweep_point *pt, const rs_diag *d)
 {
@@ -69,7 +63,7 @@ static int steady_point(const rs_case *c, double **y, int *ny, int warm, rs_diag
 int rs_sweep_run(const rs_sweep *s, const char *case_path, const char *const *sets, int nsets,
                  const rs_run_opts *o, rs_sweep_result *res, rs_msg *msg)
 {
-  const double started = now();
+  const double started = rs_wall_clock();
   memset(res, 0, sizeof *res);
   rs_case base;
   int status = rs_case_load(&base, case_path, sets, nsets, msg);
@@ -156,7 +150,7 @@ int rs_sweep_run(const rs_sweep *s, const char *case_path, const char *const *se
     status = rs_sweep_output_write(out, p, &pt, msg);
     if (o->progress) {
       fprintf(stderr, "\rsweep: %zu/%zu points, %zu failed, %.1f s ", p + 1, s->npoints,
-              res->points_failed, now() - started);
+              res->points_failed, rs_wall_clock() - started);
       fflush(stderr);
     }
     if (status == RS_OK && o->interrupt_flag && *o->interrupt_flag)
@@ -174,7 +168,7 @@ int rs_sweep_run(const rs_sweep *s, const char *case_path, const char *const *se
   int cs = rs_sweep_output_close(out, why, status == RS_OK ? msg : &tmp);
   if (status == RS_OK) status = cs;
 done:
-  res->wall_seconds = now() - started;
+  res->wall_seconds = rs_wall_clock() - started;
   free(keys);
   free(sizes);
   free(values);

@@ -1,0 +1,12 @@
+/* Private helpers shared by several modules. */
+#ifndef ROLLSIM_UTIL_H
+#define ROLLSIM_UTIL_H
+
+/* LAPACK: general dense LU solve (column-major). */
+extern void dgesv_(const int *n, const int *nrhs, double *a, const int *lda, int *ipiv,
+                   double *b, const int *ldb, int *info);
+
+/* Monotonic wall-clock time in seconds (progress, ETA and reported wall times). */
+double rs_wall_clock(void);
+
+#endif
