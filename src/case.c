@@ -173,9 +173,12 @@ static int resolve(const rs_case_doc *d, rs_case_input *in, const yaml_node_t **
   for (int i = 0; i < 4; i++)
     if ((status = check_history(&r, names[i], hs[i], c->end_time)) != RS_OK)
       return status;
-  if (c->normal_load.kind == RS_HISTORY_CONSTANT && !(c->normal_load.value > 0))
+  if (!(rs_history_min(&c->normal_load, 0.0, c->end_time) > 0))
     return rs_case_error(d, given(&r, "contact.normal_load"), "contact.normal_load",
-                         "must be > 0 N/mm, got %g", c->normal_load.value);
+                         c->normal_load.kind == RS_HISTORY_CONSTANT
+                             ? "must be > 0 N/mm, got %g"
+                             : "must stay > 0 N/mm over the run, reaches %g N/mm",
+                         rs_history_min(&c->normal_load, 0.0, c->end_time));
   if (c->mode == RS_MODE_STEADY && !(rs_history_min(&c->velocity, 0.0, c->end_time) > 0))
     return rs_case_error(d, given(&r, "rolling.velocity"), "rolling.velocity",
                          "velocity 0 mm/s (pure shift) needs simulation.mode: transient; steady "

@@ -19,17 +19,34 @@
 
 static double sign_of(double v) { return v > 0.0 ? 1.0 : (v < 0.0 ? -1.0 : 0.0); }
 
+/* Pressure for a load: the discrete normal solution or the Hertz pressure. */
+static int solve_normal(const rs_model *m, double load, double *pn, double *approach, rs_msg *msg)
+{
+  if (m->normal_solution == RS_NORMAL_HERTZ) {
+    double a, p0;
+    rs_hertz2d(load, m->radius, m->shear_modulus, m->poisson_ratio, &a, &p0);
+    rs_normal2d_hertz(m->x, m->n, a, p0, pn);
+    if (approach) *approach = 0.0;
+    return RS_OK;
+  }
+  return rs_normal2d_solve(&m->el, m->x, m->radius, load, pn, approach, NULL, msg);
+}
+
 int rs_model_create(rs_model *m, const rs_case *c, rs_msg *msg)
 {
   memset(m, 0, sizeof *m);
-  if (!rs_history_is_constant(&c->normal_load))
-    return rs_msg_set(msg, RS_ERR_INPUT,
-                      "contact.normal_load: a varying normal load is not supported yet; give a "
-                      "constant load in N/mm");
   const int n = c->cells;
   m->n = n;
   m->neq = 3 * n;
-  m->normal_load = rs_history_eval(&c->normal_load, 0.0);
+  /* The grid is sized on the largest load of the run: with a normal-load history the
+   * contact grows and shrinks inside it (cells enter and leave the contact). */
+  m->load_varies = !rs_history_is_constant(&c->normal_load);
+  m->normal_load = m->load_varies ? rs_history_max_abs(&c->normal_load, 0.0, c->end_time)
+                                  : rs_history_eval(&c->normal_load, 0.0);
+  m->radius = c->radius;
+  m->shear_modulus = c->shear_modulus;
+  m->poisson_ratio = c->poisson_ratio;
+  m->normal_solution = c->normal_solution;
   rs_hertz2d(m->normal_load, c->radius, c->shear_modulus, c->poisson_ratio, &m->hertz_a,
              &m->hertz_p0);
   const double half = c->extent * m->hertz_a;
@@ -37,26 +54,18 @@ int rs_model_create(rs_model *m, const rs_case *c, rs_msg *msg)
   m->x = malloc((size_t)n * sizeof *m->x);
   m->pn = malloc((size_t)n * sizeof *m->pn);
   m->bound = malloc((size_t)n * sizeof *m->bound);
-  if (!m->x || !m->pn || !m->bound) {
+  if (!m->x || !m->pn || !m->bound || rs_history_copy(&m->load, &c->normal_load) != RS_OK) {
     rs_model_free(m);
     return rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory for a grid of %d cells", n);
   }
   for (int i = 0; i < n; i++) m->x[i] = -half + (i + 0.5) * m->dx;
   int status = rs_elastic2d_create(&m->el, n, m->dx, c->shear_modulus, c->poisson_ratio,
                                    c->reference_length, msg);
+  if (status == RS_OK)
+    status = solve_normal(m, rs_history_eval(&c->normal_load, 0.0), m->pn, &m->approach, msg);
   if (status != RS_OK) {
     rs_model_free(m);
     return status;
-  }
-  if (c->normal_solution == RS_NORMAL_HERTZ) {
-    rs_normal2d_hertz(m->x, n, m->hertz_a, m->hertz_p0, m->pn);
-  } else {
-    status = rs_normal2d_solve(&m->el, m->x, c->radius, m->normal_load, m->pn, &m->approach,
-                               NULL, msg);
-    if (status != RS_OK) {
-      rs_model_free(m);
-      return status;
-    }
   }
   m->mu = c->mu;
   for (int i = 0; i < n; i++) m->bound[i] = m->mu * m->pn[i];
@@ -85,6 +94,7 @@ void rs_model_free(rs_model *m)
   rs_history_free(&m->velocity);
   rs_history_free(&m->creepage);
   rs_history_free(&m->shift);
+  rs_history_free(&m->load);
   memset(m, 0, sizeof *m);
 }
 
@@ -96,7 +106,11 @@ int rs_work_create(rs_work *w, int n)
   w->dupl = calloc((size_t)n, sizeof *w->dupl);
   w->dustar = calloc((size_t)n, sizeof *w->dustar);
   w->branch = calloc((size_t)n, sizeof *w->branch);
-  if (!w->uel || !w->ueldot || !w->vslip || !w->dupl || !w->dustar || !w->branch) {
+  w->pn_buf = calloc((size_t)n, sizeof *w->pn_buf);
+  w->bound_buf = calloc((size_t)n, sizeof *w->bound_buf);
+  w->load_cached = NAN;
+  if (!w->uel || !w->ueldot || !w->vslip || !w->dupl || !w->dustar || !w->branch || !w->pn_buf ||
+      !w->bound_buf) {
     rs_work_free(w);
     return RS_ERR_INTERNAL;
   }
@@ -111,7 +125,28 @@ void rs_work_free(rs_work *w)
   free(w->dupl);
   free(w->dustar);
   free(w->branch);
+  free(w->pn_buf);
+  free(w->bound_buf);
   memset(w, 0, sizeof *w);
+}
+
+int rs_model_normal_at(const rs_model *m, rs_work *w, double t, rs_msg *msg)
+{
+  if (!m->load_varies) {
+    w->pn = m->pn;
+    w->bound = m->bound;
+    return RS_OK;
+  }
+  w->pn = w->pn_buf;
+  w->bound = w->bound_buf;
+  const double load = rs_history_eval(&m->load, t);
+  if (load == w->load_cached) return RS_OK;
+  w->load_cached = NAN;
+  const int status = solve_normal(m, load, w->pn_buf, NULL, msg);
+  if (status != RS_OK) return status;
+  for (int i = 0; i < m->n; i++) w->bound_buf[i] = m->mu * w->pn_buf[i];
+  w->load_cached = load;
+  return RS_OK;
 }
 
 int64_t rs_model_jac_capacity(const rs_model *m)
@@ -123,7 +158,8 @@ double rs_model_next_breakpoint(const rs_model *m, double t)
 {
   return fmin(fmin(rs_history_next_breakpoint(&m->velocity, t),
                    rs_history_next_breakpoint(&m->creepage, t)),
-              rs_history_next_breakpoint(&m->shift, t));
+              fmin(rs_history_next_breakpoint(&m->shift, t),
+                   rs_history_next_breakpoint(&m->load, t)));
 }
 
 double rs_model_yield_limit(const rs_model *m, double ustar)
@@ -198,14 +234,17 @@ int rs_model_eval(const rs_model *m, rs_work *w, double t, const double *y, cons
   const double *p = y, *us = y + 2 * n;
   const double r = rs_model_scaling(m, t, cj);
   const double a = rs_history_eval(&m->velocity, t) / m->dx, c3 = m->layer_flex;
+  rs_msg msg;
+  const int status = rs_model_normal_at(m, w, t, &msg);
+  if (status != RS_OK) return status;
   kinematics(m, w, t, y, yp);
 
   for (int i = 0; i < n; i++) {
     unsigned char br = 0;
-    const double g = m->bound[i], tauc = rs_model_yield_limit(m, us[i]);
+    const double g = w->bound[i], tauc = rs_model_yield_limit(m, us[i]);
     const double mpl = w->dupl[i];
     double Fp, Fupl;
-    if (!(m->pn[i] > 0.0)) {
+    if (!(w->pn[i] > 0.0)) {
       br = RS_BRANCH_EXTERIOR;
       Fp = p[i];
       Fupl = r * mpl;
@@ -301,21 +340,36 @@ int rs_model_consistent_rates(const rs_model *m, rs_work *w, double t, const dou
   const double *p = y, *us = y + 2 * n;
   const double a = rs_history_eval(&m->velocity, t) / m->dx, c3 = m->layer_flex;
   memset(yp, 0, (size_t)m->neq * sizeof *yp);
-  kinematics(m, w, t, y, yp); /* with p' = 0: v_s holds everything but A p' */
+  int status = rs_model_normal_at(m, w, t, msg);
+  if (status != RS_OK) return status;
 
   int *adh = malloc((size_t)n * sizeof *adh);
   int *ipiv = malloc((size_t)n * sizeof *ipiv);
   double *mat = malloc((size_t)n * (size_t)n * sizeof *mat);
   double *rhs = malloc((size_t)n * sizeof *rhs);
-  int status = RS_OK;
   if (!adh || !ipiv || !mat || !rhs) {
     status = rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory computing the initial rates");
     goto done;
   }
+  /* Cells at the traction bound follow it: p' = sign(p) g'(t) (a load history moves g;
+   * g' by a difference quotient of the normal solution in the load). */
+  const double dload = m->load_varies ? rs_history_rate(&m->load, t) : 0.0;
+  if (dload != 0.0) {
+    const double load = rs_history_eval(&m->load, t), h = 1e-6 * load;
+    status = solve_normal(m, load + h, rhs, NULL, msg);
+    if (status != RS_OK) goto done;
+    status = rs_model_normal_at(m, w, t, msg); /* solve_normal above bypassed the cache */
+    if (status != RS_OK) goto done;
+    for (int i = 0; i < n; i++)
+      if (w->pn[i] > 0.0 && w->bound[i] <= rs_model_yield_limit(m, us[i]) &&
+          fabs(p[i]) >= w->bound[i] * (1.0 - 1e-12))
+        yp[i] = sign_of(p[i]) * m->mu * (rhs[i] - w->pn[i]) / h * dload;
+  }
+  kinematics(m, w, t, y, yp); /* with p' = 0 off the bound: v_s holds everything but A p'_H */
   int h = 0;
   for (int i = 0; i < n; i++) {
-    const double lim = fmin(m->bound[i], rs_model_yield_limit(m, us[i]));
-    if (m->pn[i] > 0.0 && fabs(p[i]) < lim * (1.0 - 1e-12)) adh[h++] = i;
+    const double lim = fmin(w->bound[i], rs_model_yield_limit(m, us[i]));
+    if (w->pn[i] > 0.0 && fabs(p[i]) < lim * (1.0 - 1e-12)) adh[h++] = i;
   }
   if (h > 0) {
     /* Adhesion: v_s = 0 with Du_pl/Dt = 0, i.e. (A + c3 I) p'_H = -v_s(p' = 0). */
@@ -338,7 +392,7 @@ int rs_model_consistent_rates(const rs_model *m, rs_work *w, double t, const dou
   for (int i = 0; i < n; i++) {
     const double tauc = rs_model_yield_limit(m, us[i]);
     double flow = 0.0;
-    if (m->pn[i] > 0.0 && tauc < m->bound[i] && fabs(p[i]) >= tauc * (1.0 - 1e-12))
+    if (w->pn[i] > 0.0 && tauc < w->bound[i] && fabs(p[i]) >= tauc * (1.0 - 1e-12))
       flow = -(w->vslip[i] - w->dupl[i]);
     const double upl_next = i + 1 < n ? y[n + i + 1] : m->inflow_upl;
     const double us_next = i + 1 < n ? us[i + 1] : m->inflow_ustar;
@@ -353,6 +407,17 @@ done:
   return status;
 }
 
+int rs_model_project_state(const rs_model *m, rs_work *w, double t, double *y, rs_msg *msg)
+{
+  const int status = rs_model_normal_at(m, w, t, msg);
+  if (status != RS_OK) return status;
+  for (int i = 0; i < m->n; i++) {
+    const double g = w->pn[i] > 0.0 ? w->bound[i] : 0.0;
+    if (fabs(y[i]) > g) y[i] = sign_of(y[i]) * g;
+  }
+  return RS_OK;
+}
+
 int rs_model_diagnostics(const rs_model *m, rs_work *w, double t, const double *y,
                          const double *yp, rs_diag *d, double *slip, double *tauc,
                          signed char *regime)
@@ -362,7 +427,9 @@ int rs_model_diagnostics(const rs_model *m, rs_work *w, double t, const double *
   const double xi = rs_history_eval(&m->creepage, t);
   const double vrigid = V * xi + rs_history_eval(&m->shift, t);
   /* Branches with the steady scaling (any r > 0 gives the same regimes at a solution). */
-  rs_model_eval(m, w, t, y, yp, 0.0, NULL, NULL);
+  rs_msg msg;
+  const int status = rs_model_eval(m, w, t, y, yp, 0.0, NULL, NULL);
+  if (status != RS_OK) return rs_msg_set(&msg, status, "normal problem failed at t = %g s", t);
   memset(d, 0, sizeof *d);
   d->creepage = xi;
   d->velocity = V;
@@ -377,7 +444,7 @@ int rs_model_diagnostics(const rs_model *m, rs_work *w, double t, const double *
       reg = RS_PLASTIC;
     d->count[reg]++;
     d->Fx += p * m->dx;
-    d->Fn += m->pn[i] * m->dx;
+    d->Fn += w->pn[i] * m->dx;
     d->frictional_power -= p * w->vslip[i] * m->dx;
     d->plastic_power += p * w->dupl[i] * m->dx;
     d->elastic_energy += 0.5 * p * w->uel[i] * m->dx;

@@ -40,7 +40,7 @@ static int write_record(run_state *s, double t, rs_diag *d, rs_msg *msg)
                    .plastic_power = d->plastic_power,
                    .elastic_energy = d->elastic_energy,
                    .px = s->y,
-                   .pn = s->m.pn,
+                   .pn = s->w.pn,
                    .slip = s->slip,
                    .upl = s->y + n,
                    .ustar = s->y + 2 * n,
@@ -100,6 +100,9 @@ static int run_transient(run_state *s, const rs_run_opts *o, rs_run_result *res,
   long k = (long)floor(t0 / c->output_interval + 1e-9) + 1; /* first output time after t0 */
   while (status == RS_OK && k <= nrec) {
     const double t_out = k == nrec ? t_end : k * c->output_interval;
+    /* A breakpoint that falls on an output time up to rounding is that output time
+     * (else IDA would be asked to restart a rounding error away from its stop). */
+    if (fabs(bp - t_out) <= 1e-9 * c->output_interval) bp = t_out;
     const double target = fmin(t_out, bp);
     status = rs_transient_advance(tr, target, s->y, s->yp, msg);
     if (status != RS_OK) {
@@ -119,7 +122,8 @@ static int run_transient(run_state *s, const rs_run_opts *o, rs_run_result *res,
     }
     if (status == RS_OK && t == bp && t < t_end) {
       bp = fmin(rs_model_next_breakpoint(&s->m, t), t_end);
-      status = rs_model_consistent_rates(&s->m, &s->w, t, s->y, s->yp, msg);
+      status = rs_model_project_state(&s->m, &s->w, t, s->y, msg);
+      if (status == RS_OK) status = rs_model_consistent_rates(&s->m, &s->w, t, s->y, s->yp, msg);
       if (status == RS_OK) status = rs_transient_restart(tr, t, s->y, s->yp, bp, msg);
     }
     rs_transient_get_stats(tr, &res->stats);

@@ -26,10 +26,15 @@ typedef struct rs_model {
   double hertz_a, hertz_p0;
   rs_elastic2d el;
   double layer_flex;       /* h3/G3, mm/(N/mm^2), added to the self term only */
-  double normal_load;      /* N/mm */
-  double approach;         /* delta of the normal solution, mm */
-  double *pn;              /* pressure [n] */
-  double *bound;           /* traction bound g = mu p_n [n] */
+  double normal_load;      /* N/mm: the largest load of the run (it sizes the grid) */
+  double approach;         /* delta of the normal solution at t = 0, mm */
+  double *pn;              /* pressure at t = 0 [n] */
+  double *bound;           /* traction bound g = mu p_n at t = 0 [n] */
+  double radius;           /* combined radius, mm */
+  double shear_modulus, poisson_ratio;
+  rs_normal_solution normal_solution;
+  int load_varies;         /* 1: contact.normal_load is a history; p_n(t) from rs_model_normal_at */
+  rs_history load;         /* N/mm */
   double mu;
   int has_plasticity;
   double tau_c0, k_tau, tau_c_min;
@@ -61,10 +66,18 @@ typedef struct rs_work {
   double *dupl;    /* Du_pl/Dt [n] */
   double *dustar;  /* Dustar/Dt [n] */
   unsigned char *branch; /* RS_BRANCH_* flags per cell [n] */
+  const double *pn, *bound; /* pressure and traction bound at the time of the last evaluation */
+  double *pn_buf, *bound_buf; /* their storage when the load varies [n] */
+  double load_cached;      /* load of pn_buf (NAN: none) */
 } rs_work;
 
 int rs_work_create(rs_work *w, int n);
 void rs_work_free(rs_work *w);
+
+/* Pressure and traction bound at time t into w->pn, w->bound: the model's arrays at a
+ * constant load; with a normal-load history the normal solution (discrete or Hertz, as
+ * the case says) for the load at t, cached in w. Every evaluation below calls it. */
+int rs_model_normal_at(const rs_model *m, rs_work *w, double t, rs_msg *msg);
 
 /* Maximum number of Jacobian nonzeros (dense traction block plus bands). */
 int64_t rs_model_jac_capacity(const rs_model *m);
@@ -86,6 +99,11 @@ int rs_model_eval(const rs_model *m, rs_work *w, double t, const double *y, cons
  * p' from the hardening law. yp: output [3n]. */
 int rs_model_consistent_rates(const rs_model *m, rs_work *w, double t, const double *y,
                               double *yp, rs_msg *msg);
+
+/* Make the tractions of y admissible at time t (after a jump of an input history):
+ * p = 0 outside the contact, |p| <= g(t) = mu p_n(t) inside (a cell whose bound
+ * dropped keeps its direction at the new bound). */
+int rs_model_project_state(const rs_model *m, rs_work *w, double t, double *y, rs_msg *msg);
 
 /* Quantities of model.md §7 at (t, y, yp). Arrays of length n, any may be NULL. */
 typedef struct rs_diag {

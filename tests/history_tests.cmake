@@ -1,0 +1,11 @@
+# Inputs that change in time (issue 4): normal-load history, prescribed tangential
+# force, twin-disc rig mode. Included from tests/CMakeLists.txt.
+set(RS_HIST ${CMAKE_CURRENT_BINARY_DIR}/history_out)
+
+if(SYSTEM_PYTHON3)
+  # Normal load 150 +- 50 N/mm: F_n is the history, p_n the discrete normal solution
+  # at every stored time, cells enter and leave the contact (see the script).
+  add_test(NAME test_normal_load_history
+    COMMAND ${SYSTEM_PYTHON3} ${RS_TESTS}/check_normal_load.py ${RS_BIN}
+      ${RS_TESTS}/cases/normal_load_sine.yaml ${RS_HIST}/normal_load)
+endif()
