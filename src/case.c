@@ -140,6 +140,37 @@ static int resolve_time(const resolver *r, rs_case *c)
   return RS_OK;
 }
 
+/* Prescribed tangential force instead of creepage (model.md §6): exactly one of the
+ * two; below full sliding; from rest it must start at zero (no traction at rest). */
+static int resolve_force(const resolver *r, rs_case *c)
+{
+  const yaml_node_t *force = given(r, "rolling.tangential_force");
+  c->force_control = force != NULL;
+  if (!force)
+    return RS_OK;
+  if (given(r, "rolling.creepage"))
+    return rs_case_error(r->d, force, "rolling.tangential_force",
+                         "give rolling.creepage or rolling.tangential_force, not both (with a "
+                         "prescribed force the creepage is computed)");
+  int status = check_history(r, "rolling.tangential_force", &c->tangential_force, c->end_time);
+  if (status != RS_OK)
+    return status;
+  const double fmax = rs_history_max_abs(&c->tangential_force, 0.0, c->end_time);
+  const double limit = c->mu * rs_history_min(&c->normal_load, 0.0, c->end_time);
+  if (!(fmax < limit))
+    return rs_case_error(r->d, force, "rolling.tangential_force",
+                         "reaches %g N/mm, not below the friction limit mu F_n = %g N/mm (full "
+                         "sliding: no creepage gives that force)",
+                         fmax, limit);
+  if (c->mode == RS_MODE_TRANSIENT && c->initial_state == RS_START_REST &&
+      rs_history_eval(&c->tangential_force, 0.0) != 0.0)
+    return rs_case_error(r->d, force, "rolling.tangential_force",
+                         "is %g N/mm at t = 0, but the run starts at rest without traction: "
+                         "let it start at 0 (e.g. a ramp) or use simulation.initial_state: steady",
+                         rs_history_eval(&c->tangential_force, 0.0));
+  return RS_OK;
+}
+
 /* results/<case file name without .yaml>.nc */
 static char *default_output_file(const char *path)
 {
@@ -179,6 +210,8 @@ static int resolve(const rs_case_doc *d, rs_case_input *in, const yaml_node_t **
                              ? "must be > 0 N/mm, got %g"
                              : "must stay > 0 N/mm over the run, reaches %g N/mm",
                          rs_history_min(&c->normal_load, 0.0, c->end_time));
+  if ((status = resolve_force(&r, c)) != RS_OK)
+    return status;
   if (c->mode == RS_MODE_STEADY && !(rs_history_min(&c->velocity, 0.0, c->end_time) > 0))
     return rs_case_error(d, given(&r, "rolling.velocity"), "rolling.velocity",
                          "velocity 0 mm/s (pure shift) needs simulation.mode: transient; steady "
@@ -236,6 +269,7 @@ void rs_case_free(rs_case *c)
   rs_history_free(&c->normal_load);
   rs_history_free(&c->velocity);
   rs_history_free(&c->creepage);
+  rs_history_free(&c->tangential_force);
   rs_history_free(&c->shift_velocity);
   memset(c, 0, sizeof *c);
 }
@@ -288,6 +322,14 @@ void rs_case_print(const rs_case *c, FILE *out)
     }
     if (k->kind == RS_KEY_SECTION || k->kind == RS_KEY_OPAQUE)
       continue;
+    if (!strcmp(k->path, "rolling.tangential_force") && !c->force_control) {
+      fprintf(out, "%s: null  # N/mm (not given: the creepage is prescribed)\n", k->path);
+      continue;
+    }
+    if (!strcmp(k->path, "rolling.creepage") && c->force_control) {
+      fprintf(out, "%s: null  # 1 (computed: the tangential force is prescribed)\n", k->path);
+      continue;
+    }
     if (!strcmp(k->path, "simulation.rolled_distance") && c->rolled_distance < 0) {
       fprintf(out, "%s: null  # mm (not given)\n", k->path);
       continue;

@@ -69,7 +69,10 @@ const rs_case_key rs_case_keys[] = {
 
     {"rolling", RS_KEY_SECTION, 0, "", 0, 0, 0, NULL},
     {"rolling.velocity", RS_KEY_HISTORY, F(c.velocity), "mm/s", 0, 1e9, RS_KEY_HI_ABSURD, NULL},
-    {"rolling.creepage", RS_KEY_HISTORY, F(c.creepage), "", -10, 10, RS_KEY_HI_ABSURD, NULL},
+    {"rolling.creepage", RS_KEY_HISTORY, F(c.creepage), "", -10, 10,
+     RS_KEY_HI_ABSURD | RS_KEY_NULLABLE, NULL},
+    {"rolling.tangential_force", RS_KEY_HISTORY, F(c.tangential_force), "N/mm", -BIG, BIG,
+     RS_KEY_HI_ABSURD | RS_KEY_NULLABLE, NULL},
     {"rolling.shift_velocity", RS_KEY_HISTORY, F(c.shift_velocity), "mm/s", -1e9, 1e9,
      RS_KEY_HI_ABSURD, NULL},
 

@@ -37,7 +37,8 @@ int rs_model_create(rs_model *m, const rs_case *c, rs_msg *msg)
   memset(m, 0, sizeof *m);
   const int n = c->cells;
   m->n = n;
-  m->neq = 3 * n;
+  m->force_control = c->force_control;
+  m->neq = 3 * n + (m->force_control ? 1 : 0);
   /* The grid is sized on the largest load of the run: with a normal-load history the
    * contact grows and shrinks inside it (cells enter and leave the contact). */
   m->load_varies = !rs_history_is_constant(&c->normal_load);
@@ -78,7 +79,8 @@ int rs_model_create(rs_model *m, const rs_case *c, rs_msg *msg)
   m->time_scale = c->output_interval;
   if (rs_history_copy(&m->velocity, &c->velocity) != RS_OK ||
       rs_history_copy(&m->creepage, &c->creepage) != RS_OK ||
-      rs_history_copy(&m->shift, &c->shift_velocity) != RS_OK) {
+      rs_history_copy(&m->shift, &c->shift_velocity) != RS_OK ||
+      rs_history_copy(&m->force, &c->tangential_force) != RS_OK) {
     rs_model_free(m);
     return rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory copying input histories");
   }
@@ -95,6 +97,7 @@ void rs_model_free(rs_model *m)
   rs_history_free(&m->creepage);
   rs_history_free(&m->shift);
   rs_history_free(&m->load);
+  rs_history_free(&m->force);
   memset(m, 0, sizeof *m);
 }
 
@@ -151,15 +154,21 @@ int rs_model_normal_at(const rs_model *m, rs_work *w, double t, rs_msg *msg)
 
 int64_t rs_model_jac_capacity(const rs_model *m)
 {
-  return (int64_t)m->n * (m->n + 2) + 8 * (int64_t)m->n;
+  return (int64_t)m->n * (m->n + 2) + 8 * (int64_t)m->n + (m->force_control ? 2 * m->n + 2 : 0);
+}
+
+double rs_model_creepage(const rs_model *m, double t, const double *y)
+{
+  return m->force_control ? y[3 * m->n] : rs_history_eval(&m->creepage, t);
 }
 
 double rs_model_next_breakpoint(const rs_model *m, double t)
 {
   return fmin(fmin(rs_history_next_breakpoint(&m->velocity, t),
                    rs_history_next_breakpoint(&m->creepage, t)),
-              fmin(rs_history_next_breakpoint(&m->shift, t),
-                   rs_history_next_breakpoint(&m->load, t)));
+              fmin(fmin(rs_history_next_breakpoint(&m->shift, t),
+                        rs_history_next_breakpoint(&m->load, t)),
+                   m->force_control ? rs_history_next_breakpoint(&m->force, t) : INFINITY));
 }
 
 double rs_model_yield_limit(const rs_model *m, double ustar)
@@ -195,7 +204,7 @@ static void kinematics(const rs_model *m, rs_work *w, double t, const double *y,
   const int n = m->n;
   const double *p = y, *upl = y + n, *us = y + 2 * n;
   const double c3 = m->layer_flex, a = rs_history_eval(&m->velocity, t) / m->dx;
-  const double vrigid = rs_history_eval(&m->velocity, t) * rs_history_eval(&m->creepage, t) +
+  const double vrigid = rs_history_eval(&m->velocity, t) * rs_model_creepage(m, t, y) +
                         rs_history_eval(&m->shift, t);
   rs_elastic2d_apply(&m->el, m->el.tang, p, w->uel, n + 1);
   rs_elastic2d_apply(&m->el, m->el.tang, yp, w->ueldot, n);
@@ -284,6 +293,13 @@ int rs_model_eval(const rs_model *m, rs_work *w, double t, const double *y, cons
       F[2 * n + i] = r * (w->dustar[i] - fabs(mpl));
     }
   }
+  /* Force row, scaled to a mean traction over the contact width 2a. */
+  const double force_row = m->dx / (2.0 * m->hertz_a);
+  if (F && m->force_control) {
+    double sum = 0.0;
+    for (int i = 0; i < n; i++) sum += p[i];
+    F[3 * n] = force_row * sum - rs_history_eval(&m->force, t) / (2.0 * m->hertz_a);
+  }
   if (!jac) return RS_OK;
 
   /* Generalized Jacobian dF/dy + cj dF/dy', row by row (CSR, sorted columns). */
@@ -305,6 +321,7 @@ int rs_model_eval(const rs_model *m, rs_work *w, double t, const double *y, cons
       }
       csr_put(jac, n + i, r * (cj + a));
       if (i + 1 < n) csr_put(jac, n + i + 1, -r * a);
+      if (m->force_control) csr_put(jac, 3 * n, r * rs_history_eval(&m->velocity, t));
     }
     csr_next_row(jac);
   }
@@ -330,11 +347,16 @@ int rs_model_eval(const rs_model *m, rs_work *w, double t, const double *y, cons
     if (i + 1 < n) csr_put(jac, 2 * n + i + 1, -r * a);
     csr_next_row(jac);
   }
+  if (m->force_control) {
+    for (int j = 0; j < n; j++) csr_put(jac, j, force_row);
+    csr_put(jac, 3 * n, 0.0); /* structural: keeps the pattern of the bordered system */
+    csr_next_row(jac);
+  }
   return RS_OK;
 }
 
-int rs_model_consistent_rates(const rs_model *m, rs_work *w, double t, const double *y,
-                              double *yp, rs_msg *msg)
+int rs_model_consistent_rates(const rs_model *m, rs_work *w, double t, double *y, double *yp,
+                              rs_msg *msg)
 {
   const int n = m->n;
   const double *p = y, *us = y + 2 * n;
@@ -343,10 +365,12 @@ int rs_model_consistent_rates(const rs_model *m, rs_work *w, double t, const dou
   int status = rs_model_normal_at(m, w, t, msg);
   if (status != RS_OK) return status;
 
+  /* One more row and column with force control: the border. */
+  const int nb = n + 1;
   int *adh = malloc((size_t)n * sizeof *adh);
-  int *ipiv = malloc((size_t)n * sizeof *ipiv);
-  double *mat = malloc((size_t)n * (size_t)n * sizeof *mat);
-  double *rhs = malloc((size_t)n * sizeof *rhs);
+  int *ipiv = malloc((size_t)nb * sizeof *ipiv);
+  double *mat = malloc((size_t)nb * (size_t)nb * sizeof *mat);
+  double *rhs = malloc((size_t)nb * sizeof *rhs);
   if (!adh || !ipiv || !mat || !rhs) {
     status = rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory computing the initial rates");
     goto done;
@@ -357,8 +381,6 @@ int rs_model_consistent_rates(const rs_model *m, rs_work *w, double t, const dou
   if (dload != 0.0) {
     const double load = rs_history_eval(&m->load, t), h = 1e-6 * load;
     status = solve_normal(m, load + h, rhs, NULL, msg);
-    if (status != RS_OK) goto done;
-    status = rs_model_normal_at(m, w, t, msg); /* solve_normal above bypassed the cache */
     if (status != RS_OK) goto done;
     for (int i = 0; i < n; i++)
       if (w->pn[i] > 0.0 && w->bound[i] <= rs_model_yield_limit(m, us[i]) &&
@@ -372,19 +394,31 @@ int rs_model_consistent_rates(const rs_model *m, rs_work *w, double t, const dou
     if (w->pn[i] > 0.0 && fabs(p[i]) < lim * (1.0 - 1e-12)) adh[h++] = i;
   }
   if (h > 0) {
-    /* Adhesion: v_s = 0 with Du_pl/Dt = 0, i.e. (A + c3 I) p'_H = -v_s(p' = 0). */
+    /* Adhesion: v_s = 0 with Du_pl/Dt = 0, i.e. (A + c3 I) p'_H = -v_s(p'_H = 0).
+     * Force control: v_s = V xi + ..., xi unknown, and dx sum p' = F_x'(t). */
+    const int fc = m->force_control, hb = h + fc;
+    const double V = rs_history_eval(&m->velocity, t), xi = fc ? y[3 * n] : 0.0;
     for (int c = 0; c < h; c++) {
       for (int r = 0; r < h; r++)
-        mat[(size_t)c * h + r] = rs_elastic2d_tang(&m->el, adh[r] - adh[c]) + (r == c ? c3 : 0.0);
-      rhs[c] = -w->vslip[adh[c]];
+        mat[(size_t)c * hb + r] = rs_elastic2d_tang(&m->el, adh[r] - adh[c]) + (r == c ? c3 : 0.0);
+      rhs[c] = -(w->vslip[adh[c]] - V * xi);
+    }
+    if (fc) {
+      double known = 0.0; /* dx sum of the rates fixed above (cells on the bound) */
+      for (int i = 0; i < n; i++) known += yp[i] * m->dx;
+      for (int r = 0; r < h; r++) mat[(size_t)h * hb + r] = V; /* column of xi */
+      for (int c = 0; c < h; c++) mat[(size_t)c * hb + h] = m->dx;
+      mat[(size_t)h * hb + h] = 0.0;
+      rhs[h] = rs_history_rate(&m->force, t) - known;
     }
     int one = 1, info = 0;
-    dgesv_(&h, &one, mat, &h, ipiv, rhs, &h, &info);
+    dgesv_(&hb, &one, mat, &hb, ipiv, rhs, &hb, &info);
     if (info != 0) {
       status = rs_msg_set(msg, RS_ERR_SOLVER, "initial rates: singular adhesion system (info %d)", info);
       goto done;
     }
     for (int c = 0; c < h; c++) yp[adh[c]] = rhs[c];
+    if (fc) y[3 * n] = rhs[h];
   }
   kinematics(m, w, t, y, yp);
   /* Transport of u_pl and u*: Du/Dt = 0, except plastic flow where |p| is at a
@@ -424,7 +458,7 @@ int rs_model_diagnostics(const rs_model *m, rs_work *w, double t, const double *
 {
   const int n = m->n;
   const double V = rs_history_eval(&m->velocity, t);
-  const double xi = rs_history_eval(&m->creepage, t);
+  const double xi = rs_model_creepage(m, t, y);
   const double vrigid = V * xi + rs_history_eval(&m->shift, t);
   /* Branches with the steady scaling (any r > 0 gives the same regimes at a solution). */
   rs_msg msg;

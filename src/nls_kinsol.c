@@ -6,6 +6,7 @@
 
 #include <ida/ida.h>
 #include <kinsol/kinsol.h>
+#include <math.h>
 #include <nvector/nvector_serial.h>
 #include <stdlib.h>
 
@@ -80,9 +81,12 @@ static int nls_solve(SUNNonlinearSolver nls, N_Vector y0, N_Vector ycor, N_Vecto
   const double diag_transport = r * (cj + rs_history_eval(&m->velocity, tcur) / m->dx);
   const double *wv = N_VGetArrayPointer(w);
   double *us = N_VGetArrayPointer(c->uscale), *fs = N_VGetArrayPointer(c->fscale);
+  double wmax = 0.0;
+  for (int i = 0; i < n; i++) wmax = fmax(wmax, wv[i]);
   for (int i = 0; i < m->neq; i++) {
     us[i] = wv[i];
-    fs[i] = i < n ? wv[i] : wv[i] / diag_transport;
+    /* the force row (force control) is a mean traction: the strictest traction weight */
+    fs[i] = i < n ? wv[i] : i < 3 * n ? wv[i] / diag_transport : wmax;
   }
   KINSetFuncNormTol(c->kmem, 0.01 * tol);
   KINSetScaledStepTol(c->kmem, 0.01 * tol);

@@ -18,7 +18,7 @@ static int nc_fail(rs_msg *msg, const char *path, const char *what, int err)
 }
 
 static int read_file(int ncid, const char *path, size_t nx, const double *x, double *t_last,
-                     double *y, double *xold, rs_msg *msg)
+                     double *y, double *creepage, double *xold, rs_msg *msg)
 {
   int err, dim_x, dim_t, var;
   size_t len_x, nrec;
@@ -76,18 +76,25 @@ static int read_file(int ncid, const char *path, size_t nx, const double *x, dou
                           "(t = %g s)",
                           path, name, i, *t_last);
   }
+  if (creepage &&
+      ((err = nc_inq_varid(ncid, "creepage", &var)) ||
+       (err = nc_get_var1_double(ncid, var, &last, creepage)) || !isfinite(*creepage)))
+    return rs_msg_set(msg, RS_ERR_INPUT,
+                      "restart file %s: no valid creepage at its last record (needed to continue "
+                      "a run with a prescribed tangential force)",
+                      path);
   return RS_OK;
 }
 
 int rs_restart_read(const char *path, size_t nx, const double *x, double *t_last, double *y,
-                    rs_msg *msg)
+                    double *creepage, rs_msg *msg)
 {
   if (!path || !*path) return rs_msg_set(msg, RS_ERR_INPUT, "restart: no file given");
   int ncid;
   int err = nc_open(path, NC_NOWRITE, &ncid);
   if (err) return nc_fail(msg, path, "cannot open", err);
   double *xold = malloc((nx ? nx : 1) * sizeof *xold);
-  int status = xold ? read_file(ncid, path, nx, x, t_last, y, xold, msg)
+  int status = xold ? read_file(ncid, path, nx, x, t_last, y, creepage, xold, msg)
                     : rs_msg_set(msg, RS_ERR_INTERNAL, "restart file %s: out of memory", path);
   free(xold);
   nc_close(ncid);

@@ -155,7 +155,8 @@ static int read_restart(run_state *s, const rs_run_opts *o, const char *out_path
     return rs_msg_set(msg, RS_ERR_INPUT,
                       "--restart %s: it is also the output file; choose another one with -o",
                       o->restart_path);
-  int status = rs_restart_read(o->restart_path, (size_t)s->m.n, s->m.x, t0, s->y, msg);
+  int status = rs_restart_read(o->restart_path, (size_t)s->m.n, s->m.x, t0, s->y,
+                               s->m.force_control ? s->y + 3 * s->m.n : NULL, msg);
   if (status != RS_OK) return status;
   if (*t0 >= c->end_time - 1e-9 * c->output_interval)
     return rs_msg_set(msg, RS_ERR_INPUT,

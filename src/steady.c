@@ -95,6 +95,8 @@ int rs_steady_create(rs_steady **out, const rs_model *m, rs_msg *msg)
     us[n + i] = us[2 * n + i] = 1.0 / uref;
   }
   for (int i = 0; i < m->neq; i++) fs[i] = 1.0 / pref;
+  if (m->force_control) /* creepage: its saturation value mu a/R sets the scale */
+    us[3 * n] = m->radius / (m->mu * m->hertz_a);
 
   s->kmem = KINCreate(s->ctx);
   if (!s->kmem) goto fail;

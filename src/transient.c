@@ -68,6 +68,7 @@ int rs_transient_create(rs_transient **out, const rs_model *m, double t0, const 
   tr->t = t0;
   tr->interrupt = o->interrupt;
   const int n = m->n;
+  N_Vector id = NULL; /* differential/algebraic components (force control) */
   if (SUNContext_Create(NULL, &tr->ctx) != 0) goto fail;
   tr->y = N_VNew_Serial(m->neq, tr->ctx);
   tr->yp = N_VNew_Serial(m->neq, tr->ctx);
@@ -81,6 +82,14 @@ int rs_transient_create(rs_transient **out, const rs_model *m, double t0, const 
   for (int i = 0; i < n; i++) {
     at[i] = o->atol;
     at[n + i] = at[2 * n + i] = 1e-4 * o->rtol * m->hertz_a;
+  }
+  /* With force control the creepage is an algebraic unknown fixed by a constraint on
+   * differential ones (sum p dx = F_x): left out of the error test, as IDA allows. */
+  if (m->force_control) {
+    at[3 * n] = 1e-4 * o->rtol;
+    if (!(id = N_VNew_Serial(m->neq, tr->ctx))) goto fail;
+    N_VConst(1.0, id);
+    N_VGetArrayPointer(id)[3 * n] = 0.0;
   }
   if (rs_work_create(&tr->work, n) != RS_OK) goto fail;
   if (rs_linsys_create(&tr->ls, m, tr->y, tr->ctx) != RS_OK) goto fail;
@@ -97,10 +106,17 @@ int rs_transient_create(rs_transient **out, const rs_model *m, double t0, const 
   flag |= IDASetMaxNumSteps(tr->ida, o->max_steps > 0 ? o->max_steps : 1000000);
   flag |= IDASetErrHandlerFn(tr->ida, rs_sundials_silent, NULL);
   if (isfinite(o->t_stop)) flag |= IDASetStopTime(tr->ida, o->t_stop);
+  if (id) {
+    flag |= IDASetId(tr->ida, id);
+    flag |= IDASetSuppressAlg(tr->ida, SUNTRUE);
+    N_VDestroy(id);
+    id = NULL;
+  }
   if (flag != 0) goto fail;
   *out = tr;
   return RS_OK;
 fail:
+  if (id) N_VDestroy(id);
   rs_transient_free(tr);
   return rs_msg_set(msg, RS_ERR_INTERNAL, "could not set up the transient solver (SUNDIALS/KLU)");
 }

@@ -9,3 +9,7 @@ if(SYSTEM_PYTHON3)
     COMMAND ${SYSTEM_PYTHON3} ${RS_TESTS}/check_normal_load.py ${RS_BIN}
       ${RS_TESTS}/cases/normal_load_sine.yaml ${RS_HIST}/normal_load)
 endif()
+
+# Prescribed tangential force: steady (elastic and plastic) against the inverse of
+# prescribed-creepage runs, and a transient force ramp (see the test's header).
+rs_unit_test(test_force_control)

@@ -61,7 +61,9 @@ typedef struct rs_case {
 
   /* rolling: */
   rs_history velocity;                /* V, mm/s */
-  rs_history creepage;                /* xi */
+  rs_history creepage;                /* xi (unused when force_control) */
+  int force_control;                  /* 1: rolling.tangential_force given, xi is an unknown */
+  rs_history tangential_force;        /* F_x, N/mm (2D), when force_control */
   rs_history shift_velocity;          /* mm/s, rigid tangential shift rate (a history too) */
 
   /* simulation: */

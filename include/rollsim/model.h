@@ -1,8 +1,9 @@
 /* The 2D rolling-contact model with local plasticity (model.md §4-5), semi-
  * discretised in space: the DAE F(t, y, y') = 0 with, per contact-grid cell I,
- *   y = [ p_0..p_{n-1} | upl_0..upl_{n-1} | ustar_0..ustar_{n-1} ]
+ *   y = [ p_0..p_{n-1} | upl_0..upl_{n-1} | ustar_0..ustar_{n-1} ( | xi ) ]
  * (tangential traction on body 1, plastic displacement difference, accumulated
- * plastic deformation). This module is pure physics: plain arrays, no SUNDIALS. */
+ * plastic deformation; with a prescribed tangential force the creepage xi is the
+ * last unknown, with the equation sum p dx = F_x(t) (model.md §6)). This module is pure physics: plain arrays, no SUNDIALS. */
 #ifndef ROLLSIM_MODEL_H
 #define ROLLSIM_MODEL_H
 
@@ -20,7 +21,9 @@ enum { RS_BRANCH_EXTERIOR = 1, RS_BRANCH_SLIP = 2, RS_BRANCH_YIELD = 4 };
 
 typedef struct rs_model {
   int n;                   /* contact-grid cells */
-  int neq;                 /* 3 n */
+  int neq;                 /* 3 n, or 3 n + 1 with force control */
+  int force_control;       /* 1: y[3n] = xi, row 3n: (sum p dx - F_x(t))/(2 a) */
+  rs_history force;        /* F_x, N/mm */
   double dx;               /* mm */
   double *x;               /* cell centres, mm [n] */
   double hertz_a, hertz_p0;
@@ -95,10 +98,14 @@ int rs_model_eval(const rs_model *m, rs_work *w, double t, const double *y, cons
 
 /* Consistent rates at a state y (model.md §9 "consistent start"): solves the
  * adhesion rows for p', exterior p' = 0, slip p' = g' (= 0 at constant load),
- * upl' and ustar' from their transport equations. Plastic cells are handled with
- * p' from the hardening law. yp: output [3n]. */
-int rs_model_consistent_rates(const rs_model *m, rs_work *w, double t, const double *y,
-                              double *yp, rs_msg *msg);
+ * upl' and ustar' from their transport equations; plastic cells p' = 0. With force
+ * control the adhesion rows are bordered by sum p' dx = F_x'(t), which also gives
+ * the creepage: y[3n] is set. yp: output [neq]. */
+int rs_model_consistent_rates(const rs_model *m, rs_work *w, double t, double *y, double *yp,
+                              rs_msg *msg);
+
+/* Creepage at (t, y): the history, or the unknown y[3n] with force control. */
+double rs_model_creepage(const rs_model *m, double t, const double *y);
 
 /* Make the tractions of y admissible at time t (after a jump of an input history):
  * p = 0 outside the contact, |p| <= g(t) = mu p_n(t) inside (a cell whose bound

@@ -11,10 +11,11 @@
 /* Read the last record of the time-history file at path. The file's x coordinate must
  * match the new grid: nx cells and every x within 1e-12 relative (to max |x|). A file
  * whose status is still "running" (a killed run) is fine: its last complete record is
- * used. On success *t_last is that record's time (s) and y[3 nx] its state.
+ * used. On success *t_last is that record's time (s) and y[3 nx] its state; if
+ * creepage is not NULL, the creepage of that record too (force control).
  * Returns RS_OK or RS_ERR_INPUT (missing or unreadable file, no records, a missing
  * field, a grid mismatch, non-finite values) with a message naming the file. */
 int rs_restart_read(const char *path, size_t nx, const double *x, double *t_last, double *y,
-                    rs_msg *msg);
+                    double *creepage, rs_msg *msg);
 
 #endif
