@@ -4,6 +4,7 @@
  *   end_time = rolled_distance/V when the rolled distance is given. */
 #define _POSIX_C_SOURCE 200809L
 #include "case_internal.h"
+#include "rollsim/elastic.h" /* RS_PI */
 
 #include <math.h>
 #include <stdlib.h>
@@ -47,6 +48,8 @@ static void set_defaults(rs_case_input *in)
   c->fields = RS_FIELD_PX | RS_FIELD_PN | RS_FIELD_SLIP | RS_FIELD_UPL | RS_FIELD_USTAR |
               RS_FIELD_TAUC | RS_FIELD_REGIME;
   in->k_rel = NAN;
+  c->rig.recovery = 1.0;
+  c->rig.average_window = 0.5;
 }
 
 typedef struct resolver {
@@ -140,6 +143,115 @@ static int resolve_time(const resolver *r, rs_case *c)
   return RS_OK;
 }
 
+/* The twin_disc: block sets the contact and rolling inputs (model.md §8): line load
+ * q = F/b, R = (1/R1 + 1/R2)^-1, V = 2 pi rpm/60 R1 (or the mean surface speed of
+ * the two discs), creepage = -slip of the protocol (a table with a jump at the start
+ * of each held step), end time = revolutions x 2 pi R1/V. */
+static int resolve_twin_disc(const resolver *r, rs_case *c)
+{
+  const yaml_node_t *block = given(r, "twin_disc");
+  rs_twin_disc *rig = &c->rig;
+  rig->on = block != NULL;
+  if (!block)
+    return RS_OK;
+  static const char *const owned[] = {"contact.normal_load", "contact.radius",
+                                      "rolling.velocity",    "rolling.creepage",
+                                      "rolling.tangential_force", "rolling.shift_velocity",
+                                      "simulation.end_time", "simulation.rolled_distance"};
+  for (size_t i = 0; i < sizeof owned / sizeof *owned; i++)
+    if (given(r, owned[i]))
+      return rs_case_error(r->d, given(r, owned[i]), owned[i],
+                           "is set by the twin_disc: block (disc radii, width, force, speed and "
+                           "protocol): remove it");
+  static const char *const required[] = {"twin_disc.radius_1", "twin_disc.radius_2",
+                                         "twin_disc.width", "twin_disc.normal_force"};
+  for (size_t i = 0; i < sizeof required / sizeof *required; i++)
+    if (!given(r, required[i]))
+      return rs_case_error(r->d, block, required[i], "missing (the twin_disc: block needs "
+                                                     "radius_1, radius_2, width, normal_force)");
+  if (c->mode != RS_MODE_TRANSIENT)
+    return rs_case_error(r->d, given(r, "simulation.mode"), "simulation.mode",
+                         "a twin_disc: run is transient (many revolutions); remove mode: steady");
+  const yaml_node_t *rpm = given(r, "twin_disc.rpm"), *rpm1 = given(r, "twin_disc.rpm_1"),
+                    *rpm2 = given(r, "twin_disc.rpm_2"), *proto = given(r, "twin_disc.protocol"),
+                    *revs = given(r, "twin_disc.revolutions");
+  const double two_pi = 2.0 * RS_PI;
+  double V;
+  if (rpm) {
+    if (rpm1 || rpm2)
+      return rs_case_error(r->d, rpm1 ? rpm1 : rpm2, rpm1 ? "twin_disc.rpm_1" : "twin_disc.rpm_2",
+                           "give twin_disc.rpm with a protocol, or the disc speeds rpm_1 and "
+                           "rpm_2 with revolutions, not both");
+    if (!proto)
+      return rs_case_error(r->d, block, "twin_disc.protocol",
+                           "missing: with twin_disc.rpm give the slip protocol, a list of "
+                           "{slip: S, revolutions: N} or {ramp_to: S, revolutions: N}");
+    if (revs)
+      return rs_case_error(r->d, revs, "twin_disc.revolutions",
+                           "the protocol's steps give the revolutions; remove it");
+    V = two_pi * rig->rpm / 60.0 * rig->radius_1;
+  } else {
+    if (!rpm1 || !rpm2)
+      return rs_case_error(r->d, block, rpm1 ? "twin_disc.rpm_2" : "twin_disc.rpm_1",
+                           "missing: give twin_disc.rpm (rolling speed) and a protocol, or both "
+                           "disc speeds rpm_1 and rpm_2 and the revolutions");
+    if (proto)
+      return rs_case_error(r->d, proto, "twin_disc.protocol",
+                           "with the disc speeds rpm_1 and rpm_2 the slip is fixed: give "
+                           "twin_disc.rpm instead of rpm_1/rpm_2 to run a protocol");
+    if (!revs)
+      return rs_case_error(r->d, block, "twin_disc.revolutions",
+                           "missing: how many revolutions of disc 1 to run");
+    const double v1 = two_pi * rig->rpm_1 / 60.0 * rig->radius_1,
+                 v2 = two_pi * rig->rpm_2 / 60.0 * rig->radius_2;
+    V = 0.5 * (v1 + v2);
+    free(rig->steps);
+    if (!(rig->steps = calloc(1, sizeof *rig->steps)))
+      return rs_msg_set(r->d->msg, RS_ERR_INTERNAL, "out of memory");
+    rig->nsteps = 1;
+    rig->steps[0] = (rs_rig_step){(v1 - v2) / V, (v1 - v2) / V, rig->revolutions};
+    if (!(fabs(rig->steps[0].slip_end) < 1.0))
+      return rs_case_error(r->d, rpm2, "twin_disc.rpm_2", "gives slip %g: not a fraction in (-1, 1)",
+                           rig->steps[0].slip_end);
+  }
+  rig->revolution_time = two_pi * rig->radius_1 / V;
+  rs_history_free(&c->normal_load);
+  c->normal_load = (rs_history){.kind = RS_HISTORY_CONSTANT, .value = rig->normal_force / rig->width};
+  c->radius = 1.0 / (1.0 / rig->radius_1 + 1.0 / rig->radius_2);
+  rs_history_free(&c->velocity);
+  c->velocity = (rs_history){.kind = RS_HISTORY_CONSTANT, .value = V};
+  /* creepage table: two points per step (a jump where a held step starts elsewhere) */
+  rs_history *h = &c->creepage;
+  rs_history_free(h);
+  h->kind = RS_HISTORY_TABLE;
+  h->t = malloc(2 * rig->nsteps * sizeof *h->t);
+  h->v = malloc(2 * rig->nsteps * sizeof *h->v);
+  if (!h->t || !h->v)
+    return rs_msg_set(r->d->msg, RS_ERR_INTERNAL, "out of memory");
+  double t = 0.0, revolutions = 0.0;
+  h->n = 0;
+  for (size_t i = 0; i < rig->nsteps; i++) {
+    const rs_rig_step *st = &rig->steps[i];
+    if (h->n == 0 || h->v[h->n - 1] != -st->slip_start) {
+      h->t[h->n] = t;
+      h->v[h->n++] = -st->slip_start;
+    }
+    revolutions += st->revolutions;
+    t = revolutions * rig->revolution_time;
+    h->t[h->n] = t;
+    h->v[h->n++] = -st->slip_end;
+  }
+  c->end_time = t;
+  if (!given(r, "simulation.output_interval"))
+    c->output_interval = rig->revolution_time / 20.0;
+  if (c->end_time / c->output_interval > 1e8)
+    return rs_case_error(r->d, block, "twin_disc", "%g revolutions at %g records per revolution: "
+                                                   "too many records (raise "
+                                                   "simulation.output_interval)",
+                         revolutions, rig->revolution_time / c->output_interval);
+  return RS_OK;
+}
+
 /* Prescribed tangential force instead of creepage (model.md §6): exactly one of the
  * two; below full sliding; from rest it must start at zero (no traction at rest). */
 static int resolve_force(const resolver *r, rs_case *c)
@@ -196,7 +308,7 @@ static int resolve(const rs_case_doc *d, rs_case_input *in, const yaml_node_t **
     return rs_case_error(d, given(&r, "contact.dimension"), "contact.dimension",
                          "3D (elliptic point contact) is not implemented yet; use 2");
   if ((status = resolve_plasticity(&r, c, in->k_rel)) != RS_OK ||
-      (status = resolve_time(&r, c)) != RS_OK)
+      (status = resolve_twin_disc(&r, c)) != RS_OK || (status = resolve_time(&r, c)) != RS_OK)
     return status;
   const rs_history *hs[] = {&c->normal_load, &c->velocity, &c->creepage, &c->shift_velocity};
   const char *names[] = {"contact.normal_load", "rolling.velocity", "rolling.creepage",
@@ -270,6 +382,7 @@ void rs_case_free(rs_case *c)
   rs_history_free(&c->velocity);
   rs_history_free(&c->creepage);
   rs_history_free(&c->tangential_force);
+  free(c->rig.steps);
   rs_history_free(&c->shift_velocity);
   memset(c, 0, sizeof *c);
 }
@@ -318,6 +431,22 @@ void rs_case_print(const rs_case *c, FILE *out)
     if (plastic && !c->has_plasticity) {
       if (k->kind == RS_KEY_SECTION)
         fprintf(out, "plasticity: none  # purely elastic (no plasticity block)\n");
+      continue;
+    }
+    if (!strncmp(k->path, "twin_disc", 9) && !c->rig.on) {
+      if (k->kind == RS_KEY_SECTION)
+        fprintf(out, "twin_disc: none  # no rig mode\n");
+      continue;
+    }
+    if (!strncmp(k->path, "twin_disc.", 10) && (k->flags & RS_KEY_NULLABLE) &&
+        k->kind == RS_KEY_NUMBER && *(const double *)field == 0.0) {
+      fprintf(out, "%s: null  # not given\n", k->path);
+      continue;
+    }
+    if (k->kind == RS_KEY_PROTOCOL) {
+      fprintf(out, "%s: ", k->path);
+      rs_case_print_protocol(&c->rig, out);
+      fprintf(out, "  # slip s = (V1 - V2)/V, revolutions of disc 1\n");
       continue;
     }
     if (k->kind == RS_KEY_SECTION || k->kind == RS_KEY_OPAQUE)

@@ -72,7 +72,8 @@ typedef enum rs_case_key_kind {
   RS_KEY_TEXT,    /* char * */
   RS_KEY_CHOICE,  /* int (an enum), one of `choices` */
   RS_KEY_HISTORY, /* rs_history */
-  RS_KEY_FIELDS   /* unsigned mask of RS_FIELD_* */
+  RS_KEY_FIELDS,  /* unsigned mask of RS_FIELD_* */
+  RS_KEY_PROTOCOL /* rs_twin_disc steps: a list of {slip|ramp_to, revolutions} (case_rig.c) */
 } rs_case_key_kind;
 
 enum {
@@ -117,4 +118,7 @@ int rs_case_check_range(const rs_case_doc *d, const yaml_node_t *n, const rs_cas
 int rs_case_history(const rs_case_doc *d, const yaml_node_t *n, const char *key, const char *unit,
                     rs_history *h);
 
+/* ---- case_rig.c: the twin_disc: block ---- */
+int rs_case_protocol(const rs_case_doc *d, const yaml_node_t *n, const char *key, rs_twin_disc *rig);
+void rs_case_print_protocol(const rs_twin_disc *rig, FILE *out);
 #endif

@@ -76,6 +76,28 @@ const rs_case_key rs_case_keys[] = {
     {"rolling.shift_velocity", RS_KEY_HISTORY, F(c.shift_velocity), "mm/s", -1e9, 1e9,
      RS_KEY_HI_ABSURD, NULL},
 
+    {"twin_disc", RS_KEY_SECTION, 0, "", 0, 0, 0, NULL},
+    {"twin_disc.radius_1", RS_KEY_NUMBER, F(c.rig.radius_1), "mm", 0, BIG,
+     RS_KEY_LO_OPEN | RS_KEY_HI_ABSURD, NULL},
+    {"twin_disc.radius_2", RS_KEY_NUMBER, F(c.rig.radius_2), "mm", 0, BIG,
+     RS_KEY_LO_OPEN | RS_KEY_HI_ABSURD, NULL},
+    {"twin_disc.width", RS_KEY_NUMBER, F(c.rig.width), "mm", 0, BIG,
+     RS_KEY_LO_OPEN | RS_KEY_HI_ABSURD, NULL},
+    {"twin_disc.normal_force", RS_KEY_NUMBER, F(c.rig.normal_force), "N", 0, BIG,
+     RS_KEY_LO_OPEN | RS_KEY_HI_ABSURD, NULL},
+    {"twin_disc.rpm", RS_KEY_NUMBER, F(c.rig.rpm), "1/min", 0, 1e7,
+     RS_KEY_LO_OPEN | RS_KEY_HI_ABSURD | RS_KEY_NULLABLE, NULL},
+    {"twin_disc.rpm_1", RS_KEY_NUMBER, F(c.rig.rpm_1), "1/min", 0, 1e7,
+     RS_KEY_LO_OPEN | RS_KEY_HI_ABSURD | RS_KEY_NULLABLE, NULL},
+    {"twin_disc.rpm_2", RS_KEY_NUMBER, F(c.rig.rpm_2), "1/min", 0, 1e7,
+     RS_KEY_LO_OPEN | RS_KEY_HI_ABSURD | RS_KEY_NULLABLE, NULL},
+    {"twin_disc.revolutions", RS_KEY_NUMBER, F(c.rig.revolutions), "", 0, 1e7,
+     RS_KEY_LO_OPEN | RS_KEY_HI_ABSURD | RS_KEY_NULLABLE, NULL},
+    {"twin_disc.protocol", RS_KEY_PROTOCOL, F(c.rig), "", 0, 0, RS_KEY_NULLABLE, NULL},
+    {"twin_disc.recovery", RS_KEY_NUMBER, F(c.rig.recovery), "", 0, 1, 0, NULL},
+    {"twin_disc.average_window", RS_KEY_NUMBER, F(c.rig.average_window), "", 0, 1, RS_KEY_LO_OPEN,
+     NULL},
+
     {"simulation", RS_KEY_SECTION, 0, "", 0, 0, 0, NULL},
     {"simulation.mode", RS_KEY_CHOICE, F(c.mode), "", 0, 0, 0, mode_names},
     {"simulation.end_time", RS_KEY_NUMBER, F(c.end_time), "s", 0, 1e6,
@@ -196,6 +218,8 @@ static int parse_value(const rs_case_doc *d, const rs_case_key *spec, const yaml
     return rs_case_history(d, n, spec->path, spec->unit, (rs_history *)field);
   case RS_KEY_FIELDS:
     return parse_fields(d, n, spec->path, (unsigned *)field);
+  case RS_KEY_PROTOCOL:
+    return rs_case_protocol(d, n, spec->path, (rs_twin_disc *)field);
   case RS_KEY_SECTION:
   case RS_KEY_OPAQUE:
     break;

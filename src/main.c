@@ -234,10 +234,23 @@ int main(int argc, char **argv)
              res.stats.err_test_fails);
     else
       printf("  Newton iterations %ld\n", res.stats.nonlin_iters);
+    if (c.rig.on) {
+      const double T = c.rig.revolution_time;
+      printf("  twin disc: %.6g revolutions of %.6g s, %.1f IDA steps per revolution "
+             "(a fixed shift of one cell per step would need %.0f)\n",
+             res.time / T, T, res.time > 0 ? res.stats.steps * T / res.time : 0.0,
+             T * rs_history_eval(&c.velocity, 0.0) / res.dx);
+      printf("  protocol step   slip [%%]   traction coefficient (mean over the last %.0f %% of "
+             "the step)\n",
+             100.0 * c.rig.average_window);
+      for (size_t j = 0; j < res.rig_nsteps; j++)
+        printf("  %13zu %10.4f   %.6f\n", j + 1, 100.0 * res.rig_step_slip[j], res.rig_step_mu[j]);
+    }
     printf("  wall time %.3f s\n", res.wall_seconds);
     printf("  output: %s (%zu records)%s\n", res.file, res.records,
            status == RS_OK ? "" : " -- incomplete, see status attribute");
   }
+  rs_run_result_free(&res);
   rs_case_free(&c);
   return exit_code(status);
 }

@@ -14,6 +14,7 @@
 #include <string.h>
 
 #include "rollsim/normal.h"
+#include "rollsim/rig.h"
 #include "util.h"
 
 
@@ -199,8 +200,18 @@ double rs_model_scaling(const rs_model *m, double t, double cj)
 
 /* Transport terms shared by residual, rates and diagnostics: u_el on the padded
  * grid, its rate, and the material derivatives of u_el, u_pl, u*. */
+static void inflow(const rs_model *m, double t, double *upl, double *ustar)
+{
+  if (m->memory)
+    rs_rig_memory_inflow(m->memory, t, upl, ustar);
+  else
+    *upl = *ustar = 0.0;
+}
+
 static void kinematics(const rs_model *m, rs_work *w, double t, const double *y, const double *yp)
 {
+  double upl_in, us_in;
+  inflow(m, t, &upl_in, &us_in);
   const int n = m->n;
   const double *p = y, *upl = y + n, *us = y + 2 * n;
   const double c3 = m->layer_flex, a = rs_history_eval(&m->velocity, t) / m->dx;
@@ -213,8 +224,8 @@ static void kinematics(const rs_model *m, rs_work *w, double t, const double *y,
     w->ueldot[i] += c3 * yp[i];
   }
   for (int i = 0; i < n; i++) {
-    const double upl_next = i + 1 < n ? upl[i + 1] : m->inflow_upl;
-    const double us_next = i + 1 < n ? us[i + 1] : m->inflow_ustar;
+    const double upl_next = i + 1 < n ? upl[i + 1] : upl_in;
+    const double us_next = i + 1 < n ? us[i + 1] : us_in;
     const double duel = w->ueldot[i] - a * (w->uel[i + 1] - w->uel[i]);
     w->dupl[i] = yp[n + i] - a * (upl_next - upl[i]);
     w->dustar[i] = yp[2 * n + i] - a * (us_next - us[i]);
@@ -421,6 +432,8 @@ int rs_model_consistent_rates(const rs_model *m, rs_work *w, double t, double *y
     if (fc) y[3 * n] = rhs[h];
   }
   kinematics(m, w, t, y, yp);
+  double upl_in, us_in;
+  inflow(m, t, &upl_in, &us_in);
   /* Transport of u_pl and u*: Du/Dt = 0, except plastic flow where |p| is at a
    * yield limit below the bound (flow takes up the slip velocity left over). */
   for (int i = 0; i < n; i++) {
@@ -428,8 +441,8 @@ int rs_model_consistent_rates(const rs_model *m, rs_work *w, double t, double *y
     double flow = 0.0;
     if (w->pn[i] > 0.0 && tauc < w->bound[i] && fabs(p[i]) >= tauc * (1.0 - 1e-12))
       flow = -(w->vslip[i] - w->dupl[i]);
-    const double upl_next = i + 1 < n ? y[n + i + 1] : m->inflow_upl;
-    const double us_next = i + 1 < n ? us[i + 1] : m->inflow_ustar;
+    const double upl_next = i + 1 < n ? y[n + i + 1] : upl_in;
+    const double us_next = i + 1 < n ? us[i + 1] : us_in;
     yp[n + i] = flow + a * (upl_next - y[n + i]);
     yp[2 * n + i] = fabs(flow) + a * (us_next - us[i]);
   }

@@ -34,6 +34,7 @@
 #include "output_internal.h"
 
 #include <errno.h>
+#include <math.h>
 #include <netcdf.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -117,7 +118,117 @@ struct rs_output {
   int time_id, x_id;
   int field_id[N_FIELDS];   /* -1 when not in the mask */
   int scalar_id[N_SCALARS];
+  int has_rig;
+  int rig_meta_id[6];
+  int step_mu_id, step_slip_id, rev_mu_id, rev_slip_id; /* twin-disc summaries */
 };
+
+/* A double variable over one dimension with units, long_name and a NaN fill value. */
+static int def_rig_var(int ncid, const char *name, int dim, const char *units,
+                       const char *long_name, int *id)
+{
+  const double fill = NAN;
+  int err;
+  if ((err = nc_def_var(ncid, name, NC_DOUBLE, 1, &dim, id)) ||
+      (err = rs_output_put_text(ncid, *id, "units", units)) ||
+      (err = rs_output_put_text(ncid, *id, "long_name", long_name)) ||
+      (err = nc_put_att_double(ncid, *id, "_FillValue", NC_DOUBLE, 1, &fill)))
+    return err;
+  return NC_NOERR;
+}
+
+/* Twin-disc summary variables (defined when spec->rig is given). */
+static int define_rig(rs_output *out, const rs_output_rig *rig)
+{
+  const int ncid = out->ncid;
+  int err, sdim, rdim;
+  if ((err = nc_def_dim(ncid, "protocol_step", rig->nsteps, &sdim)) ||
+      (err = nc_def_dim(ncid, "revolution", rig->nrevolutions, &rdim)))
+    return err;
+  struct {
+    const char *name;
+    int dim;
+    const char *units, *long_name;
+    int *id;
+  } vars[] = {
+      {"step_slip_start", sdim, "1", "rig slip (V1 - V2)/V at the start of the protocol step",
+       &out->rig_meta_id[0]},
+      {"step_slip_end", sdim, "1", "rig slip (V1 - V2)/V at the end of the protocol step",
+       &out->rig_meta_id[1]},
+      {"step_time_start", sdim, "s", "start of the protocol step", &out->rig_meta_id[2]},
+      {"step_time_end", sdim, "s", "end of the protocol step", &out->rig_meta_id[3]},
+      {"step_window_start", sdim, "s",
+       "start of the window (ending with the step) over which step values are averaged",
+       &out->rig_meta_id[4]},
+      {"revolution_time_end", rdim, "s", "end of the revolution of disc 1", &out->rig_meta_id[5]},
+      {"step_traction_coefficient", sdim, "1",
+       "mean F_x/F_n over the averaging window of the protocol step", &out->step_mu_id},
+      {"step_slip", sdim, "1", "mean rig slip over the averaging window of the protocol step",
+       &out->step_slip_id},
+      {"revolution_traction_coefficient", rdim, "1", "mean F_x/F_n over the revolution",
+       &out->rev_mu_id},
+      {"revolution_slip", rdim, "1", "mean rig slip over the revolution", &out->rev_slip_id},
+  };
+  for (size_t i = 0; i < sizeof vars / sizeof *vars; i++)
+    if ((err = def_rig_var(ncid, vars[i].name, vars[i].dim, vars[i].units, vars[i].long_name,
+                           vars[i].id)))
+      return err;
+  if ((err = nc_put_att_double(ncid, NC_GLOBAL, "twin_disc_revolution_time", NC_DOUBLE, 1,
+                               &rig->revolution_time)) ||
+      (err = nc_put_att_double(ncid, NC_GLOBAL, "twin_disc_recovery", NC_DOUBLE, 1,
+                               &rig->recovery)))
+    return err;
+  out->has_rig = 1;
+  return NC_NOERR;
+}
+
+/* After enddef: the protocol, the revolution ends, NaN in the results. */
+static int write_rig_meta(rs_output *out, const rs_output_rig *rig)
+{
+  const int ncid = out->ncid;
+  const double *meta[5] = {rig->slip_start, rig->slip_end, rig->time_start, rig->time_end,
+                           rig->window_start};
+  int err;
+  for (int k = 0; k < 5; k++)
+    if ((err = nc_put_var_double(ncid, out->rig_meta_id[k], meta[k])))
+      return err;
+  const double t_end = rig->nsteps ? rig->time_end[rig->nsteps - 1] : 0.0;
+  const size_t nmax = rig->nsteps > rig->nrevolutions ? rig->nsteps : rig->nrevolutions;
+  double *buf = malloc((nmax ? nmax : 1) * sizeof *buf);
+  if (!buf)
+    return NC_ENOMEM;
+  for (size_t i = 0; i < rig->nrevolutions; i++)
+    buf[i] = fmin((double)(i + 1) * rig->revolution_time, t_end);
+  err = nc_put_var_double(ncid, out->rig_meta_id[5], buf);
+  for (size_t i = 0; i < nmax; i++) buf[i] = NAN;
+  const int ids[4] = {out->step_mu_id, out->step_slip_id, out->rev_mu_id, out->rev_slip_id};
+  for (int k = 0; k < 4 && !err; k++) err = nc_put_var_double(ncid, ids[k], buf);
+  free(buf);
+  return err;
+}
+
+static int put_pair(rs_output *out, int id_a, int id_b, size_t i, double a, double b, rs_msg *msg)
+{
+  if (!out->has_rig)
+    return rs_msg_set(msg, RS_ERR_INTERNAL, "output file %s: no twin-disc variables", out->path);
+  int err;
+  if ((err = nc_put_var1_double(out->ncid, id_a, &i, &a)) ||
+      (err = nc_put_var1_double(out->ncid, id_b, &i, &b)) || (err = nc_sync(out->ncid)))
+    return rs_output_nc_failure(msg, out->path, "writing a twin-disc summary", err);
+  return RS_OK;
+}
+
+int rs_output_put_step(rs_output *out, size_t i, double traction_coefficient, double slip,
+                       rs_msg *msg)
+{
+  return put_pair(out, out->step_mu_id, out->step_slip_id, i, traction_coefficient, slip, msg);
+}
+
+int rs_output_put_revolution(rs_output *out, size_t i, double traction_coefficient, double slip,
+                             rs_msg *msg)
+{
+  return put_pair(out, out->rev_mu_id, out->rev_slip_id, i, traction_coefficient, slip, msg);
+}
 
 int rs_output_nc_failure(rs_msg *msg, const char *path, const char *what, int err)
 {
@@ -205,6 +316,12 @@ static int define_file(rs_output *out, const rs_output_spec *spec, const char **
       (err = rs_output_put_text(ncid, out->x_id, "long_name", "cell centre, rolling direction")) ||
       (err = rs_output_put_text(ncid, out->x_id, "axis", "X")))
     return err;
+
+  if (spec->rig) {
+    *what = "defining the twin-disc summaries";
+    if ((err = define_rig(out, spec->rig)))
+      return err;
+  }
 
   /* Fields first, scalars last: the last record variable is a double (see top). */
   *what = "defining field variables";
@@ -309,6 +426,10 @@ int rs_output_create(rs_output **outp, const rs_output_spec *spec, rs_msg *msg)
   if (err == NC_NOERR) {
     what = "writing x";
     err = nc_put_var_double(out->ncid, out->x_id, spec->x);
+  }
+  if (err == NC_NOERR && spec->rig) {
+    what = "writing the twin-disc protocol";
+    err = write_rig_meta(out, spec->rig);
   }
   if (err == NC_NOERR) {
     what = "syncing";

@@ -12,6 +12,7 @@
 
 #include "rollsim/output.h"
 #include "rollsim/restart.h"
+#include "rollsim/rig.h"
 #include "util.h"
 
 typedef struct run_state {
@@ -22,6 +23,134 @@ typedef struct run_state {
   signed char *regime;
   rs_output *out;
 } run_state;
+
+/* Twin-disc bookkeeping, updated after every accepted time step: the memory of the
+ * state leaving the contact, and the time integrals of F_x/F_n and of the slip over
+ * each revolution and each step's averaging window (trapezoidal between steps). */
+typedef struct rig_state {
+  const rs_case *c;
+  const rs_model *m;
+  rs_rig_memory mem;
+  rs_output *out;
+  rs_run_result *res;
+  double *window_start, *slip_start, *slip_end, *time_start, *time_end; /* per step */
+  size_t nrev, rev, step;          /* revolutions, current revolution, current step */
+  double t_prev, mu_prev, slip_prev;
+  double rev_mu, rev_slip, step_mu, step_slip; /* integrals so far */
+  int started;
+  rs_msg msg;
+} rig_state;
+
+static void rig_free(rig_state *r)
+{
+  rs_rig_memory_free(&r->mem);
+  free(r->window_start);
+  free(r->slip_start);
+  free(r->slip_end);
+  free(r->time_start);
+  free(r->time_end);
+}
+
+static int rig_create(rig_state *r, const rs_case *c, const rs_model *m, rs_msg *msg)
+{
+  memset(r, 0, sizeof *r);
+  r->c = c;
+  r->m = m;
+  const rs_twin_disc *rig = &c->rig;
+  const double V = rs_history_eval(&m->velocity, 0.0), L = m->n * m->dx;
+  const double two_pi = 2.0 * RS_PI;
+  int status = rs_rig_memory_create(&r->mem, (two_pi * rig->radius_1 - L) / V,
+                                    (two_pi * rig->radius_2 - L) / V, rig->recovery, msg);
+  if (status != RS_OK) return status;
+  const size_t ns = rig->nsteps;
+  r->window_start = malloc(ns * sizeof(double));
+  r->slip_start = malloc(ns * sizeof(double));
+  r->slip_end = malloc(ns * sizeof(double));
+  r->time_start = malloc(ns * sizeof(double));
+  r->time_end = malloc(ns * sizeof(double));
+  if (!r->window_start || !r->slip_start || !r->slip_end || !r->time_start || !r->time_end) {
+    rig_free(r);
+    return rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory (twin-disc protocol)");
+  }
+  double revs = 0.0;
+  for (size_t j = 0; j < ns; j++) {
+    r->time_start[j] = revs * rig->revolution_time;
+    revs += rig->steps[j].revolutions;
+    r->time_end[j] = j + 1 == ns ? c->end_time : revs * rig->revolution_time;
+    r->window_start[j] =
+        r->time_end[j] - rig->average_window * (r->time_end[j] - r->time_start[j]);
+    r->slip_start[j] = rig->steps[j].slip_start;
+    r->slip_end[j] = rig->steps[j].slip_end;
+  }
+  r->nrev = (size_t)ceil(revs - 1e-9);
+  return RS_OK;
+}
+
+/* Integral of the linear function through (t0, f0), (t1, f1) over [a, b] n [t0, t1]. */
+static double overlap_integral(double t0, double f0, double t1, double f1, double a, double b)
+{
+  const double lo = fmax(a, t0), hi = fmin(b, t1);
+  if (!(hi > lo) || !(t1 > t0)) return 0.0;
+  const double flo = f0 + (f1 - f0) * (lo - t0) / (t1 - t0);
+  const double fhi = f0 + (f1 - f0) * (hi - t0) / (t1 - t0);
+  return 0.5 * (flo + fhi) * (hi - lo);
+}
+
+static int rig_step_hook(void *ctx, double t, const double *y)
+{
+  rig_state *r = ctx;
+  const rs_model *m = r->m;
+  const int n = m->n;
+  int status = rs_rig_memory_record(&r->mem, t, y[n], y[2 * n], &r->msg);
+  if (status != RS_OK) return status;
+  double fx = 0.0;
+  for (int i = 0; i < n; i++) fx += y[i] * m->dx;
+  const double mu = fx / m->normal_load, slip = -rs_model_creepage(m, t, y);
+  if (!r->started) {
+    r->started = 1;
+  } else {
+    const double t0 = r->t_prev, T = r->c->rig.revolution_time, t_end = r->c->end_time;
+    while (r->rev < r->nrev) {
+      const double a = r->rev * T, b = fmin((r->rev + 1) * T, t_end);
+      r->rev_mu += overlap_integral(t0, r->mu_prev, t, mu, a, b);
+      r->rev_slip += overlap_integral(t0, r->slip_prev, t, slip, a, b);
+      if (t < b * (1.0 - 1e-12)) break;
+      if (r->out &&
+          (status = rs_output_put_revolution(r->out, r->rev, r->rev_mu / (b - a),
+                                             r->rev_slip / (b - a), &r->msg)) != RS_OK)
+        return status;
+      r->res->rig_revolutions = (double)(r->rev + 1);
+      r->rev++;
+      r->rev_mu = r->rev_slip = 0.0;
+    }
+    while (r->step < r->c->rig.nsteps) {
+      const size_t j = r->step;
+      const double a = r->window_start[j], b = r->time_end[j];
+      r->step_mu += overlap_integral(t0, r->mu_prev, t, mu, a, b);
+      r->step_slip += overlap_integral(t0, r->slip_prev, t, slip, a, b);
+      if (t < b * (1.0 - 1e-12)) break;
+      r->res->rig_step_mu[j] = r->step_mu / (b - a);
+      r->res->rig_step_slip[j] = r->step_slip / (b - a);
+      if (r->out && (status = rs_output_put_step(r->out, j, r->res->rig_step_mu[j],
+                                                 r->res->rig_step_slip[j], &r->msg)) != RS_OK)
+        return status;
+      r->step++;
+      r->step_mu = r->step_slip = 0.0;
+    }
+  }
+  r->t_prev = t;
+  r->mu_prev = mu;
+  r->slip_prev = slip;
+  return RS_OK;
+}
+
+void rs_run_result_free(rs_run_result *res)
+{
+  free(res->rig_step_mu);
+  free(res->rig_step_slip);
+  res->rig_step_mu = res->rig_step_slip = NULL;
+  res->rig_nsteps = 0;
+}
 
 static int write_record(run_state *s, double t, rs_diag *d, rs_msg *msg)
 {
@@ -77,7 +206,7 @@ static void free_state(run_state *s)
 /* Solver loop for transient mode from t0 (0, or the time of a restart file's last
  * record): one record per output interval k*dt after t0, the last time always stored. */
 static int run_transient(run_state *s, const rs_run_opts *o, rs_run_result *res, double t0,
-                         double started, rs_msg *msg)
+                         double started, rig_state *rig, rs_msg *msg)
 {
   const rs_case *c = s->c;
   rs_transient_opts topts = {.rtol = c->rtol,
@@ -87,6 +216,13 @@ static int run_transient(run_state *s, const rs_run_opts *o, rs_run_result *res,
                              .max_newton = 10,
                              .t_stop = fmin(rs_model_next_breakpoint(&s->m, t0), c->end_time),
                              .interrupt = o->interrupt_flag};
+  if (rig) {
+    topts.step_hook = rig_step_hook;
+    topts.hook_ctx = rig;
+    topts.max_step = rs_rig_memory_max_step(&rig->mem);
+    int status = rig_step_hook(rig, t0, s->y); /* the state at the start */
+    if (status != RS_OK) return rs_msg_set(msg, status, "%s", rig->msg.text);
+  }
   rs_transient *tr = NULL;
   int status = rs_transient_create(&tr, &s->m, t0, s->y, s->yp, &topts, msg);
   if (status != RS_OK) return status;
@@ -105,6 +241,7 @@ static int run_transient(run_state *s, const rs_run_opts *o, rs_run_result *res,
     if (fabs(bp - t_out) <= 1e-9 * c->output_interval) bp = t_out;
     const double target = fmin(t_out, bp);
     status = rs_transient_advance(tr, target, s->y, s->yp, msg);
+    if (status != RS_OK && rig && rig->msg.text[0]) rs_msg_set(msg, status, "%s", rig->msg.text);
     if (status != RS_OK) {
       rs_transient_get_stats(tr, &res->stats); /* the summary counts the failed attempt */
       break;
@@ -176,6 +313,7 @@ int rs_run(const rs_case *c, const rs_run_opts *o, rs_run_result *res, rs_msg *m
   if (status != RS_OK) return status;
   const int n = s.m.n;
   res->mu = s.m.mu;
+  res->dx = s.m.dx;
   s.y = calloc((size_t)s.m.neq, sizeof *s.y);
   s.yp = calloc((size_t)s.m.neq, sizeof *s.yp);
   s.slip = calloc((size_t)n, sizeof *s.slip);
@@ -187,6 +325,45 @@ int rs_run(const rs_case *c, const rs_run_opts *o, rs_run_result *res, rs_msg *m
   }
   const char *path = o->output_path ? o->output_path : c->output_file;
   snprintf(res->file, sizeof res->file, "%s", path);
+  /* Twin-disc rig mode: the circumferential memory and the per-step results. */
+  rig_state rig_mem, *rig = NULL;
+  rs_output_rig rig_spec = {0};
+  if (c->rig.on) {
+    if (o->restart_path) {
+      free_state(&s);
+      return rs_msg_set(msg, RS_ERR_INPUT,
+                        "--restart %s: a twin_disc: run cannot be restarted (the plastic state "
+                        "around the discs is not stored in the output file); run it whole",
+                        o->restart_path);
+    }
+    status = rig_create(&rig_mem, c, &s.m, msg);
+    if (status != RS_OK) {
+      free_state(&s);
+      return status;
+    }
+    rig = &rig_mem;
+    rig->res = res;
+    res->rig_nsteps = c->rig.nsteps;
+    res->rig_step_mu = malloc(c->rig.nsteps * sizeof(double));
+    res->rig_step_slip = malloc(c->rig.nsteps * sizeof(double));
+    if (!res->rig_step_mu || !res->rig_step_slip) {
+      rig_free(rig);
+      free_state(&s);
+      rs_run_result_free(res);
+      return rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory");
+    }
+    for (size_t j = 0; j < c->rig.nsteps; j++) res->rig_step_mu[j] = res->rig_step_slip[j] = NAN;
+    s.m.memory = &rig->mem;
+    rig_spec = (rs_output_rig){.nsteps = c->rig.nsteps,
+                               .nrevolutions = rig->nrev,
+                               .slip_start = rig->slip_start,
+                               .slip_end = rig->slip_end,
+                               .time_start = rig->time_start,
+                               .time_end = rig->time_end,
+                               .window_start = rig->window_start,
+                               .revolution_time = c->rig.revolution_time,
+                               .recovery = c->rig.recovery};
+  }
   double t0 = 0.0;
   char *history = NULL; /* the history attribute, naming the restart file */
   if (o->restart_path) {
@@ -196,6 +373,7 @@ int rs_run(const rs_case *c, const rs_run_opts *o, rs_run_result *res, rs_msg *m
     if (status == RS_OK && !(history = malloc(len)))
       status = rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory");
     if (status != RS_OK) {
+      if (rig) rig_free(rig);
       free_state(&s);
       return status;
     }
@@ -211,10 +389,12 @@ int rs_run(const rs_case *c, const rs_run_opts *o, rs_run_result *res, rs_msg *m
                          .dimension = c->dimension,
                          .nx = (size_t)n,
                          .x = s.m.x,
-                         .fields = fields};
+                         .fields = fields,
+                         .rig = rig ? &rig_spec : NULL};
   status = o->no_output ? RS_OK : rs_output_create(&s.out, &spec, msg);
   free(history);
   if (status != RS_OK) {
+    if (rig) rig_free(rig);
     free_state(&s);
     return status;
   }
@@ -237,8 +417,10 @@ int rs_run(const rs_case *c, const rs_run_opts *o, rs_run_result *res, rs_msg *m
     res->records = status == RS_OK;
     res->time = t0;
   }
-  if (status == RS_OK && c->mode == RS_MODE_TRANSIENT)
-    status = run_transient(&s, o, res, t0, started, msg);
+  if (status == RS_OK && c->mode == RS_MODE_TRANSIENT) {
+    if (rig) rig->out = s.out;
+    status = run_transient(&s, o, res, t0, started, rig, msg);
+  }
 
   char why[RS_MSG_LEN + 16];
   if (status == RS_OK)
@@ -252,6 +434,7 @@ int rs_run(const rs_case *c, const rs_run_opts *o, rs_run_result *res, rs_msg *m
   int close_status = rs_output_close(s.out, status == RS_OK ? msg : &tmp);
   if (status == RS_OK) status = close_status;
   res->wall_seconds = rs_wall_clock() - started;
+  if (rig) rig_free(rig);
   free_state(&s);
   return status;
 }

@@ -128,6 +128,7 @@ int rs_sweep_run(const rs_sweep *s, const char *case_path, const char *const *se
         ps = rs_run(&c, &po, &rr, &point_msg);
         d = rr.final;
         res->newton_iters += rr.stats.nonlin_iters;
+        rs_run_result_free(&rr);
       }
       rs_case_free(&c);
     }

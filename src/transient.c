@@ -22,6 +22,8 @@ struct rs_transient {
   double cj; /* of the step being solved: sets the residual scaling r */
   double t;
   volatile sig_atomic_t *interrupt;
+  int (*step_hook)(void *ctx, double t, const double *y);
+  void *hook_ctx;
   rs_stats before_restart; /* IDA's counters of the segments before the last IDAReInit */
 };
 
@@ -67,6 +69,8 @@ int rs_transient_create(rs_transient **out, const rs_model *m, double t0, const 
   tr->m = m;
   tr->t = t0;
   tr->interrupt = o->interrupt;
+  tr->step_hook = o->step_hook;
+  tr->hook_ctx = o->hook_ctx;
   const int n = m->n;
   N_Vector id = NULL; /* differential/algebraic components (force control) */
   if (SUNContext_Create(NULL, &tr->ctx) != 0) goto fail;
@@ -106,6 +110,7 @@ int rs_transient_create(rs_transient **out, const rs_model *m, double t0, const 
   flag |= IDASetMaxNumSteps(tr->ida, o->max_steps > 0 ? o->max_steps : 1000000);
   flag |= IDASetErrHandlerFn(tr->ida, rs_sundials_silent, NULL);
   if (isfinite(o->t_stop)) flag |= IDASetStopTime(tr->ida, o->t_stop);
+  if (o->max_step > 0.0) flag |= IDASetMaxStep(tr->ida, o->max_step);
   if (id) {
     flag |= IDASetId(tr->ida, id);
     flag |= IDASetSuppressAlg(tr->ida, SUNTRUE);
@@ -121,10 +126,40 @@ fail:
   return rs_msg_set(msg, RS_ERR_INTERNAL, "could not set up the transient solver (SUNDIALS/KLU)");
 }
 
+/* With a step hook: one IDA step at a time, the hook after each, then the solution
+ * at tout interpolated from the last step (IDA's dense output). */
+static int advance_by_steps(rs_transient *tr, double tout, sunrealtype *tret, int *hook_status)
+{
+  sunrealtype tn = 0.0;
+  IDAGetCurrentTime(tr->ida, &tn);
+  int flag = IDA_SUCCESS;
+  while (tn < tout) {
+    flag = IDASolve(tr->ida, tout, tret, tr->y, tr->yp, IDA_ONE_STEP);
+    if (flag < 0) return flag;
+    tn = *tret;
+    *hook_status = tr->step_hook(tr->hook_ctx, tn, N_VGetArrayPointer(tr->y));
+    if (*hook_status != RS_OK) return flag;
+    if (flag == IDA_TSTOP_RETURN) break;
+  }
+  if (tn != tout) {
+    if ((flag = IDAGetDky(tr->ida, tout, 0, tr->y)) < 0 ||
+        (flag = IDAGetDky(tr->ida, tout, 1, tr->yp)) < 0)
+      return flag;
+  }
+  *tret = tout;
+  return IDA_SUCCESS;
+}
+
 int rs_transient_advance(rs_transient *tr, double tout, double *y, double *yp, rs_msg *msg)
 {
   sunrealtype tret = tr->t;
-  const int flag = IDASolve(tr->ida, tout, &tret, tr->y, tr->yp, IDA_NORMAL);
+  int hook_status = RS_OK;
+  const int flag = tr->step_hook ? advance_by_steps(tr, tout, &tret, &hook_status)
+                                 : IDASolve(tr->ida, tout, &tret, tr->y, tr->yp, IDA_NORMAL);
+  if (hook_status != RS_OK)
+    return rs_msg_set(msg, hook_status, "at t = %.9g s: recording the state leaving the contact "
+                                        "failed",
+                      tret);
   if (flag < 0 && tr->interrupt && *tr->interrupt) {
     IDAGetCurrentTime(tr->ida, &tret);
     return rs_msg_set(msg, RS_ERR_INTERRUPTED, "interrupted at t = %.6g s", tret);

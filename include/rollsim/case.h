@@ -26,6 +26,29 @@ enum {
   RS_FIELD_REGIME = 1 << 6
 };
 
+/* One step of a twin-disc protocol: slip held (slip_start == slip_end) or ramped. */
+typedef struct rs_rig_step {
+  double slip_start, slip_end; /* rig slip s = (V1 - V2)/V = -creepage (s > 0: F_x > 0) */
+  double revolutions;          /* of disc 1 */
+} rs_rig_step;
+
+/* twin_disc: block (model.md §8). When present it sets contact.normal_load (F/width),
+ * contact.radius, rolling.velocity, rolling.creepage and simulation.end_time. */
+typedef struct rs_twin_disc {
+  int on;
+  double radius_1, radius_2;   /* mm */
+  double width;                /* mm */
+  double normal_force;         /* N */
+  double rpm;                  /* rolling speed as revolutions per minute of disc 1 */
+  double rpm_1, rpm_2;         /* alternative: the disc speeds (constant slip) */
+  double revolutions;          /* with rpm_1/rpm_2: length of the run */
+  double recovery;             /* fraction of u_pl, u* kept per revolution, [0, 1] */
+  double average_window;       /* trailing fraction of each step averaged, (0, 1] */
+  size_t nsteps;
+  rs_rig_step *steps;
+  double revolution_time;      /* s, 2 pi R1 / V (derived) */
+} rs_twin_disc;
+
 typedef struct rs_case {
   char *source_path; /* the case file as given on the command line */
   char *yaml_text;   /* the case as run (after --set), as YAML text */
@@ -78,6 +101,9 @@ typedef struct rs_case {
   int max_order;
   rs_scaling scaling;                 /* solver.scaling: auto | difference | self */
   long max_steps;                     /* solver.max_steps, default 1000000 */
+
+  /* twin_disc: */
+  rs_twin_disc rig;
 
   /* output: */
   char *output_file;

@@ -45,7 +45,9 @@ typedef struct rs_model {
   rs_history shift;        /* rigid shift velocity, mm/s (pure shift when V = 0) */
   rs_scaling scaling;
   double time_scale;       /* s: sets r when there is neither rolling nor a time step */
-  double inflow_upl, inflow_ustar; /* state of the material entering at the leading edge */
+  /* State of the material entering at the leading edge: fresh (0), or the twin-disc
+   * memory when set (rollsim/rig.h; owned by the caller, updated between time steps). */
+  const struct rs_rig_memory *memory;
 } rs_model;
 
 /* Build grid, influence coefficients and the normal solution from a case. */

@@ -10,6 +10,18 @@
 
 typedef struct rs_output rs_output;
 
+/* Twin-disc summaries (fixed dimensions protocol_step and revolution): the protocol is
+ * written at creation, the traction coefficients as each step or revolution completes
+ * (NaN until then). */
+typedef struct rs_output_rig {
+  size_t nsteps, nrevolutions;
+  const double *slip_start, *slip_end;  /* [nsteps], rig slip (V1 - V2)/V */
+  const double *time_start, *time_end;  /* [nsteps], s */
+  const double *window_start;           /* [nsteps], s: start of the averaging window */
+  double revolution_time;               /* s */
+  double recovery;
+} rs_output_rig;
+
 typedef struct rs_output_spec {
   const char *path;       /* file to create (overwritten if it exists) */
   const char *title;      /* global attribute title */
@@ -19,6 +31,7 @@ typedef struct rs_output_spec {
   size_t nx;              /* number of cells */
   const double *x;        /* cell centres, mm [nx] */
   unsigned fields;        /* RS_FIELD_* mask (rollsim/case.h): which (time, x) fields to write */
+  const rs_output_rig *rig; /* twin-disc summaries, or NULL */
 } rs_output_spec;
 
 /* One record. Scalars per model.md §7; field arrays have nx entries (NULL allowed
@@ -41,6 +54,12 @@ typedef struct rs_record {
 int rs_output_create(rs_output **out, const rs_output_spec *spec, rs_msg *msg);
 /* Append one record and sync it to disk. */
 int rs_output_write(rs_output *out, const rs_record *rec, rs_msg *msg);
+/* Twin-disc: mean traction coefficient F_x/F_n and mean slip over the averaging window
+ * of protocol step i, or over revolution i; synced. */
+int rs_output_put_step(rs_output *out, size_t i, double traction_coefficient, double slip,
+                       rs_msg *msg);
+int rs_output_put_revolution(rs_output *out, size_t i, double traction_coefficient, double slip,
+                             rs_msg *msg);
 /* Number of records written so far. */
 size_t rs_output_records(const rs_output *out);
 /* The status attribute is stored NUL-padded to this fixed length (longer texts are

@@ -31,7 +31,16 @@ typedef struct rs_run_result {
   double wall_seconds;
   size_t records;
   char file[1024];
+  /* Twin-disc runs: per protocol step, mean traction coefficient and slip over its
+   * averaging window (NaN if not reached); revolutions completed. Freed by
+   * rs_run_result_free. */
+  size_t rig_nsteps;
+  double *rig_step_mu, *rig_step_slip;
+  double rig_revolutions;
+  double dx;                /* cell size, mm */
 } rs_run_result;
+
+void rs_run_result_free(rs_run_result *res);
 
 /* Returns RS_OK, RS_ERR_SOLVER (status "failed: ..."), RS_ERR_INTERRUPTED,
  * RS_ERR_OUTPUT or RS_ERR_INTERNAL; msg says what happened. Records written

@@ -40,6 +40,11 @@ typedef struct rs_transient_opts {
   int max_newton;     /* Newton iterations per step (KINSOL), default 10 */
   double t_stop;      /* IDA never steps beyond this time (INFINITY: no limit) */
   volatile sig_atomic_t *interrupt; /* set asynchronously: stop at once (may be NULL) */
+  double max_step;    /* s, 0: no limit */
+  /* Called after every accepted time step with the solution there (may be NULL);
+   * a status other than RS_OK stops the integration with that status. */
+  int (*step_hook)(void *ctx, double t, const double *y);
+  void *hook_ctx;
 } rs_transient_opts;
 
 /* y0, yp0: a consistent initial state (see rs_model_consistent_rates). */
