@@ -60,6 +60,13 @@ foreach(point "0.3;-1e-3" "0.2;-5e-4" "0.3;-1e-4" "0.3;-5e-4" "0.2;-2e-3" "0.3;-
   list(APPEND PP_CREEP_FILES ${CMAKE_CURRENT_BINARY_DIR}/${name}.nc)
 endforeach()
 
+# Twin-disc run: two held slip steps of 3 revolutions (tests/cases/twin_disc_small.yaml), ~1 s.
+set(PP_RIG ${CMAKE_CURRENT_BINARY_DIR}/pp_rig.nc)
+add_test(NAME pp_run_rig
+  COMMAND ${RS_BIN} run ${PROJECT_SOURCE_DIR}/tests/cases/twin_disc_small.yaml -o ${PP_RIG} --quiet
+    --set "twin_disc.protocol=[{slip: 0.005, revolutions: 3}, {slip: 0.01, revolutions: 3}]")
+set_tests_properties(pp_run_rig PROPERTIES FIXTURES_SETUP pp_rig)
+
 # Synthetic sweep files (the layout of interfaces.md; rollsim sweep is not there yet) and a run
 # file without records.
 set(PP_SYNTH ${PP_OUT}/synthetic)
@@ -90,6 +97,8 @@ pp_figure(pp_fig_creepcurve_sweep "pp_creep;pp_synthetic" creepcurve_sweep.png c
 list(GET PP_CREEP_FILES 0 PP_STEADY)
 pp_figure(pp_fig_history_steady pp_creep history_steady.png history ${PP_STEADY})
 
+pp_figure(pp_fig_rig pp_rig rig.png rig ${PP_RIG})
+
 # Format from the extension: SVG and PDF carry their signatures.
 add_test(NAME pp_fig_svg COMMAND ${PP_CHECK} --out ${PP_OUT}/history.svg --min-bytes 20000
   --head "<svg" -- ${PP_RUN} history ${PP_DEFAULT} -o ${PP_OUT}/history.svg)
@@ -112,6 +121,8 @@ set_tests_properties(pp_check_export pp_check_nearest pp_check_bound
 set_tests_properties(pp_check_export_plastic PROPERTIES FIXTURES_REQUIRED pp_plastic)
 set_tests_properties(pp_check_creep PROPERTIES FIXTURES_REQUIRED pp_creep)
 set_tests_properties(pp_check_sweep PROPERTIES FIXTURES_REQUIRED pp_synthetic)
+add_test(NAME pp_check_rig COMMAND ${PP_NUM} rig ${PP_RIG})
+set_tests_properties(pp_check_rig PROPERTIES FIXTURES_REQUIRED pp_rig)
 
 # ---- errors: one line on stderr naming the file/variable, exit status 2 ------------------------
 

@@ -105,7 +105,10 @@ static int rig_step_hook(void *ctx, double t, const double *y)
   if (status != RS_OK) return status;
   double fx = 0.0;
   for (int i = 0; i < n; i++) fx += y[i] * m->dx;
-  const double mu = fx / m->normal_load, slip = -rs_model_creepage(m, t, y);
+  /* The slip jumps where a held step starts: the segment ending at t takes its left
+   * limit, the next one starts from the value at t. */
+  const double mu = fx / m->normal_load, slip_next = -rs_model_creepage(m, t, y);
+  const double slip = r->started ? -rs_model_creepage(m, nextafter(t, -INFINITY), y) : slip_next;
   if (!r->started) {
     r->started = 1;
   } else {
@@ -140,7 +143,7 @@ static int rig_step_hook(void *ctx, double t, const double *y)
   }
   r->t_prev = t;
   r->mu_prev = mu;
-  r->slip_prev = slip;
+  r->slip_prev = slip_next;
   return RS_OK;
 }
 

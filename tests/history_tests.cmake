@@ -13,3 +13,12 @@ endif()
 # Prescribed tangential force: steady (elastic and plastic) against the inverse of
 # prescribed-creepage runs, and a transient force ramp (see the test's header).
 rs_unit_test(test_force_control)
+
+if(SYSTEM_PYTHON3)
+  # Twin-disc rig mode: recovery 1 converging non-decreasing traction, tau_c0 high =
+  # plain rolling, recovery 0 = fresh material (see the script's header).
+  add_test(NAME test_twin_disc
+    COMMAND ${SYSTEM_PYTHON3} ${RS_TESTS}/check_twin_disc.py ${RS_BIN}
+      ${RS_TESTS}/cases/twin_disc_small.yaml ${RS_TESTS}/cases/twin_disc_plain.yaml
+      ${RS_HIST}/twin_disc)
+endif()

@@ -95,6 +95,14 @@ def cmd_plastic(args):
         _plots().plot_plastic(ustar, tauc, _title(args, run), args.output)
 
 
+def cmd_rig(args):
+    figure_format(args.output)
+    with RunFile(args.file) as run:
+        rig = extract.rig_results(run)
+        _warn_status(run)
+        _plots().plot_rig(rig, _title(args, run), args.output)
+
+
 def cmd_export(args):
     with RunFile(args.file) as run:
         header, columns = extract.export_table(run, args.var)
@@ -168,6 +176,13 @@ def build_parser():
                "Needs ustar and tauc in the file (output.fields).")
     s.add_argument("file", metavar="FILE")
     s.set_defaults(func=cmd_plastic)
+
+    s = figure("rig", "twin-disc traction coefficient per protocol step and per revolution",
+               "Twin-disc run (twin_disc: block): traction coefficient of each protocol step "
+               "(mean over its\naveraging window) against the slip, and per revolution with "
+               "the slip.")
+    s.add_argument("file", metavar="FILE")
+    s.set_defaults(func=cmd_rig)
 
     s = sub.add_parser("export", help="variables to CSV", epilog=EXPORT_EPILOG,
                        description="Write variables of a rollsim file to CSV.",

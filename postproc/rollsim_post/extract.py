@@ -330,3 +330,29 @@ def write_csv(out, header, columns):
         if f is not sys.stdout:
             f.close()
     return nrows
+
+
+class RigResults:
+    """Twin-disc summaries of a rollsim run (twin_disc: block): per protocol step and
+    per revolution of disc 1. Steps or revolutions not reached are NaN (dropped)."""
+
+    def __init__(self, step_slip, step_mu, rev_index, rev_slip, rev_mu):
+        self.step_slip, self.step_mu = step_slip, step_mu
+        self.rev_index, self.rev_slip, self.rev_mu = rev_index, rev_slip, rev_mu
+
+
+def rig_results(run):
+    """Read the twin-disc summaries (step_* and revolution_* variables)."""
+    if not run.has("step_traction_coefficient"):
+        raise PostError(f"{run.path}: no twin-disc results (variable "
+                        "'step_traction_coefficient'): not a twin_disc: run")
+    step_slip = np.asarray(run.values("step_slip"), dtype=float)
+    step_mu = np.asarray(run.values("step_traction_coefficient"), dtype=float)
+    rev_slip = np.asarray(run.values("revolution_slip"), dtype=float)
+    rev_mu = np.asarray(run.values("revolution_traction_coefficient"), dtype=float)
+    done = np.isfinite(step_mu)
+    rev_done = np.isfinite(rev_mu)
+    if not rev_done.any():
+        raise PostError(f"{run.path}: no revolution completed yet")
+    return RigResults(step_slip[done], step_mu[done], np.nonzero(rev_done)[0] + 1,
+                      rev_slip[rev_done], rev_mu[rev_done])

@@ -212,3 +212,25 @@ def plot_creepcurve(series, out, absolute=False, title=None):
     if title:
         ax.set_title(title, fontsize=11)
     save(fig, out)
+
+
+def plot_rig(rig, title, out):
+    """Twin-disc: traction coefficient per protocol step against slip (a rig's curve),
+    and per revolution with the slip on a second axis."""
+    fig, (a1, a2) = plt.subplots(1, 2, figsize=(11.0, 4.4), layout="constrained")
+    a1.plot(100.0 * rig.step_slip, rig.step_mu, "o-", ms=5)
+    a1.set_xlabel("slip (V1 - V2)/V [%] (mean over the step's window)")
+    a1.set_ylabel("traction coefficient F_x / F_n [1]")
+    a1.set_title("per protocol step", fontsize=10)
+    a1.grid(alpha=0.25)
+    a2.plot(rig.rev_index, rig.rev_mu, "-", color="C0")
+    a2.set_xlabel("revolution of disc 1")
+    a2.set_ylabel("traction coefficient F_x / F_n [1]", color="C0")
+    a2.grid(alpha=0.25)
+    b = a2.twinx()
+    b.plot(rig.rev_index, 100.0 * rig.rev_slip, "--", color="C1")
+    b.set_ylabel("slip [%]", color="C1")
+    a2.set_title("per revolution (mean)", fontsize=10)
+    if title:
+        fig.suptitle(title, fontsize=11)
+    save(fig, out)
