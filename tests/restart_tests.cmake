@@ -48,6 +48,25 @@ add_test(NAME restart_plastic_agrees COMMAND ${RS_RST_CHECK} agree ${RS_RST}/pl_
               ${RS_RST}/pl_first.nc ${RS_RST}/pl_rest.nc 1e-6 px upl ustar)
 set_tests_properties(restart_plastic_agrees PROPERTIES FIXTURES_REQUIRED "rst_pl;rst_pl_first")
 
+# Prescribed tangential force (the creepage is part of the state): Carter case, force
+# ramped 0 -> 30 N/mm over 0.5 ms, run 1 ms against 0.3 + 0.7 ms.
+set(RS_RST_FC ${RS_CASES}/default.yaml --set rolling.creepage=null
+              --set "rolling.tangential_force={ramp: {from: 0.0, to: 30.0, start: 0.0, duration: 0.0005}}"
+              --set simulation.rolled_distance=null --set simulation.end_time=0.001
+              --set simulation.output_interval=2e-5
+              --set "output.fields=[px,pn,upl,ustar]" ${RS_RST_TOL} --quiet)
+add_test(NAME restart_force_full COMMAND ${RS_BIN} run ${RS_RST_FC} -o ${RS_RST}/fc_full.nc)
+add_test(NAME restart_force_first COMMAND ${RS_BIN} run ${RS_RST_FC}
+              --set simulation.end_time=0.0003 -o ${RS_RST}/fc_first.nc)
+add_test(NAME restart_force_rest COMMAND ${RS_BIN} run ${RS_RST_FC}
+              --restart ${RS_RST}/fc_first.nc -o ${RS_RST}/fc_rest.nc)
+set_tests_properties(restart_force_full PROPERTIES FIXTURES_SETUP rst_fc)
+set_tests_properties(restart_force_first PROPERTIES FIXTURES_SETUP rst_fc_first)
+set_tests_properties(restart_force_rest PROPERTIES FIXTURES_REQUIRED rst_fc_first FIXTURES_SETUP rst_fc)
+add_test(NAME restart_force_agrees COMMAND ${RS_RST_CHECK} agree ${RS_RST}/fc_full.nc
+              ${RS_RST}/fc_first.nc ${RS_RST}/fc_rest.nc 1e-6 px creepage)
+set_tests_properties(restart_force_agrees PROPERTIES FIXTURES_REQUIRED "rst_fc;rst_fc_first")
+
 # Invalid restarts: exit 2, a message naming the problem, no output file.
 # A file without upl (default.yaml writes px, pn, slip, regime).
 add_test(NAME restart_nofields_first COMMAND ${RS_BIN} run ${RS_CASES}/default.yaml
