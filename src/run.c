@@ -469,6 +469,12 @@ int rs_run_print_derived(const rs_case *c, FILE *out, rs_msg *msg)
   if (V > 0.0)
     fprintf(out, "simulation.rolled_distance_total: %.6g  # mm (%.4g contact lengths)\n",
             V * c->end_time, V * c->end_time / (2.0 * m.hertz_a));
+  if (c->rig.on)
+    fprintf(out,
+            "twin_disc.revolution_time: %.6g  # s, 2 pi R1/V (%.4g cells rolled per revolution)\n"
+            "twin_disc.line_load: %.6g  # N/mm, normal_force/width\n",
+            c->rig.revolution_time, c->rig.revolution_time * V / m.dx,
+            c->rig.normal_force / c->rig.width);
   rs_model_free(&m);
   return RS_OK;
 }
