@@ -46,6 +46,12 @@ void rs_elastic2d_apply(const rs_elastic2d *el, const double *coef_table, const 
                         double *u, int nout)
 {
   const int n = el->n;
+  int nonzero = 0;
+  for (int j = 0; j < n && !nonzero; j++) nonzero = p[j] != 0.0;
+  if (!nonzero) { /* e.g. the rates in steady rolling */
+    for (int i = 0; i < nout; i++) u[i] = 0.0;
+    return;
+  }
   for (int i = 0; i < nout; i++) {
     const double *row = coef_table + i + n; /* row[-j] = coef(i - j) */
     double sum = 0.0;

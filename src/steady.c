@@ -6,10 +6,12 @@
 #include <kinsol/kinsol.h>
 #include <math.h>
 #include <nvector/nvector_serial.h>
+#include <sunmatrix/sunmatrix_sparse.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "linsys.h"
+#include "linsys_reduced.h"
 #include "rollsim/solver.h"
 
 struct rs_steady {
@@ -18,6 +20,9 @@ struct rs_steady {
   void *kmem;
   N_Vector u, uscale, fscale;
   rs_linsys ls;
+  rs_linear linear;       /* resolved choice (never AUTO) */
+  SUNLinearSolver red;    /* DENSE: Schur-complement solver (falls back to ls.LS) */
+  SUNMatrix placeholder;  /* DENSE: the 1-entry matrix KINSOL sees (see linsys_reduced.h) */
   rs_work work;
   double *yp;     /* y' seen by the residual: 0, or cj (y - y_prev) in pseudo-time steps */
   double *y_prev; /* start of the current pseudo-time step */
@@ -48,13 +53,24 @@ static int steady_jacobian(N_Vector u, N_Vector f, SUNMatrix J, void *data, N_Ve
   (void)t2;
   rs_steady *s = data;
   const double *y = N_VGetArrayPointer(u);
-  return rs_linsys_assemble(&s->ls, s->m, &s->work, s->t, y, rates(s, y), s->cj);
+  if (s->linear == RS_LINEAR_KLU)
+    return rs_linsys_assemble(&s->ls, s->m, &s->work, s->t, y, rates(s, y), s->cj);
+  /* DENSE: the Schur-complement solver reads the structure from the matrix itself. */
+  rs_csr csr = {.nrows = 0,
+                .cap = SM_NNZ_S(s->ls.J),
+                .rowptr = SM_INDEXPTRS_S(s->ls.J),
+                .col = SM_INDEXVALS_S(s->ls.J),
+                .val = SM_DATA_S(s->ls.J)};
+  s->ls.jac_evals++;
+  return rs_model_eval(s->m, &s->work, s->t, y, rates(s, y), s->cj, NULL, &csr);
 }
 
 void rs_steady_free(rs_steady *s)
 {
   if (!s) return;
   if (s->kmem) KINFree(&s->kmem);
+  if (s->red) SUNLinSolFree(s->red);
+  if (s->placeholder) SUNMatDestroy(s->placeholder);
   rs_linsys_free(&s->ls);
   if (s->u) N_VDestroy(s->u);
   if (s->uscale) N_VDestroy(s->uscale);
@@ -66,7 +82,16 @@ void rs_steady_free(rs_steady *s)
   free(s);
 }
 
+/* Grid size from which AUTO uses Newton-Krylov instead of the dense Schur complement
+ * (measured, bench/RESULTS.md). */
+enum { KRYLOV_FROM_CELLS = 1 << 30 };
+
 int rs_steady_create(rs_steady **out, const rs_model *m, rs_msg *msg)
+{
+  return rs_steady_create_with(out, m, RS_LINEAR_AUTO, msg);
+}
+
+int rs_steady_create_with(rs_steady **out, const rs_model *m, rs_linear linear, rs_msg *msg)
 {
   *out = NULL;
   rs_steady *s = calloc(1, sizeof *s);
@@ -82,6 +107,16 @@ int rs_steady_create(rs_steady **out, const rs_model *m, rs_msg *msg)
   if (!s->u || !s->uscale || !s->fscale || !s->yp || !s->y_prev) goto fail;
   if (rs_work_create(&s->work, n) != RS_OK) goto fail;
   if (rs_linsys_create(&s->ls, m, s->u, s->ctx) != RS_OK) goto fail;
+  /* The fast paths know the 3 n per-cell unknowns only. */
+  if (m->neq != 3 * n) linear = RS_LINEAR_KLU;
+  if (linear == RS_LINEAR_AUTO) linear = n >= KRYLOV_FROM_CELLS ? RS_LINEAR_KRYLOV : RS_LINEAR_DENSE;
+  if (linear == RS_LINEAR_KRYLOV) linear = RS_LINEAR_DENSE; /* not yet */
+  s->linear = linear;
+  if (linear == RS_LINEAR_DENSE) {
+    s->placeholder = SUNSparseMatrix(m->neq, m->neq, 1, CSR_MAT, s->ctx);
+    s->red = rs_lsreduced_create(n, m->neq, s->ls.J, s->ls.LS, s->ctx);
+    if (!s->placeholder || !s->red) goto fail;
+  }
 
   /* Scales: tractions by the largest bound, displacements by the displacement that
    * traction causes on its own cell; every residual row has traction units. */
@@ -100,7 +135,8 @@ int rs_steady_create(rs_steady **out, const rs_model *m, rs_msg *msg)
   if (!s->kmem) goto fail;
   int flag = KINInit(s->kmem, steady_residual, s->u);
   flag |= KINSetUserData(s->kmem, s);
-  flag |= KINSetLinearSolver(s->kmem, s->ls.LS, s->ls.J);
+  flag |= s->red ? KINSetLinearSolver(s->kmem, s->red, s->placeholder)
+                 : KINSetLinearSolver(s->kmem, s->ls.LS, s->ls.J);
   flag |= KINSetJacFn(s->kmem, steady_jacobian);
   flag |= KINSetMaxSetupCalls(s->kmem, 1);       /* exact Newton */
   flag |= KINSetMaxNewtonStep(s->kmem, 1e12);    /* steps from p = 0 are large */
@@ -133,6 +169,7 @@ static int newton(rs_steady *s, double *y, rs_stats *stats, int *kin_flag)
     if (stats) {
       stats->nonlin_iters += iters;
       stats->res_evals += fevals;
+      stats->lin_solves += iters; /* direct: one solve per Newton iteration */
     }
     if (flag == KIN_STEP_LT_STPTOL) { /* stalled: accept only a small residual */
       double fnorm = INFINITY;
