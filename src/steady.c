@@ -6,11 +6,13 @@
 #include <kinsol/kinsol.h>
 #include <math.h>
 #include <nvector/nvector_serial.h>
+#include <sunlinsol/sunlinsol_spgmr.h>
 #include <sunmatrix/sunmatrix_sparse.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "linsys.h"
+#include "linsys_krylov.h"
 #include "linsys_reduced.h"
 #include "rollsim/solver.h"
 
@@ -23,6 +25,9 @@ struct rs_steady {
   rs_linear linear;       /* resolved choice (never AUTO) */
   SUNLinearSolver red;    /* DENSE: Schur-complement solver (falls back to ls.LS) */
   SUNMatrix placeholder;  /* DENSE: the 1-entry matrix KINSOL sees (see linsys_reduced.h) */
+  SUNLinearSolver gmres;  /* KRYLOV: SPGMR with the products and preconditioner of kry */
+  rs_krylov kry;
+  rs_csr full;            /* KRYLOV: the assembled Jacobian (in ls.J's arrays) */
   rs_work work;
   double *yp;     /* y' seen by the residual: 0, or cj (y - y_prev) in pseudo-time steps */
   double *y_prev; /* start of the current pseudo-time step */
@@ -65,12 +70,53 @@ static int steady_jacobian(N_Vector u, N_Vector f, SUNMatrix J, void *data, N_Ve
   return rs_model_eval(s->m, &s->work, s->t, y, rates(s, y), s->cj, NULL, &csr);
 }
 
+/* KRYLOV: the Jacobian is assembled where the preconditioner is set up. */
+static int krylov_psetup(N_Vector u, N_Vector uscale, N_Vector fval, N_Vector fscale, void *data)
+{
+  (void)uscale;
+  (void)fval;
+  (void)fscale;
+  rs_steady *s = data;
+  const double *y = N_VGetArrayPointer(u);
+  s->full = (rs_csr){.nrows = 0,
+                     .cap = SM_NNZ_S(s->ls.J),
+                     .rowptr = SM_INDEXPTRS_S(s->ls.J),
+                     .col = SM_INDEXVALS_S(s->ls.J),
+                     .val = SM_DATA_S(s->ls.J)};
+  s->ls.jac_evals++;
+  if (rs_model_eval(s->m, &s->work, s->t, y, rates(s, y), s->cj, NULL, &s->full) != RS_OK) return -1;
+  return rs_krylov_setup(&s->kry, &s->full, s->t, s->cj) == RS_OK ? 0 : 1;
+}
+
+static int krylov_psolve(N_Vector u, N_Vector uscale, N_Vector fval, N_Vector fscale, N_Vector v,
+                         void *data)
+{
+  (void)u;
+  (void)uscale;
+  (void)fval;
+  (void)fscale;
+  rs_steady *s = data;
+  return rs_krylov_psolve(&s->kry, N_VGetArrayPointer(v)) == RS_OK ? 0 : 1;
+}
+
+static int krylov_times(N_Vector v, N_Vector Jv, N_Vector u, sunbooleantype *new_u, void *data)
+{
+  (void)u;
+  (void)new_u;
+  rs_steady *s = data;
+  return rs_krylov_times(&s->kry, &s->full, N_VGetArrayPointer(v), N_VGetArrayPointer(Jv)) == RS_OK
+             ? 0
+             : -1;
+}
+
 void rs_steady_free(rs_steady *s)
 {
   if (!s) return;
   if (s->kmem) KINFree(&s->kmem);
   if (s->red) SUNLinSolFree(s->red);
   if (s->placeholder) SUNMatDestroy(s->placeholder);
+  if (s->gmres) SUNLinSolFree(s->gmres);
+  rs_krylov_free(&s->kry);
   rs_linsys_free(&s->ls);
   if (s->u) N_VDestroy(s->u);
   if (s->uscale) N_VDestroy(s->uscale);
@@ -85,6 +131,9 @@ void rs_steady_free(rs_steady *s)
 /* Grid size from which AUTO uses Newton-Krylov instead of the dense Schur complement
  * (measured, bench/RESULTS.md). */
 enum { KRYLOV_FROM_CELLS = 1 << 30 };
+/* Krylov: near-field half band (cells), GMRES basis size, forcing term. */
+enum { KRYLOV_BAND = 16, KRYLOV_MAXL = 60 };
+#define KRYLOV_ETA 1e-3
 
 int rs_steady_create(rs_steady **out, const rs_model *m, rs_msg *msg)
 {
@@ -110,12 +159,18 @@ int rs_steady_create_with(rs_steady **out, const rs_model *m, rs_linear linear, 
   /* The fast paths know the 3 n per-cell unknowns only. */
   if (m->neq != 3 * n) linear = RS_LINEAR_KLU;
   if (linear == RS_LINEAR_AUTO) linear = n >= KRYLOV_FROM_CELLS ? RS_LINEAR_KRYLOV : RS_LINEAR_DENSE;
-  if (linear == RS_LINEAR_KRYLOV) linear = RS_LINEAR_DENSE; /* not yet */
   s->linear = linear;
   if (linear == RS_LINEAR_DENSE) {
     s->placeholder = SUNSparseMatrix(m->neq, m->neq, 1, CSR_MAT, s->ctx);
     s->red = rs_lsreduced_create(n, m->neq, s->ls.J, s->ls.LS, s->ctx);
     if (!s->placeholder || !s->red) goto fail;
+  }
+  if (linear == RS_LINEAR_KRYLOV) {
+    s->gmres = SUNLinSol_SPGMR(s->u, SUN_PREC_RIGHT, KRYLOV_MAXL, s->ctx);
+    if (!s->gmres || SUNLinSol_SPGMRSetMaxRestarts(s->gmres, 4) != 0 ||
+        SUNLinSol_SPGMRSetGSType(s->gmres, SUN_CLASSICAL_GS) != 0)
+      goto fail;
+    if (rs_krylov_create(&s->kry, m, KRYLOV_BAND) != RS_OK) goto fail;
   }
 
   /* Scales: tractions by the largest bound, displacements by the displacement that
@@ -135,9 +190,19 @@ int rs_steady_create_with(rs_steady **out, const rs_model *m, rs_linear linear, 
   if (!s->kmem) goto fail;
   int flag = KINInit(s->kmem, steady_residual, s->u);
   flag |= KINSetUserData(s->kmem, s);
-  flag |= s->red ? KINSetLinearSolver(s->kmem, s->red, s->placeholder)
-                 : KINSetLinearSolver(s->kmem, s->ls.LS, s->ls.J);
-  flag |= KINSetJacFn(s->kmem, steady_jacobian);
+  if (s->gmres) {
+    flag |= KINSetLinearSolver(s->kmem, s->gmres, NULL);
+    flag |= KINSetJacTimesVecFn(s->kmem, krylov_times);
+    flag |= KINSetPreconditioner(s->kmem, krylov_psetup, krylov_psolve);
+    /* The residual is piecewise linear: once the active set is right, an accurate
+     * linear solve ends the iteration (a loose forcing term would add iterations). */
+    flag |= KINSetEtaForm(s->kmem, KIN_ETACONSTANT);
+    flag |= KINSetEtaConstValue(s->kmem, KRYLOV_ETA);
+  } else {
+    flag |= s->red ? KINSetLinearSolver(s->kmem, s->red, s->placeholder)
+                   : KINSetLinearSolver(s->kmem, s->ls.LS, s->ls.J);
+    flag |= KINSetJacFn(s->kmem, steady_jacobian);
+  }
   flag |= KINSetMaxSetupCalls(s->kmem, 1);       /* exact Newton */
   flag |= KINSetMaxNewtonStep(s->kmem, 1e12);    /* steps from p = 0 are large */
   flag |= KINSetFuncNormTol(s->kmem, 1e-10); /* relative to the largest bound; roundoff is ~1e-12 */
@@ -163,13 +228,15 @@ static int newton(rs_steady *s, double *y, rs_stats *stats, int *kin_flag)
   for (int k = 0; k < 2; k++) {
     memcpy(u, y, (size_t)m->neq * sizeof *u);
     flag = KINSol(s->kmem, s->u, strategies[k], s->uscale, s->fscale);
-    long iters = 0, fevals = 0;
+    long iters = 0, fevals = 0, lin_iters = 0;
     KINGetNumNonlinSolvIters(s->kmem, &iters);
     KINGetNumFuncEvals(s->kmem, &fevals);
+    if (s->gmres) KINGetNumLinIters(s->kmem, &lin_iters);
     if (stats) {
       stats->nonlin_iters += iters;
       stats->res_evals += fevals;
-      stats->lin_solves += iters; /* direct: one solve per Newton iteration */
+      /* direct: one solve per Newton iteration; Krylov: GMRES iterations */
+      stats->lin_solves += s->gmres ? lin_iters : iters;
     }
     if (flag == KIN_STEP_LT_STPTOL) { /* stalled: accept only a small residual */
       double fnorm = INFINITY;
