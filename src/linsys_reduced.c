@@ -37,8 +37,15 @@ typedef struct red_content {
   double *S;       /* Schur complement, column-major h x h */
   int64_t xcap, bcap, Scap;
   int *cmap;       /* [n]: dense index -> coupled index */
+  unsigned char *xnz; /* [neq]: row z of X has a nonzero */
   int *ipiv;
   double *t, *rd;  /* [neq] */
+  /* copy of the matrix of the last complete setup: an identical matrix (same active
+   * set and coefficients, common at the last Newton iterations and between
+   * neighbouring points of a creep curve) reuses the factorisations */
+  int64_t *prev_rowptr, *prev_col, prev_cap;
+  double *prev_val;
+  int have_prev;
   /* the matrix of the last setup (its values are read again in solve) */
   const int64_t *rowptr, *col;
   const double *val;
@@ -105,17 +112,33 @@ static int red_setup(SUNLinearSolver LS, SUNMatrix placeholder)
   c->val = val;
   c->use_fallback = 0;
   c->st.setups++;
+  const int64_t nnz_all = rowptr[neq];
+  if (c->have_prev && !memcmp(rowptr, c->prev_rowptr, ((size_t)neq + 1) * sizeof *rowptr) &&
+      !memcmp(col, c->prev_col, (size_t)nnz_all * sizeof *col) &&
+      !memcmp(val, c->prev_val, (size_t)nnz_all * sizeof *val)) {
+    c->st.reuses++;
+    c->last_flag = SUNLS_SUCCESS;
+    return SUNLS_SUCCESS;
+  }
+  c->have_prev = 0;
 
   /* Dense rows and their dense unknowns. */
   int h = 0;
   for (int k = 0; k < neq; k++) c->dpos[k] = -1;
   for (int i = 0; i < n; i++) {
     if (rowptr[i + 1] - rowptr[i] <= 1) continue;
-    int yield = 0; /* row n + i has an entry in column i: a yield row fixes p_i */
+    /* Row n + i is a yield row when it has an entry in column i. Without hardening
+     * (zero entry in column 2n + i) it fixes p_i, and the traction row determines the
+     * plastic flow u_pl,i instead; with hardening it ties p_i to u*_i and p_i stays the
+     * dense unknown (then only the two u_pl entries of a dense row meet X, not every
+     * plastic p, which keeps the Schur update O(h n) instead of O(h^3)). */
+    int pinned = 0;
     for (int64_t k = rowptr[n + i]; k < rowptr[n + i + 1]; k++)
-      if (col[k] == i) yield = 1;
+      if (col[k] == i) pinned = 1;
+    for (int64_t k = rowptr[n + i]; pinned && k < rowptr[n + i + 1]; k++)
+      if (col[k] == 2 * n + i && val[k] != 0.0) pinned = 0;
     c->drow[h] = i;
-    c->dcol[h] = yield ? n + i : i;
+    c->dcol[h] = pinned ? n + i : i;
     c->dpos[c->dcol[h]] = h;
     h++;
   }
@@ -205,30 +228,52 @@ static int red_setup(SUNLinearSolver LS, SUNMatrix placeholder)
       }
     }
     if (!klu_l_tsolve(c->sym, c->num, nz, ncpl, c->B, &c->common)) return fallback_setup(LS, A);
-    for (int q = 0; q < ncpl; q++)
-      for (int z = 0; z < nz; z++) c->X[(size_t)z * ncpl + q] = c->B[(size_t)q * nz + z];
+    for (int z = 0; z < nz; z++) {
+      int any = 0;
+      for (int q = 0; q < ncpl; q++) {
+        const double v = c->B[(size_t)q * nz + z];
+        c->X[(size_t)z * ncpl + q] = v;
+        any |= v != 0.0;
+      }
+      c->xnz[z] = (unsigned char)any;
+    }
   }
 
   /* Schur complement S = J_DD - J_DZ X (column-major). */
   if (h > 0) {
     if (grow((void **)&c->S, &c->Scap, (int64_t)h * h, sizeof *c->S)) return SUNLS_MEM_FAIL;
     memset(c->S, 0, (size_t)h * (size_t)h * sizeof *c->S);
+    double *acc = c->t; /* [ncpl] row of J_DZ X, contiguous */
     for (int r = 0; r < h; r++) {
       const int i = c->drow[r];
+      for (int q = 0; q < ncpl; q++) acc[q] = 0.0;
+      int hit = 0;
       for (int64_t k = rowptr[i]; k < rowptr[i + 1]; k++) {
         const int64_t j = col[k];
         const double v = val[k];
         if (c->dpos[j] >= 0) {
           c->S[(size_t)c->dpos[j] * h + r] += v;
-        } else if (ncpl > 0 && v != 0.0) {
+        } else if (ncpl > 0 && v != 0.0 && c->xnz[c->zpos[j]]) { /* most rows of X are 0 */
           const double *x = c->X + (size_t)c->zpos[j] * ncpl;
-          for (int q = 0; q < ncpl; q++) c->S[(size_t)c->cpl[q] * h + r] -= v * x[q];
+          for (int q = 0; q < ncpl; q++) acc[q] += v * x[q];
+          hit = 1;
         }
       }
+      if (hit)
+        for (int q = 0; q < ncpl; q++) c->S[(size_t)c->cpl[q] * h + r] -= acc[q];
     }
     int info = 0;
     dgetrf_(&h, &h, c->S, &h, c->ipiv, &info);
     if (info != 0) return fallback_setup(LS, A);
+  }
+  int64_t cap_c = c->prev_cap, cap_v = c->prev_cap;
+  if (!grow((void **)&c->prev_col, &cap_c, nnz_all, sizeof *c->prev_col) &&
+      !grow((void **)&c->prev_val, &cap_v, nnz_all, sizeof *c->prev_val)) {
+    c->prev_cap = nnz_all > c->prev_cap ? nnz_all : c->prev_cap;
+    memcpy(c->prev_rowptr, rowptr, ((size_t)neq + 1) * sizeof *rowptr);
+    memcpy(c->prev_col, col, (size_t)nnz_all * sizeof *col);
+    memcpy(c->prev_val, val, (size_t)nnz_all * sizeof *val);
+    c->have_prev = 1;
   }
   c->last_flag = SUNLS_SUCCESS;
   return SUNLS_SUCCESS;
@@ -279,7 +324,8 @@ static int red_solve(SUNLinearSolver LS, SUNMatrix placeholder, N_Vector x, N_Ve
   for (int z = 0; z < nz; z++) {
     double v = c->t[z];
     const double *xr = c->X + (size_t)z * ncpl;
-    for (int q = 0; q < ncpl; q++) v -= xr[q] * c->rd[c->cpl[q]];
+    if (ncpl > 0 && c->xnz[z])
+      for (int q = 0; q < ncpl; q++) v -= xr[q] * c->rd[c->cpl[q]];
     xv[c->zcol[z]] = v;
   }
   c->st.solves++;
@@ -302,6 +348,10 @@ static int red_free(SUNLinearSolver LS)
     free(c->srow);
     free(c->cpl);
     free(c->cmap);
+    free(c->prev_rowptr);
+    free(c->prev_col);
+    free(c->prev_val);
+    free(c->xnz);
     free(c->sp);
     free(c->si);
     free(c->sx);
@@ -352,11 +402,13 @@ SUNLinearSolver rs_lsreduced_create(int n, int neq, SUNMatrix J, SUNLinearSolver
   c->si = malloc((size_t)c->scap * sizeof *c->si);
   c->sx = malloc((size_t)c->scap * sizeof *c->sx);
   c->cmap = malloc(un * sizeof *c->cmap);
+  c->prev_rowptr = malloc((ue + 1) * sizeof *c->prev_rowptr);
+  c->xnz = malloc(ue * sizeof *c->xnz);
   c->ipiv = malloc(un * sizeof *c->ipiv);
   c->t = malloc(ue * sizeof *c->t);
   c->rd = calloc(un, sizeof *c->rd);
   if (!c->drow || !c->dcol || !c->cpl || !c->dpos || !c->zpos || !c->zcol || !c->srow || !c->sp ||
-      !c->si || !c->sx || !c->cmap || !c->ipiv || !c->t || !c->rd)
+      !c->si || !c->sx || !c->cmap || !c->prev_rowptr || !c->xnz || !c->ipiv || !c->t || !c->rd)
     goto fail;
   if (!klu_l_defaults(&c->common)) goto fail;
   return LS;

@@ -7,13 +7,14 @@
  * reads that structure from the matrix itself (a traction row is dense when it
  * has more than one entry) and eliminates the sparse rows by a Schur complement:
  *   - "dense" rows D: the h dense traction rows; one "dense" unknown per such
- *     row: p_i, or u_pl,i when row n + i is a yield row (it fixes p_i, and the
- *     traction row then determines the plastic flow);
+ *     row: p_i, or u_pl,i when row n + i is a yield row without hardening (it
+ *     fixes p_i, and the traction row then determines the plastic flow);
  *   - the other rows S and unknowns Z form a square sparse block J_SZ (block
  *     triangular along the material flow), factored by KLU;
  *   - the h x h Schur complement J_DD - J_DZ J_SZ^-1 J_SD is factored by LAPACK
  *     dgetrf (only dense unknowns that appear in sparse rows, the plastic flows,
  *     contribute a correction).
+ * A matrix identical to that of the last setup keeps the factorisations.
  * If either factorisation is singular the solver falls back to the full KLU
  * factorisation (the solver given at creation) for that matrix. */
 #ifndef ROLLSIM_LINSYS_REDUCED_H
@@ -37,6 +38,7 @@ SUNLinearSolver rs_lsreduced_create(int n, int neq, SUNMatrix J, SUNLinearSolver
  * fell back to the full KLU factorisation. */
 typedef struct rs_lsreduced_stats {
   long setups, solves, fallbacks, analyses;
+  long reuses; /* setups with a matrix identical to the last one: factorisations kept */
   long dense_rows_sum; /* sum of h over setups */
 } rs_lsreduced_stats;
 void rs_lsreduced_get_stats(SUNLinearSolver LS, rs_lsreduced_stats *st);
