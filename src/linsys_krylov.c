@@ -63,9 +63,15 @@ int rs_krylov_setup(rs_krylov *k, const rs_csr *full, double t, double cj)
     const int64_t b = full->rowptr[i], e = full->rowptr[i + 1];
     const int dense = i < n && e - b > 1;
     if (i < n) k->dense[i] = (unsigned char)dense;
-    for (int64_t q = b; q < e; q++) {
+    /* A dense row holds every traction column in order (columns 0..n-1 at b..b+n-1):
+     * start at the band. */
+    const int64_t q0 = dense && e - b > n && full->col[b + n - 1] == n - 1 && i - w > 0 ? b + i - w : b;
+    for (int64_t q = q0; q < e; q++) {
       const int64_t j = full->col[q];
-      if (dense && j < n && (j < i - w || j > i + w)) continue;
+      if (dense && j < n && (j < i - w || j > i + w)) {
+        if (j > i + w) q = b + n - 1; /* past the band: jump to the columns after the traction block */
+        continue;
+      }
       if (nnz >= k->cap) return RS_ERR_INTERNAL;
       k->ci[nnz] = j;
       k->vx[nnz] = full->val[q];
@@ -86,6 +92,11 @@ int rs_krylov_setup(rs_krylov *k, const rs_csr *full, double t, double cj)
     k->analyses++;
     if (!k->sym) return RS_ERR_SOLVER;
   }
+  /* Same pattern: refactor with the pivot order of the last factorisation (a
+   * preconditioner tolerates its small pivots); a new factorisation if that fails. */
+  if (same && k->num && klu_l_refactor(k->rp, k->ci, k->vx, k->sym, k->num, &k->common) &&
+      k->common.status == KLU_OK)
+    return RS_OK;
   if (k->num) klu_l_free_numeric(&k->num, &k->common);
   k->num = klu_l_factor(k->rp, k->ci, k->vx, k->sym, &k->common);
   if (!k->num || k->common.status != KLU_OK) return RS_ERR_SOLVER;

@@ -128,10 +128,16 @@ void rs_steady_free(rs_steady *s)
   free(s);
 }
 
-/* Grid size from which AUTO uses Newton-Krylov instead of the dense Schur complement
- * (measured, bench/RESULTS.md). */
-enum { KRYLOV_FROM_CELLS = 1 << 30 };
-/* Krylov: near-field half band (cells), GMRES basis size, forcing term. */
+/* AUTO: Newton-Krylov for elastic models from this many cells, the dense Schur
+ * complement otherwise. Measured (bench/RESULTS.md): Carter elastic, one solve from
+ * p = 0, dense/Krylov 4.3/7.0 ms at 200 cells, 10.5/9.3 at 300, 21.9/12.9 at 400,
+ * 72/26 at 600. With plasticity the inexact linear solves make semismooth Newton
+ * cycle much more often (Carter k_rel = 0.98: 38 dense vs 45 Krylov iterations at
+ * 400 cells, and at 600 cells Krylov fell back to pseudo-time stepping for minutes
+ * where dense needed 35 iterations), so plastic models always use the dense path. */
+enum { KRYLOV_FROM_CELLS = 300 };
+/* Krylov: near-field half band (cells), GMRES basis size, forcing term (1e-3: fewest
+ * GMRES iterations for the elastic creep curve at 850 cells; 1e-6 cost 30 % more). */
 enum { KRYLOV_BAND = 16, KRYLOV_MAXL = 60 };
 #define KRYLOV_ETA 1e-3
 
@@ -158,7 +164,8 @@ int rs_steady_create_with(rs_steady **out, const rs_model *m, rs_linear linear, 
   if (rs_linsys_create(&s->ls, m, s->u, s->ctx) != RS_OK) goto fail;
   /* The fast paths know the 3 n per-cell unknowns only. */
   if (m->neq != 3 * n) linear = RS_LINEAR_KLU;
-  if (linear == RS_LINEAR_AUTO) linear = n >= KRYLOV_FROM_CELLS ? RS_LINEAR_KRYLOV : RS_LINEAR_DENSE;
+  if (linear == RS_LINEAR_AUTO)
+    linear = !m->has_plasticity && n >= KRYLOV_FROM_CELLS ? RS_LINEAR_KRYLOV : RS_LINEAR_DENSE;
   s->linear = linear;
   if (linear == RS_LINEAR_DENSE) {
     s->placeholder = SUNSparseMatrix(m->neq, m->neq, 1, CSR_MAT, s->ctx);

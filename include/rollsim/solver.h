@@ -30,8 +30,8 @@ int rs_steady_create(rs_steady **s, const rs_model *m, rs_msg *msg);
  * Newton tolerance): KLU on the whole sparse Jacobian; DENSE, the sparse rows
  * eliminated and the Schur complement on the dense traction rows factored by LAPACK;
  * KRYLOV, GMRES with FFT elastic products and a KLU-factored near-field
- * preconditioner; AUTO picks DENSE or KRYLOV by the grid size (KLU when the model
- * has unknowns beyond the 3 n per-cell ones). */
+ * preconditioner; AUTO picks KRYLOV for elastic models from 300 cells, DENSE
+ * otherwise (KLU when the model has unknowns beyond the 3 n per-cell ones). */
 typedef enum { RS_LINEAR_AUTO = 0, RS_LINEAR_KLU, RS_LINEAR_DENSE, RS_LINEAR_KRYLOV } rs_linear;
 int rs_steady_create_with(rs_steady **s, const rs_model *m, rs_linear linear, rs_msg *msg);
 /* Solve F(y, 0) = 0 at time t (inputs evaluated at t); y holds the initial guess
