@@ -41,6 +41,9 @@ typedef struct steady_chain {
   rs_work w;
   double *yp;
   long jac_now;   /* Jacobian evaluations of the current solver (it counts from its creation) */
+  double *yprev, *ylast; /* solutions of the last two points on this chain (secant predictor) */
+  double xprev, xlast; /* their values of the swept input */
+  int nsolved;    /* points solved on this chain */
   long jac_evals; /* of solvers already freed */
 } steady_chain;
 
@@ -52,7 +55,10 @@ static void chain_drop(steady_chain *ch)
   ch->st = NULL;
   rs_work_free(&ch->w);
   free(ch->yp);
-  ch->yp = NULL;
+  free(ch->yprev);
+  free(ch->ylast);
+  ch->yp = ch->yprev = ch->ylast = NULL;
+  ch->nsolved = 0;
   if (ch->have_model) rs_model_free(&ch->m);
   ch->have_model = 0;
 }
@@ -67,7 +73,7 @@ static int rolling_key(const char *key)
 /* One steady point, warm-started from y (length neq of this grid) when warm; the
  * model and solver of the previous point are reused when reuse. */
 static int steady_point(const rs_case *c, steady_chain *ch, double **y, int *ny, int warm,
-                        int reuse, rs_diag *d, rs_stats *sum, rs_msg *msg)
+                        int reuse, double x, rs_diag *d, rs_stats *sum, rs_msg *msg)
 {
   int status = RS_OK;
   if (reuse && ch->have_model && ch->st) {
@@ -78,7 +84,9 @@ static int steady_point(const rs_case *c, steady_chain *ch, double **y, int *ny,
     if (status != RS_OK) return status;
     ch->have_model = 1;
     ch->yp = calloc((size_t)ch->m.neq, sizeof *ch->yp);
-    if (!ch->yp || rs_work_create(&ch->w, ch->m.n) != RS_OK)
+    ch->yprev = calloc((size_t)ch->m.neq, sizeof *ch->yprev);
+    ch->ylast = calloc((size_t)ch->m.neq, sizeof *ch->ylast);
+    if (!ch->yp || !ch->yprev || !ch->ylast || rs_work_create(&ch->w, ch->m.n) != RS_OK)
       status = rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory");
     if (status == RS_OK) status = rs_steady_create(&ch->st, &ch->m, msg);
   }
@@ -88,8 +96,24 @@ static int steady_point(const rs_case *c, steady_chain *ch, double **y, int *ny,
     *ny = ch->m.neq;
     if (!*y) status = rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory");
   }
+  /* Secant predictor along the chain: y + (y - y_prev) (x - x_last)/(x_last - x_prev).
+   * The tractions follow the creepage piecewise linearly (between changes of the
+   * active set), so the start is exact or close to it; the plastic state is
+   * extrapolated alike. */
+  const int chained = status == RS_OK && reuse && warm && ch->nsolved >= 1;
+  if (chained) memcpy(ch->ylast, *y, (size_t)ch->m.neq * sizeof *ch->ylast);
+  if (chained && ch->nsolved >= 2 && ch->xlast != ch->xprev) {
+    const double f = (x - ch->xlast) / (ch->xlast - ch->xprev);
+    for (int i = 0; i < ch->m.neq; i++) (*y)[i] += f * (ch->ylast[i] - ch->yprev[i]);
+  }
   rs_stats stats = {0};
   if (status == RS_OK) status = rs_steady_solve(ch->st, 0.0, *y, &stats, msg);
+  if (status == RS_OK) {
+    if (chained) memcpy(ch->yprev, ch->ylast, (size_t)ch->m.neq * sizeof *ch->yprev);
+    ch->xprev = ch->xlast;
+    ch->xlast = x;
+    ch->nsolved = chained ? ch->nsolved + 1 : 1;
+  }
   if (status == RS_OK) rs_model_diagnostics(&ch->m, &ch->w, 0.0, *y, ch->yp, d, NULL, NULL, NULL);
   sum->nonlin_iters += stats.nonlin_iters;
   sum->lin_solves += stats.lin_solves;
@@ -160,7 +184,8 @@ int rs_sweep_run(const rs_sweep *s, const char *case_path, const char *const *se
     if (ps == RS_OK) {
       if (c.mode == RS_MODE_STEADY) {
         const int along = last_index > 0 && rolling_key(s->axes[s->naxes - 1].key);
-        ps = steady_point(&c, &chain, &y, &ny, last_index > 0, along, &d, &steady_sum, &point_msg);
+        ps = steady_point(&c, &chain, &y, &ny, last_index > 0, along,
+                          s->axes[s->naxes - 1].values[last_index], &d, &steady_sum, &point_msg);
       } else {
         rs_run_opts po = *o;
         po.no_output = 1;
