@@ -4,8 +4,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-int rs_krylov_create(rs_krylov *k, const rs_model *m, int band)
-{
+int rs_krylov_create(rs_krylov *k, const rs_model *m, int band) {
   memset(k, 0, sizeof *k);
   k->m = m;
   k->lin = *m;
@@ -26,8 +25,7 @@ int rs_krylov_create(rs_krylov *k, const rs_model *m, int band)
   return RS_OK;
 }
 
-void rs_krylov_free(rs_krylov *k)
-{
+void rs_krylov_free(rs_krylov *k) {
   if (k->num) klu_l_free_numeric(&k->num, &k->common);
   if (k->sym) klu_l_free_symbolic(&k->sym, &k->common);
   rs_work_free(&k->wlin);
@@ -41,15 +39,15 @@ void rs_krylov_free(rs_krylov *k)
   memset(k, 0, sizeof *k);
 }
 
-int rs_krylov_setup(rs_krylov *k, const rs_csr *full, double t, double cj)
-{
+int rs_krylov_setup(rs_krylov *k, const rs_csr *full, double t, double cj) {
   const rs_model *m = k->m;
   const int n = m->n, neq = m->neq, w = k->band;
   k->t = t;
   k->cj = cj;
   k->r = rs_model_scaling(m, t, cj);
   /* The linear part of v_s at time t: inputs frozen, rigid slip and inflow removed. */
-  k->lin.velocity = (rs_history){.kind = RS_HISTORY_CONSTANT, .value = rs_history_eval(&m->velocity, t)};
+  k->lin.velocity =
+      (rs_history){.kind = RS_HISTORY_CONSTANT, .value = rs_history_eval(&m->velocity, t)};
   k->lin.creepage = (rs_history){.kind = RS_HISTORY_CONSTANT, .value = 0.0};
   k->lin.shift = (rs_history){.kind = RS_HISTORY_CONSTANT, .value = 0.0};
   k->lin.inflow_upl = k->lin.inflow_ustar = 0.0;
@@ -65,11 +63,13 @@ int rs_krylov_setup(rs_krylov *k, const rs_csr *full, double t, double cj)
     if (i < n) k->dense[i] = (unsigned char)dense;
     /* A dense row holds every traction column in order (columns 0..n-1 at b..b+n-1):
      * start at the band. */
-    const int64_t q0 = dense && e - b > n && full->col[b + n - 1] == n - 1 && i - w > 0 ? b + i - w : b;
+    const int64_t q0 =
+        dense && e - b > n && full->col[b + n - 1] == n - 1 && i - w > 0 ? b + i - w : b;
     for (int64_t q = q0; q < e; q++) {
       const int64_t j = full->col[q];
       if (dense && j < n && (j < i - w || j > i + w)) {
-        if (j > i + w) q = b + n - 1; /* past the band: jump to the columns after the traction block */
+        if (j > i + w)
+          q = b + n - 1; /* past the band: jump to the columns after the traction block */
         continue;
       }
       if (nnz >= k->cap) return RS_ERR_INTERNAL;
@@ -103,11 +103,11 @@ int rs_krylov_setup(rs_krylov *k, const rs_csr *full, double t, double cj)
   return RS_OK;
 }
 
-int rs_krylov_times(rs_krylov *k, const rs_csr *full, const double *v, double *Jv)
-{
+int rs_krylov_times(rs_krylov *k, const rs_csr *full, const double *v, double *Jv) {
   const rs_model *m = k->m;
   const int n = m->n, neq = m->neq;
-  for (int i = 0; i < neq; i++) k->vp[i] = k->cj * v[i];
+  for (int i = 0; i < neq; i++)
+    k->vp[i] = k->cj * v[i];
   int status = rs_model_eval(&k->lin, &k->wlin, k->t, v, k->vp, k->cj, NULL, NULL);
   if (status != RS_OK) return status;
   for (int i = 0; i < neq; i++) {
@@ -115,7 +115,8 @@ int rs_krylov_times(rs_krylov *k, const rs_csr *full, const double *v, double *J
       Jv[i] = k->r * k->wlin.vslip[i];
     } else {
       double sum = 0.0;
-      for (int64_t q = full->rowptr[i]; q < full->rowptr[i + 1]; q++) sum += full->val[q] * v[full->col[q]];
+      for (int64_t q = full->rowptr[i]; q < full->rowptr[i + 1]; q++)
+        sum += full->val[q] * v[full->col[q]];
       Jv[i] = sum;
     }
   }
@@ -123,8 +124,7 @@ int rs_krylov_times(rs_krylov *k, const rs_csr *full, const double *v, double *J
   return RS_OK;
 }
 
-int rs_krylov_psolve(rs_krylov *k, double *v)
-{
+int rs_krylov_psolve(rs_krylov *k, double *v) {
   if (!k->num) return RS_ERR_SOLVER;
   /* KLU holds the transpose (CSR read as CSC): tsolve applies the inverse of P. */
   return klu_l_tsolve(k->sym, k->num, k->m->neq, 1, v, &k->common) ? RS_OK : RS_ERR_SOLVER;

@@ -22,7 +22,7 @@
 
 typedef struct rs_krylov {
   const rs_model *m;
-  rs_model lin;      /* shallow copy of *m: constant inputs at t, no rigid slip, no inflow */
+  rs_model lin; /* shallow copy of *m: constant inputs at t, no rigid slip, no inflow */
   rs_work wlin;
   int band;
   double t, cj, r;

@@ -20,10 +20,10 @@ typedef struct red_content {
   rs_lsreduced_stats st;
   /* classification of the last setup */
   int h, nz, ncpl;
-  int *drow, *dcol;   /* [h]: dense row and its dense unknown */
-  int *dpos, *zpos;   /* [neq]: column -> dense index / Z index (-1 if not) */
-  int *zcol, *srow;   /* [neq]: Z index -> column, S index -> row */
-  int *cpl;           /* [h]: dense indices whose column appears in sparse rows */
+  int *drow, *dcol; /* [h]: dense row and its dense unknown */
+  int *dpos, *zpos; /* [neq]: column -> dense index / Z index (-1 if not) */
+  int *zcol, *srow; /* [neq]: Z index -> column, S index -> row */
+  int *cpl;         /* [h]: dense indices whose column appears in sparse rows */
   /* J_SZ in CSR (KLU sees it as CSC of the transpose: klu_l_tsolve solves J_SZ x = b) */
   int64_t *sp, *si, *sp_old, *si_old;
   double *sx;
@@ -32,14 +32,14 @@ typedef struct red_content {
   klu_l_common common;
   klu_l_symbolic *sym;
   klu_l_numeric *num;
-  double *X;       /* J_SZ^-1 J_SD, coupled columns only: row-major [nz][ncpl] */
-  double *B;       /* column-major [ncpl][nz] work for the multi-rhs solve */
-  double *S;       /* Schur complement, column-major h x h */
+  double *X; /* J_SZ^-1 J_SD, coupled columns only: row-major [nz][ncpl] */
+  double *B; /* column-major [ncpl][nz] work for the multi-rhs solve */
+  double *S; /* Schur complement, column-major h x h */
   int64_t xcap, bcap, Scap;
-  int *cmap;       /* [n]: dense index -> coupled index */
+  int *cmap;          /* [n]: dense index -> coupled index */
   unsigned char *xnz; /* [neq]: row z of X has a nonzero */
   int *ipiv;
-  double *t, *rd;  /* [neq] */
+  double *t, *rd; /* [neq] */
   /* copy of the matrix of the last complete setup: an identical matrix (same active
    * set and coefficients, common at the last Newton iterations and between
    * neighbouring points of a creep curve) reuses the factorisations */
@@ -53,28 +53,26 @@ typedef struct red_content {
 
 #define RC(LS) ((red_content *)(LS)->content)
 
-static SUNLinearSolver_Type red_gettype(SUNLinearSolver LS)
-{
+static SUNLinearSolver_Type red_gettype(SUNLinearSolver LS) {
   (void)LS;
   return SUNLINEARSOLVER_DIRECT;
 }
 
-static SUNLinearSolver_ID red_getid(SUNLinearSolver LS)
-{
+static SUNLinearSolver_ID red_getid(SUNLinearSolver LS) {
   (void)LS;
   return SUNLINEARSOLVER_CUSTOM;
 }
 
-static int red_initialize(SUNLinearSolver LS)
-{
+static int red_initialize(SUNLinearSolver LS) {
   RC(LS)->last_flag = SUNLS_SUCCESS;
   return SUNLS_SUCCESS;
 }
 
-static sunindextype red_lastflag(SUNLinearSolver LS) { return (sunindextype)RC(LS)->last_flag; }
+static sunindextype red_lastflag(SUNLinearSolver LS) {
+  return (sunindextype)RC(LS)->last_flag;
+}
 
-static int fallback_setup(SUNLinearSolver LS, SUNMatrix A)
-{
+static int fallback_setup(SUNLinearSolver LS, SUNMatrix A) {
   red_content *c = RC(LS);
   c->use_fallback = 1;
   c->st.fallbacks++;
@@ -89,8 +87,7 @@ static int fallback_setup(SUNLinearSolver LS, SUNMatrix A)
 }
 
 /* Grow a buffer to hold at least need elements. */
-static int grow(void **p, int64_t *cap, int64_t need, size_t size)
-{
+static int grow(void **p, int64_t *cap, int64_t need, size_t size) {
   if (need <= *cap) return 0;
   void *q = realloc(*p, (size_t)need * size);
   if (!q) return -1;
@@ -99,8 +96,7 @@ static int grow(void **p, int64_t *cap, int64_t need, size_t size)
   return 0;
 }
 
-static int red_setup(SUNLinearSolver LS, SUNMatrix placeholder)
-{
+static int red_setup(SUNLinearSolver LS, SUNMatrix placeholder) {
   (void)placeholder;
   red_content *c = RC(LS);
   SUNMatrix A = c->J;
@@ -124,7 +120,8 @@ static int red_setup(SUNLinearSolver LS, SUNMatrix placeholder)
 
   /* Dense rows and their dense unknowns. */
   int h = 0;
-  for (int k = 0; k < neq; k++) c->dpos[k] = -1;
+  for (int k = 0; k < neq; k++)
+    c->dpos[k] = -1;
   for (int i = 0; i < n; i++) {
     if (rowptr[i + 1] - rowptr[i] <= 1) continue;
     /* Row n + i is a yield row when it has an entry in column i. Without hardening
@@ -157,7 +154,8 @@ static int red_setup(SUNLinearSolver LS, SUNMatrix placeholder)
   /* J_SZ (rows not dense, columns not dense) and the coupled dense columns. */
   int s = 0;
   int64_t nnz = 0;
-  for (int i = 0; i < n; i++) c->cpl[i] = 0; /* scratch marks, h <= n */
+  for (int i = 0; i < n; i++)
+    c->cpl[i] = 0; /* scratch marks, h <= n */
   c->sp[0] = 0;
   for (int r = 0; r < neq; r++) {
     if (r < n && rowptr[r + 1] - rowptr[r] > 1) continue;
@@ -219,7 +217,8 @@ static int red_setup(SUNLinearSolver LS, SUNMatrix placeholder)
     if (grow((void **)&c->B, &c->bcap, need, sizeof *c->B)) return SUNLS_MEM_FAIL;
     if (grow((void **)&c->X, &c->xcap, need, sizeof *c->X)) return SUNLS_MEM_FAIL;
     memset(c->B, 0, (size_t)need * sizeof *c->B);
-    for (int q = 0; q < ncpl; q++) c->cmap[c->cpl[q]] = q; /* dense index -> coupled index */
+    for (int q = 0; q < ncpl; q++)
+      c->cmap[c->cpl[q]] = q; /* dense index -> coupled index */
     for (int si = 0; si < nz; si++) {
       const int r = c->srow[si];
       for (int64_t k = rowptr[r]; k < rowptr[r + 1]; k++) {
@@ -246,7 +245,8 @@ static int red_setup(SUNLinearSolver LS, SUNMatrix placeholder)
     double *acc = c->t; /* [ncpl] row of J_DZ X, contiguous */
     for (int r = 0; r < h; r++) {
       const int i = c->drow[r];
-      for (int q = 0; q < ncpl; q++) acc[q] = 0.0;
+      for (int q = 0; q < ncpl; q++)
+        acc[q] = 0.0;
       int hit = 0;
       for (int64_t k = rowptr[i]; k < rowptr[i + 1]; k++) {
         const int64_t j = col[k];
@@ -255,12 +255,14 @@ static int red_setup(SUNLinearSolver LS, SUNMatrix placeholder)
           c->S[(size_t)c->dpos[j] * h + r] += v;
         } else if (ncpl > 0 && v != 0.0 && c->xnz[c->zpos[j]]) { /* most rows of X are 0 */
           const double *x = c->X + (size_t)c->zpos[j] * ncpl;
-          for (int q = 0; q < ncpl; q++) acc[q] += v * x[q];
+          for (int q = 0; q < ncpl; q++)
+            acc[q] += v * x[q];
           hit = 1;
         }
       }
       if (hit)
-        for (int q = 0; q < ncpl; q++) c->S[(size_t)c->cpl[q] * h + r] -= acc[q];
+        for (int q = 0; q < ncpl; q++)
+          c->S[(size_t)c->cpl[q] * h + r] -= acc[q];
     }
     int info = 0;
     dgetrf_(&h, &h, c->S, &h, c->ipiv, &info);
@@ -280,8 +282,7 @@ static int red_setup(SUNLinearSolver LS, SUNMatrix placeholder)
 }
 
 static int red_solve(SUNLinearSolver LS, SUNMatrix placeholder, N_Vector x, N_Vector b,
-                     sunrealtype tol)
-{
+                     sunrealtype tol) {
   (void)placeholder;
   red_content *c = RC(LS);
   if (c->use_fallback) {
@@ -296,7 +297,8 @@ static int red_solve(SUNLinearSolver LS, SUNMatrix placeholder, N_Vector x, N_Ve
   const int64_t *rowptr = c->rowptr, *col = c->col;
   const double *val = c->val;
   /* t = J_SZ^-1 b_S */
-  for (int s = 0; s < nz; s++) c->t[s] = bv[c->srow[s]];
+  for (int s = 0; s < nz; s++)
+    c->t[s] = bv[c->srow[s]];
   if (nz > 0 && !klu_l_tsolve(c->sym, c->num, nz, 1, c->t, &c->common)) {
     c->last_flag = SUNLS_PACKAGE_FAIL_REC;
     return SUNLS_PACKAGE_FAIL_REC;
@@ -318,14 +320,16 @@ static int red_solve(SUNLinearSolver LS, SUNMatrix placeholder, N_Vector x, N_Ve
       c->last_flag = SUNLS_PACKAGE_FAIL_REC;
       return SUNLS_PACKAGE_FAIL_REC;
     }
-    for (int r = 0; r < h; r++) xv[c->dcol[r]] = c->rd[r];
+    for (int r = 0; r < h; r++)
+      xv[c->dcol[r]] = c->rd[r];
   }
   /* x_Z = t - X x_D */
   for (int z = 0; z < nz; z++) {
     double v = c->t[z];
     const double *xr = c->X + (size_t)z * ncpl;
     if (ncpl > 0 && c->xnz[z])
-      for (int q = 0; q < ncpl; q++) v -= xr[q] * c->rd[c->cpl[q]];
+      for (int q = 0; q < ncpl; q++)
+        v -= xr[q] * c->rd[c->cpl[q]];
     xv[c->zcol[z]] = v;
   }
   c->st.solves++;
@@ -333,8 +337,7 @@ static int red_solve(SUNLinearSolver LS, SUNMatrix placeholder, N_Vector x, N_Ve
   return SUNLS_SUCCESS;
 }
 
-static int red_free(SUNLinearSolver LS)
-{
+static int red_free(SUNLinearSolver LS) {
   if (!LS) return SUNLS_SUCCESS;
   red_content *c = RC(LS);
   if (c) {
@@ -371,8 +374,7 @@ static int red_free(SUNLinearSolver LS)
 }
 
 SUNLinearSolver rs_lsreduced_create(int n, int neq, SUNMatrix J, SUNLinearSolver fallback,
-                                    SUNContext ctx)
-{
+                                    SUNContext ctx) {
   SUNLinearSolver LS = SUNLinSolNewEmpty(ctx);
   if (!LS) return NULL;
   LS->ops->gettype = red_gettype;
@@ -417,4 +419,6 @@ fail:
   return NULL;
 }
 
-void rs_lsreduced_get_stats(SUNLinearSolver LS, rs_lsreduced_stats *st) { *st = RC(LS)->st; }
+void rs_lsreduced_get_stats(SUNLinearSolver LS, rs_lsreduced_stats *st) {
+  *st = RC(LS)->st;
+}

@@ -38,7 +38,7 @@ SUNLinearSolver rs_lsreduced_create(int n, int neq, SUNMatrix J, SUNLinearSolver
  * fell back to the full KLU factorisation. */
 typedef struct rs_lsreduced_stats {
   long setups, solves, fallbacks, analyses;
-  long reuses; /* setups with a matrix identical to the last one: factorisations kept */
+  long reuses;         /* setups with a matrix identical to the last one: factorisations kept */
   long dense_rows_sum; /* sum of h over setups */
 } rs_lsreduced_stats;
 void rs_lsreduced_get_stats(SUNLinearSolver LS, rs_lsreduced_stats *st);

@@ -14,8 +14,7 @@
 
 #include <stdlib.h>
 
-static int solve(const rs_model *m, rs_linear lin, double *y, rs_diag *d, rs_stats *st)
-{
+static int solve(const rs_model *m, rs_linear lin, double *y, rs_diag *d, rs_stats *st) {
   rs_msg msg = {{0}};
   rs_steady *s = NULL;
   memset(y, 0, (size_t)m->neq * sizeof *y);
@@ -36,8 +35,7 @@ static int solve(const rs_model *m, rs_linear lin, double *y, rs_diag *d, rs_sta
   return 0;
 }
 
-static int compare(const char *name, rs_case *c)
-{
+static int compare(const char *name, rs_case *c) {
   rs_model m;
   rs_msg msg = {{0}};
   if (rs_model_create(&m, c, &msg) != RS_OK) {
@@ -60,23 +58,25 @@ static int compare(const char *name, rs_case *c)
   if (!fail) {
     for (int k = 1; k < 3; k++) {
       double dp = 0.0;
-      for (int i = 0; i < m.n; i++) dp = fmax(dp, fabs(y[k][i] - y[0][i]));
+      for (int i = 0; i < m.n; i++)
+        dp = fmax(dp, fabs(y[k][i] - y[0][i]));
       char what[160];
       snprintf(what, sizeof what, "%s: max|p_%s - p_klu| / p0", name, pname[k]);
       ts_check(what, dp / m.hertz_p0, 0.0, 1e-8);
       int same = 1;
-      for (int r = 0; r < 4; r++) same &= d[k].count[r] == d[0].count[r];
+      for (int r = 0; r < 4; r++)
+        same &= d[k].count[r] == d[0].count[r];
       snprintf(what, sizeof what, "%s: regime counts of %s equal those of klu", name, pname[k]);
       ts_check_true(what, same);
     }
   }
-  for (int k = 0; k < 3; k++) free(y[k]);
+  for (int k = 0; k < 3; k++)
+    free(y[k]);
   rs_model_free(&m);
   return fail;
 }
 
-static void plastic_case(rs_case *c, int cells, double k_rel)
-{
+static void plastic_case(rs_case *c, int cells, double k_rel) {
   /* cases/carter_plast.yaml: tau_c0 = 35 N/mm^2, mu = 0.5, xi = -4e-4. */
   ts_carter_case(c, cells);
   c->mu = 0.5;
@@ -87,8 +87,7 @@ static void plastic_case(rs_case *c, int cells, double k_rel)
   c->tau_c_min = 0.1 * c->tau_c0;
 }
 
-int main(void)
-{
+int main(void) {
   rs_case c;
   int fail = 0;
   ts_carter_case(&c, 100);
