@@ -212,6 +212,8 @@ int main(int argc, char **argv)
     for (int a = 0; a < sw.naxes; a++) printf(" %s (%d)", sw.axes[a].key, sw.axes[a].n);
     printf(": %zu points solved, %zu failed, Newton iterations %ld, wall time %.3f s\n",
            sres.points_done, sres.points_failed, sres.newton_iters, sres.wall_seconds);
+    printf("  steady points: linear solves %ld, Jacobian evaluations %ld\n", sres.lin_solves,
+           sres.jac_evals);
     printf("  output: %s\n", sres.file);
     rs_sweep_free(&sw);
     return exit_code(status);
@@ -229,11 +231,16 @@ int main(int argc, char **argv)
     printf("  cells E/H/S/P = %d/%d/%d/%d\n", d->count[RS_EXTERIOR], d->count[RS_ADHESION],
            d->count[RS_SLIP], d->count[RS_PLASTIC]);
     if (c.mode == RS_MODE_TRANSIENT)
-      printf("  IDA steps %ld, Newton iterations %ld, failed solves %ld, error-test fails %ld\n",
+      printf("  IDA steps %ld, Newton iterations %ld, failed solves %ld, error-test fails %ld\n"
+             "  linear solves %ld, Jacobian evaluations %ld\n",
              res.stats.steps, res.stats.nonlin_iters, res.stats.nonlin_fails,
-             res.stats.err_test_fails);
+             res.stats.err_test_fails,
+             /* KLU inside IDA's Newton: one linear solve per Newton iteration */
+             res.stats.lin_solves > 0 ? res.stats.lin_solves : res.stats.nonlin_iters,
+             res.stats.jac_evals);
     else
-      printf("  Newton iterations %ld\n", res.stats.nonlin_iters);
+      printf("  Newton iterations %ld, linear solves %ld, Jacobian evaluations %ld\n",
+             res.stats.nonlin_iters, res.stats.lin_solves, res.stats.jac_evals);
     if (c.rig.on) {
       const double T = c.rig.revolution_time;
       printf("  twin disc: %.6g revolutions of %.6g s, %.1f IDA steps per revolution "

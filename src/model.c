@@ -502,3 +502,22 @@ int rs_model_diagnostics(const rs_model *m, rs_work *w, double t, const double *
   }
   return RS_OK;
 }
+
+int rs_model_set_rolling(rs_model *m, const rs_case *c, rs_msg *msg)
+{
+  rs_history v = {0}, xi = {0}, sh = {0};
+  if (rs_history_copy(&v, &c->velocity) != RS_OK || rs_history_copy(&xi, &c->creepage) != RS_OK ||
+      rs_history_copy(&sh, &c->shift_velocity) != RS_OK) {
+    rs_history_free(&v);
+    rs_history_free(&xi);
+    rs_history_free(&sh);
+    return rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory copying input histories");
+  }
+  rs_history_free(&m->velocity);
+  rs_history_free(&m->creepage);
+  rs_history_free(&m->shift);
+  m->velocity = v;
+  m->creepage = xi;
+  m->shift = sh;
+  return RS_OK;
+}

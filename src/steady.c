@@ -6,10 +6,14 @@
 #include <kinsol/kinsol.h>
 #include <math.h>
 #include <nvector/nvector_serial.h>
+#include <sunlinsol/sunlinsol_spgmr.h>
+#include <sunmatrix/sunmatrix_sparse.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "linsys.h"
+#include "linsys_krylov.h"
+#include "linsys_reduced.h"
 #include "rollsim/solver.h"
 
 struct rs_steady {
@@ -18,6 +22,12 @@ struct rs_steady {
   void *kmem;
   N_Vector u, uscale, fscale;
   rs_linsys ls;
+  rs_linear linear;       /* resolved choice (never AUTO) */
+  SUNLinearSolver red;    /* DENSE: Schur-complement solver (falls back to ls.LS) */
+  SUNMatrix placeholder;  /* DENSE: the 1-entry matrix KINSOL sees (see linsys_reduced.h) */
+  SUNLinearSolver gmres;  /* KRYLOV: SPGMR with the products and preconditioner of kry */
+  rs_krylov kry;
+  rs_csr full;            /* KRYLOV: the assembled Jacobian (in ls.J's arrays) */
   rs_work work;
   double *yp;     /* y' seen by the residual: 0, or cj (y - y_prev) in pseudo-time steps */
   double *y_prev; /* start of the current pseudo-time step */
@@ -48,13 +58,65 @@ static int steady_jacobian(N_Vector u, N_Vector f, SUNMatrix J, void *data, N_Ve
   (void)t2;
   rs_steady *s = data;
   const double *y = N_VGetArrayPointer(u);
-  return rs_linsys_assemble(&s->ls, s->m, &s->work, s->t, y, rates(s, y), s->cj);
+  if (s->linear == RS_LINEAR_KLU)
+    return rs_linsys_assemble(&s->ls, s->m, &s->work, s->t, y, rates(s, y), s->cj);
+  /* DENSE: the Schur-complement solver reads the structure from the matrix itself. */
+  rs_csr csr = {.nrows = 0,
+                .cap = SM_NNZ_S(s->ls.J),
+                .rowptr = SM_INDEXPTRS_S(s->ls.J),
+                .col = SM_INDEXVALS_S(s->ls.J),
+                .val = SM_DATA_S(s->ls.J)};
+  s->ls.jac_evals++;
+  return rs_model_eval(s->m, &s->work, s->t, y, rates(s, y), s->cj, NULL, &csr);
+}
+
+/* KRYLOV: the Jacobian is assembled where the preconditioner is set up. */
+static int krylov_psetup(N_Vector u, N_Vector uscale, N_Vector fval, N_Vector fscale, void *data)
+{
+  (void)uscale;
+  (void)fval;
+  (void)fscale;
+  rs_steady *s = data;
+  const double *y = N_VGetArrayPointer(u);
+  s->full = (rs_csr){.nrows = 0,
+                     .cap = SM_NNZ_S(s->ls.J),
+                     .rowptr = SM_INDEXPTRS_S(s->ls.J),
+                     .col = SM_INDEXVALS_S(s->ls.J),
+                     .val = SM_DATA_S(s->ls.J)};
+  s->ls.jac_evals++;
+  if (rs_model_eval(s->m, &s->work, s->t, y, rates(s, y), s->cj, NULL, &s->full) != RS_OK) return -1;
+  return rs_krylov_setup(&s->kry, &s->full, s->t, s->cj) == RS_OK ? 0 : 1;
+}
+
+static int krylov_psolve(N_Vector u, N_Vector uscale, N_Vector fval, N_Vector fscale, N_Vector v,
+                         void *data)
+{
+  (void)u;
+  (void)uscale;
+  (void)fval;
+  (void)fscale;
+  rs_steady *s = data;
+  return rs_krylov_psolve(&s->kry, N_VGetArrayPointer(v)) == RS_OK ? 0 : 1;
+}
+
+static int krylov_times(N_Vector v, N_Vector Jv, N_Vector u, sunbooleantype *new_u, void *data)
+{
+  (void)u;
+  (void)new_u;
+  rs_steady *s = data;
+  return rs_krylov_times(&s->kry, &s->full, N_VGetArrayPointer(v), N_VGetArrayPointer(Jv)) == RS_OK
+             ? 0
+             : -1;
 }
 
 void rs_steady_free(rs_steady *s)
 {
   if (!s) return;
   if (s->kmem) KINFree(&s->kmem);
+  if (s->red) SUNLinSolFree(s->red);
+  if (s->placeholder) SUNMatDestroy(s->placeholder);
+  if (s->gmres) SUNLinSolFree(s->gmres);
+  rs_krylov_free(&s->kry);
   rs_linsys_free(&s->ls);
   if (s->u) N_VDestroy(s->u);
   if (s->uscale) N_VDestroy(s->uscale);
@@ -66,7 +128,25 @@ void rs_steady_free(rs_steady *s)
   free(s);
 }
 
+/* AUTO: Newton-Krylov for elastic models from this many cells, the dense Schur
+ * complement otherwise. Measured (bench/RESULTS.md): Carter elastic, one solve from
+ * p = 0, dense/Krylov 4.3/7.0 ms at 200 cells, 10.5/9.3 at 300, 21.9/12.9 at 400,
+ * 72/26 at 600. With plasticity the inexact linear solves make semismooth Newton
+ * cycle much more often (Carter k_rel = 0.98: 38 dense vs 45 Krylov iterations at
+ * 400 cells, and at 600 cells Krylov fell back to pseudo-time stepping for minutes
+ * where dense needed 35 iterations), so plastic models always use the dense path. */
+enum { KRYLOV_FROM_CELLS = 300 };
+/* Krylov: near-field half band (cells), GMRES basis size, forcing term (1e-3: fewest
+ * GMRES iterations for the elastic creep curve at 850 cells; 1e-6 cost 30 % more). */
+enum { KRYLOV_BAND = 16, KRYLOV_MAXL = 60 };
+#define KRYLOV_ETA 1e-3
+
 int rs_steady_create(rs_steady **out, const rs_model *m, rs_msg *msg)
+{
+  return rs_steady_create_with(out, m, RS_LINEAR_AUTO, msg);
+}
+
+int rs_steady_create_with(rs_steady **out, const rs_model *m, rs_linear linear, rs_msg *msg)
 {
   *out = NULL;
   rs_steady *s = calloc(1, sizeof *s);
@@ -82,6 +162,23 @@ int rs_steady_create(rs_steady **out, const rs_model *m, rs_msg *msg)
   if (!s->u || !s->uscale || !s->fscale || !s->yp || !s->y_prev) goto fail;
   if (rs_work_create(&s->work, n) != RS_OK) goto fail;
   if (rs_linsys_create(&s->ls, m, s->u, s->ctx) != RS_OK) goto fail;
+  /* The fast paths know the 3 n per-cell unknowns only. */
+  if (m->neq != 3 * n) linear = RS_LINEAR_KLU;
+  if (linear == RS_LINEAR_AUTO)
+    linear = !m->has_plasticity && n >= KRYLOV_FROM_CELLS ? RS_LINEAR_KRYLOV : RS_LINEAR_DENSE;
+  s->linear = linear;
+  if (linear == RS_LINEAR_DENSE) {
+    s->placeholder = SUNSparseMatrix(m->neq, m->neq, 1, CSR_MAT, s->ctx);
+    s->red = rs_lsreduced_create(n, m->neq, s->ls.J, s->ls.LS, s->ctx);
+    if (!s->placeholder || !s->red) goto fail;
+  }
+  if (linear == RS_LINEAR_KRYLOV) {
+    s->gmres = SUNLinSol_SPGMR(s->u, SUN_PREC_RIGHT, KRYLOV_MAXL, s->ctx);
+    if (!s->gmres || SUNLinSol_SPGMRSetMaxRestarts(s->gmres, 4) != 0 ||
+        SUNLinSol_SPGMRSetGSType(s->gmres, SUN_CLASSICAL_GS) != 0)
+      goto fail;
+    if (rs_krylov_create(&s->kry, m, KRYLOV_BAND) != RS_OK) goto fail;
+  }
 
   /* Scales: tractions by the largest bound, displacements by the displacement that
    * traction causes on its own cell; every residual row has traction units. */
@@ -102,8 +199,19 @@ int rs_steady_create(rs_steady **out, const rs_model *m, rs_msg *msg)
   if (!s->kmem) goto fail;
   int flag = KINInit(s->kmem, steady_residual, s->u);
   flag |= KINSetUserData(s->kmem, s);
-  flag |= KINSetLinearSolver(s->kmem, s->ls.LS, s->ls.J);
-  flag |= KINSetJacFn(s->kmem, steady_jacobian);
+  if (s->gmres) {
+    flag |= KINSetLinearSolver(s->kmem, s->gmres, NULL);
+    flag |= KINSetJacTimesVecFn(s->kmem, krylov_times);
+    flag |= KINSetPreconditioner(s->kmem, krylov_psetup, krylov_psolve);
+    /* The residual is piecewise linear: once the active set is right, an accurate
+     * linear solve ends the iteration (a loose forcing term would add iterations). */
+    flag |= KINSetEtaForm(s->kmem, KIN_ETACONSTANT);
+    flag |= KINSetEtaConstValue(s->kmem, KRYLOV_ETA);
+  } else {
+    flag |= s->red ? KINSetLinearSolver(s->kmem, s->red, s->placeholder)
+                   : KINSetLinearSolver(s->kmem, s->ls.LS, s->ls.J);
+    flag |= KINSetJacFn(s->kmem, steady_jacobian);
+  }
   flag |= KINSetMaxSetupCalls(s->kmem, 1);       /* exact Newton */
   flag |= KINSetMaxNewtonStep(s->kmem, 1e12);    /* steps from p = 0 are large */
   flag |= KINSetFuncNormTol(s->kmem, 1e-10); /* relative to the largest bound; roundoff is ~1e-12 */
@@ -129,12 +237,15 @@ static int newton(rs_steady *s, double *y, rs_stats *stats, int *kin_flag)
   for (int k = 0; k < 2; k++) {
     memcpy(u, y, (size_t)m->neq * sizeof *u);
     flag = KINSol(s->kmem, s->u, strategies[k], s->uscale, s->fscale);
-    long iters = 0, fevals = 0;
+    long iters = 0, fevals = 0, lin_iters = 0;
     KINGetNumNonlinSolvIters(s->kmem, &iters);
     KINGetNumFuncEvals(s->kmem, &fevals);
+    if (s->gmres) KINGetNumLinIters(s->kmem, &lin_iters);
     if (stats) {
       stats->nonlin_iters += iters;
       stats->res_evals += fevals;
+      /* direct: one solve per Newton iteration; Krylov: GMRES iterations */
+      stats->lin_solves += s->gmres ? lin_iters : iters;
     }
     if (flag == KIN_STEP_LT_STPTOL) { /* stalled: accept only a small residual */
       double fnorm = INFINITY;

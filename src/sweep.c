@@ -31,32 +31,94 @@ static void fill_point(rs_sweep_point *pt, const rs_diag *d)
   pt->converged = 1;
 }
 
-/* One steady point, warm-started from y (length neq of this grid) when warm. */
-static int steady_point(const rs_case *c, double **y, int *ny, int warm, rs_diag *d, long *iters,
-                        rs_msg *msg)
-{
+/* Steady points along the last axis share one model and one solver when that axis
+ * is a rolling input (a creep-force curve): grid, coefficients, normal solution and
+ * the solver's allocations are kept, and each point starts from the last solution. */
+typedef struct steady_chain {
   rs_model m;
-  int status = rs_model_create(&m, c, msg);
-  if (status != RS_OK) return status;
-  if (!warm || *ny != m.neq) {
-    free(*y);
-    *y = calloc((size_t)m.neq, sizeof **y);
-    *ny = m.neq;
+  int have_model;
+  rs_steady *st;
+  rs_work w;
+  double *yp;
+  long jac_now;   /* Jacobian evaluations of the current solver (it counts from its creation) */
+  double *yprev, *ylast; /* solutions of the last two points on this chain (secant predictor) */
+  double xprev, xlast; /* their values of the swept input */
+  int nsolved;    /* points solved on this chain */
+  long jac_evals; /* of solvers already freed */
+} steady_chain;
+
+static void chain_drop(steady_chain *ch)
+{
+  ch->jac_evals += ch->jac_now;
+  ch->jac_now = 0;
+  rs_steady_free(ch->st);
+  ch->st = NULL;
+  rs_work_free(&ch->w);
+  free(ch->yp);
+  free(ch->yprev);
+  free(ch->ylast);
+  ch->yp = ch->yprev = ch->ylast = NULL;
+  ch->nsolved = 0;
+  if (ch->have_model) rs_model_free(&ch->m);
+  ch->have_model = 0;
+}
+
+/* Keys whose change leaves everything but the rolling inputs of the model unchanged. */
+static int rolling_key(const char *key)
+{
+  return !strcmp(key, "rolling.creepage") || !strcmp(key, "rolling.velocity") ||
+         !strcmp(key, "rolling.shift_velocity");
+}
+
+/* One steady point, warm-started from y (length neq of this grid) when warm; the
+ * model and solver of the previous point are reused when reuse. */
+static int steady_point(const rs_case *c, steady_chain *ch, double **y, int *ny, int warm,
+                        int reuse, double x, rs_diag *d, rs_stats *sum, rs_msg *msg)
+{
+  int status = RS_OK;
+  if (reuse && ch->have_model && ch->st) {
+    status = rs_model_set_rolling(&ch->m, c, msg);
+  } else {
+    chain_drop(ch);
+    status = rs_model_create(&ch->m, c, msg);
+    if (status != RS_OK) return status;
+    ch->have_model = 1;
+    ch->yp = calloc((size_t)ch->m.neq, sizeof *ch->yp);
+    ch->yprev = calloc((size_t)ch->m.neq, sizeof *ch->yprev);
+    ch->ylast = calloc((size_t)ch->m.neq, sizeof *ch->ylast);
+    if (!ch->yp || !ch->yprev || !ch->ylast || rs_work_create(&ch->w, ch->m.n) != RS_OK)
+      status = rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory");
+    if (status == RS_OK) status = rs_steady_create(&ch->st, &ch->m, msg);
   }
-  double *yp = calloc((size_t)m.neq, sizeof *yp);
-  rs_work w = {0};
-  rs_steady *st = NULL;
+  if (status == RS_OK && (!warm || *ny != ch->m.neq)) {
+    free(*y);
+    *y = calloc((size_t)ch->m.neq, sizeof **y);
+    *ny = ch->m.neq;
+    if (!*y) status = rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory");
+  }
+  /* Secant predictor along the chain: y + (y - y_prev) (x - x_last)/(x_last - x_prev).
+   * The tractions follow the creepage piecewise linearly (between changes of the
+   * active set), so the start is exact or close to it; the plastic state is
+   * extrapolated alike. */
+  const int chained = status == RS_OK && reuse && warm && ch->nsolved >= 1;
+  if (chained) memcpy(ch->ylast, *y, (size_t)ch->m.neq * sizeof *ch->ylast);
+  if (chained && ch->nsolved >= 2 && ch->xlast != ch->xprev) {
+    const double f = (x - ch->xlast) / (ch->xlast - ch->xprev);
+    for (int i = 0; i < ch->m.neq; i++) (*y)[i] += f * (ch->ylast[i] - ch->yprev[i]);
+  }
   rs_stats stats = {0};
-  if (!*y || !yp || rs_work_create(&w, m.n) != RS_OK)
-    status = rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory");
-  if (status == RS_OK) status = rs_steady_create(&st, &m, msg);
-  if (status == RS_OK) status = rs_steady_solve(st, 0.0, *y, &stats, msg);
-  if (status == RS_OK) rs_model_diagnostics(&m, &w, 0.0, *y, yp, d, NULL, NULL, NULL);
-  *iters += stats.nonlin_iters;
-  rs_steady_free(st);
-  rs_work_free(&w);
-  free(yp);
-  rs_model_free(&m);
+  if (status == RS_OK) status = rs_steady_solve(ch->st, 0.0, *y, &stats, msg);
+  if (status == RS_OK) {
+    if (chained) memcpy(ch->yprev, ch->ylast, (size_t)ch->m.neq * sizeof *ch->yprev);
+    ch->xprev = ch->xlast;
+    ch->xlast = x;
+    ch->nsolved = chained ? ch->nsolved + 1 : 1;
+  }
+  if (status == RS_OK) rs_model_diagnostics(&ch->m, &ch->w, 0.0, *y, ch->yp, d, NULL, NULL, NULL);
+  sum->nonlin_iters += stats.nonlin_iters;
+  sum->lin_solves += stats.lin_solves;
+  ch->jac_now = stats.jac_evals;
+  if (status != RS_OK) chain_drop(ch); /* no reuse after a failure */
   return status;
 }
 
@@ -101,6 +163,8 @@ int rs_sweep_run(const rs_sweep *s, const char *case_path, const char *const *se
 
   double *y = NULL;
   int ny = 0;
+  steady_chain chain = {0};
+  rs_stats steady_sum = {0};
   rs_msg point_msg = {{0}};
   for (size_t p = 0; p < s->npoints && status == RS_OK; p++) {
     size_t rest = p;
@@ -119,7 +183,9 @@ int rs_sweep_run(const rs_sweep *s, const char *case_path, const char *const *se
     int ps = rs_case_load(&c, case_path, all, nsets + s->naxes, &point_msg);
     if (ps == RS_OK) {
       if (c.mode == RS_MODE_STEADY) {
-        ps = steady_point(&c, &y, &ny, last_index > 0, &d, &res->newton_iters, &point_msg);
+        const int along = last_index > 0 && rolling_key(s->axes[s->naxes - 1].key);
+        ps = steady_point(&c, &chain, &y, &ny, last_index > 0, along,
+                          s->axes[s->naxes - 1].values[last_index], &d, &steady_sum, &point_msg);
       } else {
         rs_run_opts po = *o;
         po.no_output = 1;
@@ -158,6 +224,10 @@ int rs_sweep_run(const rs_sweep *s, const char *case_path, const char *const *se
       status = rs_msg_set(msg, RS_ERR_INTERRUPTED, "interrupted after %zu of %zu points", p + 1, s->npoints);
   }
   if (o->progress) fputc('\n', stderr);
+  chain_drop(&chain);
+  res->newton_iters += steady_sum.nonlin_iters;
+  res->lin_solves = steady_sum.lin_solves;
+  res->jac_evals = chain.jac_evals;
   free(y);
   if (status == RS_OK && res->points_failed > 0)
     status = rs_msg_set(msg, RS_ERR_SOLVER, "%zu of %zu sweep points did not converge (NaN in the file)",

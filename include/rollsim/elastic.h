@@ -19,7 +19,12 @@ typedef struct rs_elastic2d {
   double dx;      /* cell width, mm */
   double *tang;   /* tangential coefficient for k = -n..n at tang[k + n], mm/(N/mm^2) */
   double *norm;   /* normal coefficient, same layout */
+  struct rs_elastic_fft *fft; /* FFT convolution for products on large grids (NULL: direct) */
 } rs_elastic2d;
+
+/* Grids from this many cells apply the influence coefficients by FFT convolution
+ * (FFTW) instead of the direct O(n^2) sum (the crossover measured in bench/). */
+#define RS_ELASTIC_FFT_FROM 256
 
 /* Coefficients for offsets -n..n (the offset n serves the padded point x_n, one
  * cell beyond the leading edge, model.md §5). */
@@ -31,7 +36,10 @@ void rs_elastic2d_free(rs_elastic2d *el);
 static inline double rs_elastic2d_tang(const rs_elastic2d *el, int k) { return el->tang[k + el->n]; }
 static inline double rs_elastic2d_norm(const rs_elastic2d *el, int k) { return el->norm[k + el->n]; }
 
-/* u[I] = sum_J coef(I - J) p[J] for I = 0..nout-1 (nout <= n + 1), p of length n. */
+/* u[I] = sum_J coef(I - J) p[J] for I = 0..nout-1 (nout <= n + 1), p of length n.
+ * With coef_table el->tang or el->norm on a grid of RS_ELASTIC_FFT_FROM cells or
+ * more, by FFT convolution (the same sum up to roundoff; it uses work arrays held
+ * in el, so one rs_elastic2d must not be applied from two threads at once). */
 void rs_elastic2d_apply(const rs_elastic2d *el, const double *coef_table, const double *p,
                         double *u, int nout);
 

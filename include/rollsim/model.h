@@ -131,4 +131,9 @@ double rs_model_next_breakpoint(const rs_model *m, double t);
 /* Yield limit of a cell with accumulated plastic deformation ustar. */
 double rs_model_yield_limit(const rs_model *m, double ustar);
 
+/* Replace the rolling inputs (velocity, creepage and shift-velocity histories) by
+ * those of c, keeping grid, coefficients and normal solution: for sweeps along a
+ * rolling input, where c differs from the model's case in those keys only. */
+int rs_model_set_rolling(rs_model *m, const rs_case *c, rs_msg *msg);
+
 #endif

@@ -19,12 +19,21 @@ typedef struct rs_stats {
   long res_evals;        /* residual evaluations */
   long jac_evals;        /* Jacobian evaluations = KLU factorizations */
   long klu_analyses;     /* symbolic analyses (the active set changed) */
+  long lin_solves;       /* linear solves (direct) or Krylov iterations (steady solver) */
 } rs_stats;
 
 /* Steady rolling (V > 0): a reusable solver so that continuation (creep curves)
  * keeps its allocations. */
 typedef struct rs_steady rs_steady;
 int rs_steady_create(rs_steady **s, const rs_model *m, rs_msg *msg);
+/* Linear algebra of the steady Newton iteration (all give the same solution to the
+ * Newton tolerance): KLU on the whole sparse Jacobian; DENSE, the sparse rows
+ * eliminated and the Schur complement on the dense traction rows factored by LAPACK;
+ * KRYLOV, GMRES with FFT elastic products and a KLU-factored near-field
+ * preconditioner; AUTO picks KRYLOV for elastic models from 300 cells, DENSE
+ * otherwise (KLU when the model has unknowns beyond the 3 n per-cell ones). */
+typedef enum { RS_LINEAR_AUTO = 0, RS_LINEAR_KLU, RS_LINEAR_DENSE, RS_LINEAR_KRYLOV } rs_linear;
+int rs_steady_create_with(rs_steady **s, const rs_model *m, rs_linear linear, rs_msg *msg);
 /* Solve F(y, 0) = 0 at time t (inputs evaluated at t); y holds the initial guess
  * on entry, the solution on return. */
 int rs_steady_solve(rs_steady *s, double t, double *y, rs_stats *stats, rs_msg *msg);

@@ -33,6 +33,8 @@ typedef struct rs_sweep_result {
   size_t points_done, points_failed;
   double wall_seconds;
   long newton_iters;
+  long lin_solves;  /* steady points: linear solves (direct) or Krylov iterations */
+  long jac_evals;   /* steady points: Jacobian evaluations */
   char file[1024];
 } rs_sweep_result;
 

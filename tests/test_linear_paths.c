@@ -1,0 +1,104 @@
+/* The three linear-algebra paths of the steady Newton iteration (KLU on the whole
+ * Jacobian, the dense Schur complement, Newton-Krylov with FFT products) solve
+ * the same discrete equations with the same Newton tolerance, so they must give
+ * the same tractions and regimes. KINSOL stops at a scaled residual of 1e-10
+ * relative to the largest traction bound g_max = mu p0, and every traction row has
+ * unit diagonal (the scaling r), so each path's p is within about cond * 1e-10 *
+ * mu p0 of the exact discrete solution; we allow max|dp| <= 1e-8 p0 (two orders of
+ * magnitude of conditioning) and identical regime counts. Cases: Carter elastic at
+ * 100 and 800 cells; the Figure 7 plastic case (k_rel = 0.6, hardening) at 100
+ * cells, and with k_rel = 0.98 at 400 cells. */
+#include "rollsim/model.h"
+#include "rollsim/solver.h"
+#include "test_support.h"
+
+#include <stdlib.h>
+
+static int solve(const rs_model *m, rs_linear lin, double *y, rs_diag *d, rs_stats *st) {
+  rs_msg msg = {{0}};
+  rs_steady *s = NULL;
+  memset(y, 0, (size_t)m->neq * sizeof *y);
+  memset(st, 0, sizeof *st);
+  int status = rs_steady_create_with(&s, m, lin, &msg);
+  if (status == RS_OK) status = rs_steady_solve(s, 0.0, y, st, &msg);
+  rs_steady_free(s);
+  if (status != RS_OK) {
+    printf("FAIL linear path %d: %s\n", (int)lin, msg.text);
+    return 1;
+  }
+  double *yp = calloc((size_t)m->neq, sizeof *yp);
+  rs_work w;
+  rs_work_create(&w, m->n);
+  rs_model_diagnostics(m, &w, 0.0, y, yp, d, NULL, NULL, NULL);
+  rs_work_free(&w);
+  free(yp);
+  return 0;
+}
+
+static int compare(const char *name, rs_case *c) {
+  rs_model m;
+  rs_msg msg = {{0}};
+  if (rs_model_create(&m, c, &msg) != RS_OK) {
+    printf("FAIL model %s: %s\n", name, msg.text);
+    return 1;
+  }
+  const rs_linear paths[3] = {RS_LINEAR_KLU, RS_LINEAR_DENSE, RS_LINEAR_KRYLOV};
+  const char *pname[3] = {"klu", "dense", "krylov"};
+  double *y[3];
+  rs_diag d[3];
+  int fail = 0;
+  for (int k = 0; k < 3; k++) {
+    y[k] = calloc((size_t)m.neq, sizeof *y[k]);
+    rs_stats st;
+    fail |= solve(&m, paths[k], y[k], &d[k], &st);
+    printf("%s, %s: Fx/(mu Fn) = %.10f, E/H/S/P = %d/%d/%d/%d, Newton %ld, linear %ld\n", name,
+           pname[k], d[k].Fx / (m.mu * d[k].Fn), d[k].count[0], d[k].count[1], d[k].count[2],
+           d[k].count[3], st.nonlin_iters, st.lin_solves);
+  }
+  if (!fail) {
+    for (int k = 1; k < 3; k++) {
+      double dp = 0.0;
+      for (int i = 0; i < m.n; i++)
+        dp = fmax(dp, fabs(y[k][i] - y[0][i]));
+      char what[160];
+      snprintf(what, sizeof what, "%s: max|p_%s - p_klu| / p0", name, pname[k]);
+      ts_check(what, dp / m.hertz_p0, 0.0, 1e-8);
+      int same = 1;
+      for (int r = 0; r < 4; r++)
+        same &= d[k].count[r] == d[0].count[r];
+      snprintf(what, sizeof what, "%s: regime counts of %s equal those of klu", name, pname[k]);
+      ts_check_true(what, same);
+    }
+  }
+  for (int k = 0; k < 3; k++)
+    free(y[k]);
+  rs_model_free(&m);
+  return fail;
+}
+
+static void plastic_case(rs_case *c, int cells, double k_rel) {
+  /* cases/carter_plast.yaml: tau_c0 = 35 N/mm^2, mu = 0.5, xi = -4e-4. */
+  ts_carter_case(c, cells);
+  c->mu = 0.5;
+  c->creepage.value = -4e-4;
+  c->has_plasticity = 1;
+  c->tau_c0 = 35.0;
+  c->k_tau = c->shear_modulus * k_rel / (1.0 - k_rel);
+  c->tau_c_min = 0.1 * c->tau_c0;
+}
+
+int main(void) {
+  rs_case c;
+  int fail = 0;
+  ts_carter_case(&c, 100);
+  fail |= compare("Carter elastic, 100 cells", &c);
+  ts_carter_case(&c, 800);
+  fail |= compare("Carter elastic, 800 cells", &c);
+  plastic_case(&c, 100, 0.6);
+  fail |= compare("Carter plastic k_rel = 0.6, 100 cells", &c);
+  plastic_case(&c, 400, 0.98);
+  fail |= compare("Carter plastic k_rel = 0.98, 400 cells", &c);
+  if (fail) ts_failures++;
+  printf("%s\n", ts_failures ? "FAILED" : "all passed");
+  return ts_failures ? 1 : 0;
+}
