@@ -6,21 +6,14 @@
  * exponent p of t ~ N^p (least squares of log t against log N) of each path.
  * Usage: rollsim_bench_solve [REPS] [MAXCELLS]   (default 5, 1600)
  * The KLU path is the linear algebra of the solver before issue 7. */
-#define _POSIX_C_SOURCE 200809L
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
 #include "rollsim/model.h"
 #include "rollsim/solver.h"
-
-static double now(void) {
-  struct timespec ts;
-  clock_gettime(CLOCK_MONOTONIC, &ts);
-  return ts.tv_sec + 1e-9 * ts.tv_nsec;
-}
+#include "util.h" /* rs_wall_clock */
 
 static int cmp(const void *a, const void *b) {
   const double x = *(const double *)a, y = *(const double *)b;
@@ -30,29 +23,6 @@ static int cmp(const void *a, const void *b) {
 static double median(double *v, int n) {
   qsort(v, (size_t)n, sizeof *v, cmp);
   return v[(n - 1) / 2];
-}
-
-/* cases/carter2d.yaml */
-static void carter(rs_case *c, int cells) {
-  memset(c, 0, sizeof *c);
-  c->dimension = 2;
-  c->normal_load.kind = RS_HISTORY_CONSTANT;
-  c->normal_load.value = 178.9;
-  c->radius = 500.0;
-  c->normal_solution = RS_NORMAL_DISCRETE;
-  c->reference_length = 200.0;
-  c->cells = cells;
-  c->extent = 1.05;
-  c->shear_modulus = 82000.0;
-  c->poisson_ratio = 0.28;
-  c->mu = 0.3;
-  c->layer_shear_modulus = 1.0;
-  c->velocity.kind = RS_HISTORY_CONSTANT;
-  c->velocity.value = 30000.0;
-  c->creepage.kind = RS_HISTORY_CONSTANT;
-  c->creepage.value = -2.4e-4;
-  c->mode = RS_MODE_STEADY;
-  c->output_interval = 1e-6;
 }
 
 int main(int argc, char **argv) {
@@ -74,16 +44,22 @@ int main(int argc, char **argv) {
   double *t = malloc((size_t)reps * sizeof *t);
   for (int g = 0; g < NG && grids[g] <= maxcells; g++, ng++) {
     rs_case c;
-    carter(&c, grids[g]);
-    rs_model m;
     rs_msg msg = {{0}};
+    char cells[48];
+    snprintf(cells, sizeof cells, "grid.cells=%d", grids[g]);
+    const char *sets[] = {cells};
+    if (rs_case_load(&c, RS_CARTER_CASE, sets, 1, &msg) != RS_OK) {
+      fprintf(stderr, "%s\n", msg.text);
+      return 1;
+    }
+    rs_model m;
     for (int r = 0; r < reps; r++) {
-      const double t0 = now();
+      const double t0 = rs_wall_clock();
       if (rs_model_create(&m, &c, &msg) != RS_OK) {
         fprintf(stderr, "%s\n", msg.text);
         return 1;
       }
-      t[r] = now() - t0;
+      t[r] = rs_wall_clock() - t0;
       if (r + 1 < reps) rs_model_free(&m);
     }
     printf("%6d %9.3f", grids[g], 1e3 * median(t, reps));
@@ -96,10 +72,10 @@ int main(int argc, char **argv) {
         memset(y, 0, (size_t)m.neq * sizeof *y);
         memset(&st, 0, sizeof st);
         rs_steady *s = NULL;
-        const double t0 = now();
+        const double t0 = rs_wall_clock();
         int status = rs_steady_create_with(&s, &m, paths[k], &msg);
         if (status == RS_OK) status = rs_steady_solve(s, 0.0, y, &st, &msg);
-        t[r] = now() - t0;
+        t[r] = rs_wall_clock() - t0;
         rs_steady_free(s);
         if (status != RS_OK) {
           fprintf(stderr, "%s: %s\n", names[k], msg.text);
@@ -114,6 +90,7 @@ int main(int argc, char **argv) {
     printf("\n");
     free(y);
     rs_model_free(&m);
+    rs_case_free(&c);
   }
   printf("cost exponent p (t ~ N^p, least squares over %d grids):", ng);
   for (int k = 0; k < NP; k++) {

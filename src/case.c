@@ -242,13 +242,8 @@ static int resolve_twin_disc(const resolver *r, rs_case *c)
     h->v[h->n++] = -st->slip_end;
   }
   c->end_time = t;
-  if (!given(r, "simulation.output_interval"))
+  if (!given(r, "simulation.output_interval")) /* the record count is checked in resolve_time */
     c->output_interval = rig->revolution_time / 20.0;
-  if (c->end_time / c->output_interval > 1e8)
-    return rs_case_error(r->d, block, "twin_disc", "%g revolutions at %g records per revolution: "
-                                                   "too many records (raise "
-                                                   "simulation.output_interval)",
-                         revolutions, rig->revolution_time / c->output_interval);
   return RS_OK;
 }
 

@@ -15,57 +15,53 @@ set(RS_RST ${CMAKE_CURRENT_BINARY_DIR}/restart_out)
 set(RS_RST_CHECK ${SYSTEM_PYTHON3} ${RS_TESTS}/check_restart.py)
 set(RS_RST_TOL --set solver.rtol=1e-8 --set solver.atol=1e-8)
 
-# Elastic: default.yaml rolled 6 mm (A), and 3 mm (B, ends at t = 1e-4 s, on the output
-# grid) restarted to 6 mm (C).
+# One equivalence check: NAME_full runs ARGS, NAME_first runs ARGS shortened by FIRST
+# (it must end on the output grid), NAME_rest restarts from it, NAME_agrees compares
+# NAME_rest with NAME_full in Fx and FIELDS to 1e-6.
+function(rs_restart_equivalence name)
+  cmake_parse_arguments(R "" "" "ARGS;FIRST;FIELDS" ${ARGN})
+  set(f ${RS_RST}/${name})
+  add_test(NAME restart_${name}_full COMMAND ${RS_BIN} run ${R_ARGS} -o ${f}_full.nc)
+  add_test(NAME restart_${name}_first COMMAND ${RS_BIN} run ${R_ARGS} ${R_FIRST} -o ${f}_first.nc)
+  add_test(NAME restart_${name}_rest COMMAND ${RS_BIN} run ${R_ARGS}
+                --restart ${f}_first.nc -o ${f}_rest.nc)
+  set_tests_properties(restart_${name}_full PROPERTIES FIXTURES_SETUP rst_${name})
+  set_tests_properties(restart_${name}_first PROPERTIES FIXTURES_SETUP rst_${name}_first)
+  set_tests_properties(restart_${name}_rest PROPERTIES FIXTURES_REQUIRED rst_${name}_first
+                       FIXTURES_SETUP rst_${name})
+  add_test(NAME restart_${name}_agrees COMMAND ${RS_RST_CHECK} agree ${f}_full.nc
+                ${f}_first.nc ${f}_rest.nc 1e-6 ${R_FIELDS})
+  set_tests_properties(restart_${name}_agrees PROPERTIES
+                       FIXTURES_REQUIRED "rst_${name};rst_${name}_first")
+endfunction()
+
+# Elastic: default.yaml rolled 6 mm, and 3 mm (ends at t = 1e-4 s, on the output grid)
+# restarted to 6 mm.
 set(RS_RST_EL ${RS_CASES}/default.yaml --set simulation.rolled_distance=6
               --set "output.fields=[px,pn,slip,upl,ustar,regime]" ${RS_RST_TOL} --quiet)
-add_test(NAME restart_elastic_full COMMAND ${RS_BIN} run ${RS_RST_EL} -o ${RS_RST}/el_full.nc)
-add_test(NAME restart_elastic_first COMMAND ${RS_BIN} run ${RS_RST_EL}
-              --set simulation.rolled_distance=3 -o ${RS_RST}/el_first.nc)
-add_test(NAME restart_elastic_rest COMMAND ${RS_BIN} run ${RS_RST_EL}
-              --restart ${RS_RST}/el_first.nc -o ${RS_RST}/el_rest.nc)
-set_tests_properties(restart_elastic_full PROPERTIES FIXTURES_SETUP rst_el)
-set_tests_properties(restart_elastic_first PROPERTIES FIXTURES_SETUP rst_el_first)
-set_tests_properties(restart_elastic_rest PROPERTIES FIXTURES_REQUIRED rst_el_first FIXTURES_SETUP rst_el)
-add_test(NAME restart_elastic_agrees COMMAND ${RS_RST_CHECK} agree ${RS_RST}/el_full.nc
-              ${RS_RST}/el_first.nc ${RS_RST}/el_rest.nc 1e-6 px)
-set_tests_properties(restart_elastic_agrees PROPERTIES FIXTURES_REQUIRED "rst_el;rst_el_first")
+rs_restart_equivalence(elastic ARGS ${RS_RST_EL}
+  FIRST --set simulation.rolled_distance=3
+  FIELDS px)
 
 # Plastic (u_pl and u* must carry over): carter_plast.yaml transient, k_rel = 0.6,
 # rolled 6 mm against 3 + 3 mm.
-set(RS_RST_PL ${RS_CASES}/carter_plast.yaml --set simulation.mode=transient
-              --set plasticity.k_rel=0.6 --set simulation.rolled_distance=6
-              --set simulation.output_interval=1e-5 ${RS_RST_TOL} --quiet)
-add_test(NAME restart_plastic_full COMMAND ${RS_BIN} run ${RS_RST_PL} -o ${RS_RST}/pl_full.nc)
-add_test(NAME restart_plastic_first COMMAND ${RS_BIN} run ${RS_RST_PL}
-              --set simulation.rolled_distance=3 -o ${RS_RST}/pl_first.nc)
-add_test(NAME restart_plastic_rest COMMAND ${RS_BIN} run ${RS_RST_PL}
-              --restart ${RS_RST}/pl_first.nc -o ${RS_RST}/pl_rest.nc)
-set_tests_properties(restart_plastic_full PROPERTIES FIXTURES_SETUP rst_pl)
-set_tests_properties(restart_plastic_first PROPERTIES FIXTURES_SETUP rst_pl_first)
-set_tests_properties(restart_plastic_rest PROPERTIES FIXTURES_REQUIRED rst_pl_first FIXTURES_SETUP rst_pl)
-add_test(NAME restart_plastic_agrees COMMAND ${RS_RST_CHECK} agree ${RS_RST}/pl_full.nc
-              ${RS_RST}/pl_first.nc ${RS_RST}/pl_rest.nc 1e-6 px upl ustar)
-set_tests_properties(restart_plastic_agrees PROPERTIES FIXTURES_REQUIRED "rst_pl;rst_pl_first")
+rs_restart_equivalence(plastic
+  ARGS ${RS_CASES}/carter_plast.yaml --set simulation.mode=transient
+       --set plasticity.k_rel=0.6 --set simulation.rolled_distance=6
+       --set simulation.output_interval=1e-5 ${RS_RST_TOL} --quiet
+  FIRST --set simulation.rolled_distance=3
+  FIELDS px upl ustar)
 
 # Prescribed tangential force (the creepage is part of the state): Carter case, force
 # ramped 0 -> 30 N/mm over 0.5 ms, run 1 ms against 0.3 + 0.7 ms.
-set(RS_RST_FC ${RS_CASES}/default.yaml --set rolling.creepage=null
-              --set "rolling.tangential_force={ramp: {from: 0.0, to: 30.0, start: 0.0, duration: 0.0005}}"
-              --set simulation.rolled_distance=null --set simulation.end_time=0.001
-              --set simulation.output_interval=2e-5
-              --set "output.fields=[px,pn,upl,ustar]" ${RS_RST_TOL} --quiet)
-add_test(NAME restart_force_full COMMAND ${RS_BIN} run ${RS_RST_FC} -o ${RS_RST}/fc_full.nc)
-add_test(NAME restart_force_first COMMAND ${RS_BIN} run ${RS_RST_FC}
-              --set simulation.end_time=0.0003 -o ${RS_RST}/fc_first.nc)
-add_test(NAME restart_force_rest COMMAND ${RS_BIN} run ${RS_RST_FC}
-              --restart ${RS_RST}/fc_first.nc -o ${RS_RST}/fc_rest.nc)
-set_tests_properties(restart_force_full PROPERTIES FIXTURES_SETUP rst_fc)
-set_tests_properties(restart_force_first PROPERTIES FIXTURES_SETUP rst_fc_first)
-set_tests_properties(restart_force_rest PROPERTIES FIXTURES_REQUIRED rst_fc_first FIXTURES_SETUP rst_fc)
-add_test(NAME restart_force_agrees COMMAND ${RS_RST_CHECK} agree ${RS_RST}/fc_full.nc
-              ${RS_RST}/fc_first.nc ${RS_RST}/fc_rest.nc 1e-6 px creepage)
-set_tests_properties(restart_force_agrees PROPERTIES FIXTURES_REQUIRED "rst_fc;rst_fc_first")
+rs_restart_equivalence(force
+  ARGS ${RS_CASES}/default.yaml --set rolling.creepage=null
+       --set "rolling.tangential_force={ramp: {from: 0.0, to: 30.0, start: 0.0, duration: 0.0005}}"
+       --set simulation.rolled_distance=null --set simulation.end_time=0.001
+       --set simulation.output_interval=2e-5
+       --set "output.fields=[px,pn,upl,ustar]" ${RS_RST_TOL} --quiet
+  FIRST --set simulation.end_time=0.0003
+  FIELDS px creepage)
 
 # Invalid restarts: exit 2, a message naming the problem, no output file.
 # A file without upl (default.yaml writes px, pn, slip, regime).
@@ -79,30 +75,30 @@ set_tests_properties(restart_error_missing_field PROPERTIES FIXTURES_REQUIRED rs
 # Grid mismatch: 50 cells against the old run's 100.
 add_test(NAME restart_error_grid COMMAND ${RS_RST_CHECK} error "its grid has 100 cells, the case has 50"
               ${RS_BIN} run ${RS_RST_EL} --set grid.cells=50
-              --restart ${RS_RST}/el_first.nc -o ${RS_RST}/err_grid.nc)
+              --restart ${RS_RST}/elastic_first.nc -o ${RS_RST}/err_grid.nc)
 # Same number of cells, different x (grid.extent).
 add_test(NAME restart_error_grid_x COMMAND ${RS_RST_CHECK} error "its grid differs"
               ${RS_BIN} run ${RS_RST_EL} --set grid.extent=1.1
-              --restart ${RS_RST}/el_first.nc -o ${RS_RST}/err_gridx.nc)
+              --restart ${RS_RST}/elastic_first.nc -o ${RS_RST}/err_gridx.nc)
 # Nothing left to run: the old run already reached the case's end time.
 add_test(NAME restart_error_nothing_left COMMAND ${RS_RST_CHECK} error "nothing left to run"
               ${RS_BIN} run ${RS_RST_EL} --set simulation.rolled_distance=3
-              --restart ${RS_RST}/el_first.nc -o ${RS_RST}/err_done.nc)
+              --restart ${RS_RST}/elastic_first.nc -o ${RS_RST}/err_done.nc)
 # Steady mode.
 add_test(NAME restart_error_steady COMMAND ${RS_RST_CHECK} error "restart applies to transient runs"
               ${RS_BIN} run ${RS_RST_EL} --set simulation.mode=steady
-              --restart ${RS_RST}/el_first.nc -o ${RS_RST}/err_steady.nc)
+              --restart ${RS_RST}/elastic_first.nc -o ${RS_RST}/err_steady.nc)
 # Missing file.
 add_test(NAME restart_error_no_file COMMAND ${RS_RST_CHECK} error "restart file ${RS_RST}/no_such.nc: cannot open"
               ${RS_BIN} run ${RS_RST_EL} --restart ${RS_RST}/no_such.nc -o ${RS_RST}/err_nofile.nc)
 # The restart file as the output file would destroy the old records.
 add_test(NAME restart_error_same_file COMMAND ${RS_RST_CHECK} error "it is also the output file"
-              ${RS_BIN} run ${RS_RST_EL} --restart ${RS_RST}/el_first.nc -o ${RS_RST}/el_first.nc)
+              ${RS_BIN} run ${RS_RST_EL} --restart ${RS_RST}/elastic_first.nc -o ${RS_RST}/elastic_first.nc)
 # Only for run.
 add_test(NAME restart_error_sweep COMMAND ${RS_RST_CHECK} error "--restart applies to 'rollsim run' only"
-              ${RS_BIN} sweep ${RS_CASES}/carter_plast.yaml --restart ${RS_RST}/el_first.nc)
+              ${RS_BIN} sweep ${RS_CASES}/carter_plast.yaml --restart ${RS_RST}/elastic_first.nc)
 set_tests_properties(restart_error_grid restart_error_grid_x restart_error_nothing_left
                      restart_error_steady restart_error_same_file restart_error_sweep
-                     PROPERTIES FIXTURES_REQUIRED rst_el_first)
+                     PROPERTIES FIXTURES_REQUIRED rst_elastic_first)
 add_test(NAME restart_help COMMAND ${RS_BIN} --help)
 set_tests_properties(restart_help PROPERTIES PASS_REGULAR_EXPRESSION "--restart OLD.nc")

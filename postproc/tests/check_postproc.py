@@ -275,7 +275,7 @@ def trapezoid_mean(t, f, a, b):
 def check_rig(path):
     """The means rollsim integrates over its time steps agree with the means of the stored
     records (every T/20) over the same windows: to 2 % of the largest traction coefficient
-    (records sample the first revolution's build-up coarsely: measured 0.5 %), and the step
+    (records sample the first revolution's build-up coarsely: measured at most 0.9 %, in revolution 1), and the step
     slips are the held values exactly (a step's window ends where the next slip begins)."""
     with RunFile(path) as run:
         rig = extract.rig_results(run)
