@@ -12,9 +12,30 @@
 void rs_hertz2d(double load, double radius, double shear_modulus, double poisson_ratio,
                 double *a, double *p0);
 
-/* Discrete solution by an active-set method with dense LU (LAPACK dgesv) on the
- * contact cells. x: cell centres [n]; pn: result [n]; delta: approach (may be NULL);
- * iterations: active-set iterations used (may be NULL). */
+/* Methods for the discrete problem; both give the same solution (up to roundoff).
+ * DIRECT: active-set method with dense LU (LAPACK dgesv) on the contact cells,
+ *   O(m^3) per active-set iteration; iterations = active-set iterations.
+ * CG: conjugate gradients on the contact cells with the load as a constraint and
+ *   cells entering and leaving during the iteration (Polonsky & Keer 1999), products
+ *   A p by rs_elastic2d_apply (FFT from RS_ELASTIC_FFT_FROM cells); iterations = CG
+ *   iterations. Needs load > 0.
+ * AUTO: CG from RS_NORMAL2D_CG_FROM cells (and load > 0), DIRECT below. */
+typedef enum { RS_NORMAL2D_AUTO = 0, RS_NORMAL2D_DIRECT, RS_NORMAL2D_CG } rs_normal2d_method;
+
+/* The crossover is where the products become FFT convolutions. Below it each CG
+ * product is a direct O(n^2) sum and CG loses to one dense solve; from it CG wins
+ * by far. Carter's case, median of 31 (bench/normal_timing.c, 2 shared cores):
+ *   cells           100    200    230    250    256    260    300
+ *   DIRECT ms     0.178  1.458  1.763  4.572  2.318  2.419  7.842  (250: 2 active sets)
+ *   CG ms         0.295  1.631  2.705  3.726  0.316  0.323  0.621 */
+#define RS_NORMAL2D_CG_FROM RS_ELASTIC_FFT_FROM
+
+/* Discrete solution. x: cell centres [n]; pn: result [n]; delta: approach (may be
+ * NULL); iterations: iterations used (may be NULL; see rs_normal2d_method). */
+int rs_normal2d_solve_with(const rs_elastic2d *el, const double *x, double radius, double load,
+                           rs_normal2d_method method, double *pn, double *delta, int *iterations,
+                           rs_msg *msg);
+/* rs_normal2d_solve_with(..., RS_NORMAL2D_AUTO, ...). */
 int rs_normal2d_solve(const rs_elastic2d *el, const double *x, double radius, double load,
                       double *pn, double *delta, int *iterations, rs_msg *msg);
 
