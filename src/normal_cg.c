@@ -15,7 +15,7 @@
  * would turn negative leave C (p = 0); cells outside C that penetrate (r < 0) enter
  * it with p = -tau r; either restarts the directions (beta = 0) and rescales the
  * pressure to the load. With C fixed this is plain CG on A_CC restricted to zero-sum
- * vectors: about 3 sqrt(n) iterations to convergence on Carter's case (condition
+ * vectors: about 3.5 sqrt(n) iterations to convergence on Carter's case (condition
  * number about 0.7 m on m contact cells). Products by rs_elastic2d_apply (FFT
  * convolution from RS_ELASTIC_FFT_FROM cells). r and u = A p follow the recurrences
  * r -= tau P A t, u -= tau A t while C stays; they are recomputed from p after a

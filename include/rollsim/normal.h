@@ -23,11 +23,13 @@ void rs_hertz2d(double load, double radius, double shear_modulus, double poisson
 typedef enum { RS_NORMAL2D_AUTO = 0, RS_NORMAL2D_DIRECT, RS_NORMAL2D_CG } rs_normal2d_method;
 
 /* The crossover is where the products become FFT convolutions. Below it each CG
- * product is a direct O(n^2) sum and CG loses to one dense solve; from it CG wins
- * by far. Carter's case, median of 31 (bench/normal_timing.c, 2 shared cores):
- *   cells           100    200    230    250    256    260    300
- *   DIRECT ms     0.178  1.458  1.763  4.572  2.318  2.419  7.842  (250: 2 active sets)
- *   CG ms         0.295  1.631  2.705  3.726  0.316  0.323  0.621 */
+ * product is a direct O(n^2) sum and CG loses to one dense solve (it wins where the
+ * active set takes two); from it CG wins by far. Carter's case, median of 31
+ * (build/rollsim_bench_normal 31 CELLS..., 2 shared cores, load average 3):
+ *   cells             100    200    230    250    256    300
+ *   DIRECT ms       0.242  1.176  1.824  8.436  2.335  3.826
+ *   active sets         1      1      1      2      1      1
+ *   CG ms           0.282  1.552  2.686  3.585  0.315  0.627 */
 #define RS_NORMAL2D_CG_FROM RS_ELASTIC_FFT_FROM
 
 /* Discrete solution. x: cell centres [n]; pn: result [n]; delta: approach (may be
