@@ -56,7 +56,8 @@ static void check_grid(int cells, double load_fraction)
   if (st == RS_OK)
     st = rs_normal2d_solve_with(&m.el, m.x, m.radius, load, RS_NORMAL2D_CG, p_cg, &d_cg, &it_cg,
                                 &msg);
-  if (st == RS_OK) st = rs_normal2d_solve(&m.el, m.x, m.radius, load, p_auto, &d_auto, &it_auto, &msg);
+  if (st == RS_OK)
+    st = rs_normal2d_solve(&m.el, m.x, m.radius, load, p_auto, &d_auto, &it_auto, &msg);
   if (st != RS_OK) {
     printf("FAIL solve: %s\n", msg.text);
     ts_failures++;
