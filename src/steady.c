@@ -30,6 +30,7 @@ struct rs_steady {
   double *y_prev; /* start of the current pseudo-time step */
   double cj;      /* 0: steady; 1/dtau: a backward-Euler step of the rolling transient */
   double t;
+  long coarse_jac_evals; /* Jacobian evaluations on coarse grids (grid sequencing) */
 };
 
 /* y' = cj (y - y_prev) (backward Euler) or 0 (steady). */
@@ -197,7 +198,6 @@ int rs_steady_create_with(rs_steady **out, const rs_model *m, rs_linear linear, 
   flag |= KINSetMaxNewtonStep(s->kmem, 1e12);    /* steps from p = 0 are large */
   flag |= KINSetFuncNormTol(s->kmem, 1e-10); /* relative to the largest bound; roundoff is ~1e-12 */
   flag |= KINSetScaledStepTol(s->kmem, 1e-13);
-  flag |= KINSetNumMaxIters(s->kmem, 50);
   flag |= KINSetErrHandlerFn(s->kmem, rs_sundials_silent, NULL);
   if (flag != 0) goto fail;
   *out = s;
@@ -207,15 +207,19 @@ fail:
   return rs_msg_set(msg, RS_ERR_INTERNAL, "could not set up the steady solver (SUNDIALS/KLU)");
 }
 
-/* Newton (plain, then with line search) from y; RS_OK and the solution in y, or
- * RS_ERR_SOLVER with y unchanged. */
-static int newton(rs_steady *s, double *y, rs_stats *stats, int *kin_flag)
+/* Newton from y: plain with at most plain_iters iterations, then (if that fails)
+ * with a line search and at most search_iters (0: none); RS_OK and the solution in
+ * y, or RS_ERR_SOLVER with y unchanged. */
+static int newton(rs_steady *s, double *y, int plain_iters, int search_iters, rs_stats *stats,
+                  int *kin_flag)
 {
   const rs_model *m = s->m;
   double *u = N_VGetArrayPointer(s->u);
-  int flag = 0;
-  const int strategies[2] = {KIN_NONE, KIN_LINESEARCH};
+  int flag = KIN_MAXITER_REACHED;
+  const int strategies[2] = {KIN_NONE, KIN_LINESEARCH}, caps[2] = {plain_iters, search_iters};
   for (int k = 0; k < 2; k++) {
+    if (caps[k] <= 0) continue;
+    KINSetNumMaxIters(s->kmem, caps[k]);
     memcpy(u, y, (size_t)m->neq * sizeof *u);
     flag = KINSol(s->kmem, s->u, strategies[k], s->uscale, s->fscale);
     long iters = 0, fevals = 0, lin_iters = 0;
@@ -241,42 +245,50 @@ static int newton(rs_steady *s, double *y, rs_stats *stats, int *kin_flag)
   return RS_OK;
 }
 
-/* First fallback when Newton cycles between active sets (seen with moderate
- * hardening): pseudo-transient continuation with backward-Euler steps of the
+/* First fallback when Newton cycles between active sets (model.md §9; seen with
+ * work hardening, where the trailing end of the plastic zone moves by about one cell
+ * per iteration): pseudo-transient continuation with backward-Euler steps of the
  * rolling transient, F(y, (y - y_prev)/dtau) = 0, each solved by the same exact
- * Newton (the c_j terms make it better conditioned and keep the active set close
- * to the previous one), dtau growing geometrically from one cell passage; after
- * every step, steady Newton is tried from the new state. */
+ * Newton. The c_j terms keep the active set close to the previous one, so the steps
+ * converge in a few iterations as long as the material rolls less than about one
+ * contact length per step: dtau starts at one cell passage, doubles after a step
+ * that converged in few iterations, halves after a failed one, and never exceeds
+ * half a contact length. The steps follow the physical approach to steady rolling;
+ * once a step changes the tractions little, steady Newton is tried from its state. */
+enum { STEP_ITERS = 12, STEADY_TRY_ITERS = 15, MAX_PSEUDO_STEPS = 400 };
 static int pseudo_time_steps(rs_steady *s, double *y, rs_stats *stats)
 {
   const rs_model *m = s->m;
   const double V = rs_history_eval(&m->velocity, s->t), cell_time = m->dx / V;
+  const double dtau_max = fmax(cell_time, m->hertz_a / V);
   double dtau = cell_time;
   int status = RS_ERR_SOLVER, kin_flag = 0;
   double *z = malloc((size_t)m->neq * sizeof *z);
   if (!z) return RS_ERR_INTERNAL;
   memcpy(z, y, (size_t)m->neq * sizeof *z);
-  for (int step = 0; step < 200 && status != RS_OK; step++) {
+  for (int step = 0; step < MAX_PSEUDO_STEPS && status != RS_OK; step++) {
     memcpy(s->y_prev, z, (size_t)m->neq * sizeof *z);
     s->cj = 1.0 / dtau;
-    if (newton(s, z, stats, &kin_flag) != RS_OK) { /* step too ambitious: shorter */
+    const long before = stats ? stats->nonlin_iters : 0;
+    if (newton(s, z, STEP_ITERS, 0, stats, &kin_flag) != RS_OK) { /* too ambitious: shorter */
       memcpy(z, s->y_prev, (size_t)m->neq * sizeof *z);
-      dtau *= 0.25;
+      dtau *= 0.5;
       if (dtau < 1e-3 * cell_time) break;
       continue;
     }
-    /* Try steady Newton once the pseudo-time step changes the tractions little. */
+    const long used = stats ? stats->nonlin_iters - before : 0;
     double change = 0.0, size = 0.0;
     for (int i = 0; i < m->n; i++) {
       change = fmax(change, fabs(z[i] - s->y_prev[i]));
       size = fmax(size, fabs(z[i]));
     }
-    if (change <= 1e-2 * size) {
+    if (change <= 1e-3 * size) { /* close to steady: try steady Newton from here */
       s->cj = 0.0;
       memcpy(y, z, (size_t)m->neq * sizeof *y);
-      status = newton(s, y, stats, &kin_flag);
+      status = newton(s, y, STEADY_TRY_ITERS, 0, stats, &kin_flag);
+      if (status == RS_OK) break;
     }
-    dtau *= 3.0;
+    if (used <= STEP_ITERS / 2) dtau = fmin(2.0 * dtau, dtau_max);
   }
   s->cj = 0.0;
   free(z);
@@ -319,7 +331,7 @@ static int pseudo_transient(rs_steady *s, double t, double *y, rs_stats *stats, 
     status = rs_transient_advance(tr, tau, z, zp, msg);
     if (status != RS_OK) break;
     memcpy(y, z, (size_t)m->neq * sizeof *y);
-    if (newton(s, y, stats, &kin_flag) == RS_OK) break;
+    if (newton(s, y, 50, 50, stats, &kin_flag) == RS_OK) break;
   }
   if (tr && stats) {
     rs_stats st;
@@ -334,6 +346,51 @@ static int pseudo_transient(rs_steady *s, double t, double *y, rs_stats *stats, 
   return status;
 }
 
+/* Second strategy when Newton cycles (model.md §9): grid sequencing. The same problem
+ * on a grid of half the cells (solved by this same function, so recursively down to
+ * a grid where Newton converges), interpolated to this grid, is a start close enough
+ * that the active set settles in a few iterations: the zone boundaries are off by a
+ * coarse cell at most, where from p = 0 the trailing end of a work-hardening plastic
+ * zone moves by about one cell per iteration. */
+enum { COARSE_MIN_CELLS = 40 };
+static int grid_sequencing(rs_steady *s, double t, double *y, rs_stats *stats)
+{
+  const rs_model *m = s->m;
+  if (m->n < 2 * COARSE_MIN_CELLS) return RS_ERR_SOLVER;
+  rs_model coarse;
+  rs_msg cmsg = {{0}};
+  if (rs_model_regrid(m, (m->n + 1) / 2, &coarse, &cmsg) != RS_OK) return RS_ERR_SOLVER;
+  rs_steady *cs = NULL;
+  rs_work cw = {0};
+  double *yc = calloc((size_t)coarse.neq, sizeof *yc);
+  int status = yc && rs_work_create(&cw, coarse.n) == RS_OK ? RS_OK : RS_ERR_INTERNAL;
+  if (status == RS_OK) status = rs_steady_create(&cs, &coarse, &cmsg);
+  if (status == RS_OK) status = rs_model_interpolate_state(m, y, &coarse, &cw, t, yc, &cmsg);
+  rs_stats cst = {0};
+  if (status == RS_OK) status = rs_steady_solve(cs, t, yc, &cst, &cmsg);
+  if (stats) { /* the coarse grids' work counts too */
+    stats->steps += cst.steps;
+    stats->nonlin_iters += cst.nonlin_iters;
+    stats->res_evals += cst.res_evals;
+    stats->lin_solves += cst.lin_solves;
+  }
+  s->coarse_jac_evals += cst.jac_evals;
+  double *z = status == RS_OK ? malloc((size_t)m->neq * sizeof *z) : NULL;
+  if (status == RS_OK && !z) status = RS_ERR_INTERNAL;
+  if (status == RS_OK) status = rs_model_interpolate_state(&coarse, yc, m, &s->work, t, z, &cmsg);
+  if (status == RS_OK) {
+    s->cj = 0.0;
+    status = newton(s, z, 10, 40, stats, &(int){0});
+    if (status == RS_OK) memcpy(y, z, (size_t)m->neq * sizeof *y);
+  }
+  free(z);
+  free(yc);
+  rs_steady_free(cs);
+  rs_work_free(&cw);
+  rs_model_free(&coarse);
+  return status == RS_OK ? RS_OK : RS_ERR_SOLVER;
+}
+
 int rs_steady_solve(rs_steady *s, double t, double *y, rs_stats *stats, rs_msg *msg)
 {
   const rs_model *m = s->m;
@@ -346,7 +403,16 @@ int rs_steady_solve(rs_steady *s, double t, double *y, rs_stats *stats, rs_msg *
   double *start = malloc((size_t)m->neq * sizeof *start);
   if (!start) return rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory");
   memcpy(start, y, (size_t)m->neq * sizeof *start);
-  int status = newton(s, y, stats, &kin_flag);
+  /* From rest, a plastic model goes to the coarse grid at once (Newton from p = 0
+   * cycles at the trailing end of the plastic zone on fine grids); otherwise Newton
+   * first, from the caller's start (continuation). */
+  int cold = 1;
+  for (int i = 0; i < m->n && cold; i++) cold = y[i] == 0.0;
+  const int sequence_first = m->has_plasticity && cold && m->n >= 2 * COARSE_MIN_CELLS;
+  int status = sequence_first ? grid_sequencing(s, t, y, stats) : RS_ERR_SOLVER;
+  if (status != RS_OK)
+    status = newton(s, y, m->has_plasticity ? 25 : 50, m->has_plasticity ? 0 : 50, stats, &kin_flag);
+  if (status != RS_OK && !sequence_first) status = grid_sequencing(s, t, y, stats);
   if (status != RS_OK) status = pseudo_time_steps(s, y, stats);
   if (status == RS_ERR_SOLVER) {
     memcpy(y, start, (size_t)m->neq * sizeof *y);
@@ -354,7 +420,7 @@ int rs_steady_solve(rs_steady *s, double t, double *y, rs_stats *stats, rs_msg *
   }
   free(start);
   if (stats) {
-    stats->jac_evals = s->ls.jac_evals;
+    stats->jac_evals = s->ls.jac_evals + s->coarse_jac_evals;
     stats->klu_analyses = rs_linsys_analyses(&s->ls);
   }
   return status;

@@ -1,7 +1,9 @@
 # Physics and solver unit tests (verification.md §1-3, §7).
 rs_unit_test(test_normal_hertz)
+rs_unit_test(test_normal_cg)
 rs_unit_test(test_carter_steady)
 rs_unit_test(test_linear_paths)
+rs_unit_test(test_plastic_fine)
 rs_unit_test(test_transient_to_steady)
 rs_unit_test(test_hou_single_cell)
 rs_unit_test(test_plastic_limits)

@@ -41,6 +41,7 @@ typedef struct rs_model {
   double mu;
   int has_plasticity;
   double tau_c0, k_tau, tau_c_min;
+  double reference_length; /* mm, L of the 2D kernel */
   rs_history velocity, creepage;
   rs_history shift;        /* rigid shift velocity, mm/s (pure shift when V = 0) */
   rs_scaling scaling;
@@ -53,6 +54,12 @@ typedef struct rs_model {
 /* Build grid, influence coefficients and the normal solution from a case. */
 int rs_model_create(rs_model *m, const rs_case *c, rs_msg *msg);
 void rs_model_free(rs_model *m);
+
+/* The same model on a grid of n cells over the same extent (coarse-grid solves that
+ * start Newton on the fine grid, model.md §9): new influence coefficients and normal
+ * solution, the same inputs, material and memory. Free with rs_model_free. */
+int rs_model_regrid(const rs_model *m, int n, rs_model *out, rs_msg *msg);
+
 
 /* Compressed sparse row matrix (the generalized Jacobian). Indices are int64 to
  * match SUNDIALS' sunindextype. */
@@ -83,6 +90,12 @@ void rs_work_free(rs_work *w);
  * constant load; with a normal-load history the normal solution (discrete or Hertz, as
  * the case says) for the load at t, cached in w. Every evaluation below calls it. */
 int rs_model_normal_at(const rs_model *m, rs_work *w, double t, rs_msg *msg);
+
+/* Interpolate a state y_from of model from to the grid of model to (linear in x
+ * between cell centres, constant beyond the outer centres; tractions then made
+ * admissible at time t: zero outside the contact, |p| <= g). */
+int rs_model_interpolate_state(const rs_model *from, const double *y_from, const rs_model *to,
+                               rs_work *w_to, double t, double *y_to, rs_msg *msg);
 
 /* Maximum number of Jacobian nonzeros (dense traction block plus bands). */
 int64_t rs_model_jac_capacity(const rs_model *m);

@@ -12,9 +12,32 @@
 void rs_hertz2d(double load, double radius, double shear_modulus, double poisson_ratio,
                 double *a, double *p0);
 
-/* Discrete solution by an active-set method with dense LU (LAPACK dgesv) on the
- * contact cells. x: cell centres [n]; pn: result [n]; delta: approach (may be NULL);
- * iterations: active-set iterations used (may be NULL). */
+/* Methods for the discrete problem; both give the same solution (up to roundoff).
+ * DIRECT: active-set method with dense LU (LAPACK dgesv) on the contact cells,
+ *   O(m^3) per active-set iteration; iterations = active-set iterations.
+ * CG: conjugate gradients on the contact cells with the load as a constraint and
+ *   cells entering and leaving during the iteration (Polonsky & Keer 1999), products
+ *   A p by rs_elastic2d_apply (FFT from RS_ELASTIC_FFT_FROM cells); iterations = CG
+ *   iterations. Needs load > 0.
+ * AUTO: CG from RS_NORMAL2D_CG_FROM cells (and load > 0), DIRECT below. */
+typedef enum { RS_NORMAL2D_AUTO = 0, RS_NORMAL2D_DIRECT, RS_NORMAL2D_CG } rs_normal2d_method;
+
+/* The crossover is where the products become FFT convolutions. Below it each CG
+ * product is a direct O(n^2) sum and CG loses to one dense solve (it wins where the
+ * active set takes two); from it CG wins by far. Carter's case, median of 31
+ * (build/rollsim_bench_normal 31 CELLS..., 2 shared cores, load average 3):
+ *   cells             100    200    230    250    256    300
+ *   DIRECT ms       0.242  1.176  1.824  8.436  2.335  3.826
+ *   active sets         1      1      1      2      1      1
+ *   CG ms           0.282  1.552  2.686  3.585  0.315  0.627 */
+#define RS_NORMAL2D_CG_FROM RS_ELASTIC_FFT_FROM
+
+/* Discrete solution. x: cell centres [n]; pn: result [n]; delta: approach (may be
+ * NULL); iterations: iterations used (may be NULL; see rs_normal2d_method). */
+int rs_normal2d_solve_with(const rs_elastic2d *el, const double *x, double radius, double load,
+                           rs_normal2d_method method, double *pn, double *delta, int *iterations,
+                           rs_msg *msg);
+/* rs_normal2d_solve_with(..., RS_NORMAL2D_AUTO, ...). */
 int rs_normal2d_solve(const rs_elastic2d *el, const double *x, double radius, double load,
                       double *pn, double *delta, int *iterations, rs_msg *msg);
 
