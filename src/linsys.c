@@ -1,5 +1,6 @@
 /* The KLU-factored sparse generalized Jacobian (see linsys.h). */
 #include "linsys.h"
+#include "linsys_reduced.h"
 
 #include <stdlib.h>
 #include <string.h>
@@ -20,8 +21,38 @@ int rs_linsys_create(rs_linsys *ls, const rs_model *m, N_Vector tmpl, SUNContext
   return RS_OK;
 }
 
+int rs_linsys_use_reduced(rs_linsys *ls, const rs_model *m, SUNContext ctx)
+{
+  if (m->neq != 3 * m->n || ls->reduced) return RS_ERR_INTERNAL;
+  ls->placeholder = SUNSparseMatrix(m->neq, m->neq, 1, CSR_MAT, ctx);
+  ls->reduced = rs_lsreduced_create(m->n, m->neq, ls->J, ls->LS, ctx);
+  return ls->placeholder && ls->reduced ? RS_OK : RS_ERR_INTERNAL;
+}
+
+SUNLinearSolver rs_linsys_solver(const rs_linsys *ls) { return ls->reduced ? ls->reduced : ls->LS; }
+
+SUNMatrix rs_linsys_matrix(const rs_linsys *ls) { return ls->reduced ? ls->placeholder : ls->J; }
+
+long rs_linsys_factorizations(const rs_linsys *ls)
+{
+  if (!ls->reduced) return ls->jac_evals;
+  rs_lsreduced_stats st;
+  rs_lsreduced_get_stats(ls->reduced, &st);
+  return st.setups - st.reuses;
+}
+
+long rs_linsys_analyses(const rs_linsys *ls)
+{
+  if (!ls->reduced) return ls->analyses;
+  rs_lsreduced_stats st;
+  rs_lsreduced_get_stats(ls->reduced, &st);
+  return st.analyses + st.fallbacks; /* a fallback re-analyses the whole matrix */
+}
+
 void rs_linsys_free(rs_linsys *ls)
 {
+  if (ls->reduced) SUNLinSolFree(ls->reduced);
+  if (ls->placeholder) SUNMatDestroy(ls->placeholder);
   if (ls->LS) SUNLinSolFree(ls->LS);
   if (ls->J) SUNMatDestroy(ls->J);
   free(ls->branch_at_analysis);
@@ -36,8 +67,10 @@ int rs_linsys_assemble(rs_linsys *ls, const rs_model *m, rs_work *w, double t, c
                 .rowptr = SM_INDEXPTRS_S(ls->J),
                 .col = SM_INDEXVALS_S(ls->J),
                 .val = SM_DATA_S(ls->J)};
-  rs_model_eval(m, w, t, y, yp, cj, NULL, &csr);
+  const int status = rs_model_eval(m, w, t, y, yp, cj, NULL, &csr);
+  if (status != RS_OK) return status;
   ls->jac_evals++;
+  if (ls->reduced) return RS_OK;
   if (ls->analysed && memcmp(ls->branch_at_analysis, w->branch, (size_t)m->n) != 0) {
     if (SUNLinSol_KLUReInit(ls->LS, ls->J, SM_NNZ_S(ls->J), SUNKLU_REINIT_PARTIAL) != 0)
       return RS_ERR_INTERNAL;

@@ -22,14 +22,30 @@ typedef struct rs_linsys {
   unsigned char *branch_at_analysis; /* branches of the last symbolic analysis [n] */
   int analysed;
   long jac_evals, analyses;
+  /* Optional (rs_linsys_use_reduced): the Schur-complement solver of linsys_reduced.h
+   * on J, with LS as its fallback, and the 1-entry matrix KINSOL is given instead of J. */
+  SUNLinearSolver reduced;
+  SUNMatrix placeholder;
 } rs_linsys;
 
 int rs_linsys_create(rs_linsys *ls, const rs_model *m, N_Vector tmpl, SUNContext ctx);
+/* Solve with the Schur-complement solver (linsys_reduced.h) instead of KLU on the
+ * whole matrix; only for models with the 3 n per-cell unknowns (neq = 3 n). */
+int rs_linsys_use_reduced(rs_linsys *ls, const rs_model *m, SUNContext ctx);
 void rs_linsys_free(rs_linsys *ls);
-/* Assemble the Jacobian at (t, y, yp, cj) into ls->J; redo KLU's symbolic
- * analysis at the next setup if the branches changed. */
+/* The linear solver and matrix to give KINSOL (KINSetLinearSolver): KLU and J, or
+ * the reduced solver and the placeholder. */
+SUNLinearSolver rs_linsys_solver(const rs_linsys *ls);
+SUNMatrix rs_linsys_matrix(const rs_linsys *ls);
+/* Assemble the Jacobian at (t, y, yp, cj) into ls->J; with KLU on the whole matrix
+ * redo its symbolic analysis at the next setup if the branches changed (the
+ * reduced solver tracks the pattern itself). */
 int rs_linsys_assemble(rs_linsys *ls, const rs_model *m, rs_work *w, double t, const double *y,
                        const double *yp, double cj);
+/* Factorisations so far: KLU setups, or the reduced solver's setups that did not
+ * keep the last factorisation (matrix unchanged); and KLU symbolic analyses. */
+long rs_linsys_factorizations(const rs_linsys *ls);
+long rs_linsys_analyses(const rs_linsys *ls);
 
 /* Silences SUNDIALS' own error printing; failures are reported through rs_msg. */
 void rs_sundials_silent(int error_code, const char *module, const char *function, char *msg,

@@ -232,12 +232,12 @@ int main(int argc, char **argv)
            d->count[RS_SLIP], d->count[RS_PLASTIC]);
     if (c.mode == RS_MODE_TRANSIENT)
       printf("  IDA steps %ld, Newton iterations %ld, failed solves %ld, error-test fails %ld\n"
-             "  linear solves %ld, Jacobian evaluations %ld\n",
+             "  linear solves %ld, Jacobian evaluations %ld, factorisations %ld\n",
              res.stats.steps, res.stats.nonlin_iters, res.stats.nonlin_fails,
              res.stats.err_test_fails,
              /* KLU inside IDA's Newton: one linear solve per Newton iteration */
              res.stats.lin_solves > 0 ? res.stats.lin_solves : res.stats.nonlin_iters,
-             res.stats.jac_evals);
+             res.stats.jac_evals, res.stats.factorizations);
     else
       printf("  Newton iterations %ld, linear solves %ld, Jacobian evaluations %ld\n",
              res.stats.nonlin_iters, res.stats.lin_solves, res.stats.jac_evals);

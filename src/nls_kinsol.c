@@ -201,7 +201,7 @@ SUNNonlinearSolver rs_nls_kinsol_create(const rs_model *m, rs_work *w, rs_linsys
   if (!c->uscale || !c->fscale || !c->ybuf || !c->ypbuf || !c->kmem) goto fail;
   int flag = KINInit(c->kmem, kin_residual, tmpl);
   flag |= KINSetUserData(c->kmem, c);
-  flag |= KINSetLinearSolver(c->kmem, ls->LS, ls->J);
+  flag |= KINSetLinearSolver(c->kmem, rs_linsys_solver(ls), rs_linsys_matrix(ls));
   flag |= KINSetJacFn(c->kmem, kin_jacobian);
   flag |= KINSetMaxSetupCalls(c->kmem, 1);
   flag |= KINSetMaxNewtonStep(c->kmem, 1e12);

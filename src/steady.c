@@ -13,7 +13,6 @@
 
 #include "linsys.h"
 #include "linsys_krylov.h"
-#include "linsys_reduced.h"
 #include "rollsim/solver.h"
 
 struct rs_steady {
@@ -22,9 +21,7 @@ struct rs_steady {
   void *kmem;
   N_Vector u, uscale, fscale;
   rs_linsys ls;
-  rs_linear linear;       /* resolved choice (never AUTO) */
-  SUNLinearSolver red;    /* DENSE: Schur-complement solver (falls back to ls.LS) */
-  SUNMatrix placeholder;  /* DENSE: the 1-entry matrix KINSOL sees (see linsys_reduced.h) */
+  rs_linear linear;       /* resolved choice (never AUTO); DENSE: ls.reduced */
   SUNLinearSolver gmres;  /* KRYLOV: SPGMR with the products and preconditioner of kry */
   rs_krylov kry;
   rs_csr full;            /* KRYLOV: the assembled Jacobian (in ls.J's arrays) */
@@ -59,16 +56,7 @@ static int steady_jacobian(N_Vector u, N_Vector f, SUNMatrix J, void *data, N_Ve
   (void)t2;
   rs_steady *s = data;
   const double *y = N_VGetArrayPointer(u);
-  if (s->linear == RS_LINEAR_KLU)
-    return rs_linsys_assemble(&s->ls, s->m, &s->work, s->t, y, rates(s, y), s->cj);
-  /* DENSE: the Schur-complement solver reads the structure from the matrix itself. */
-  rs_csr csr = {.nrows = 0,
-                .cap = SM_NNZ_S(s->ls.J),
-                .rowptr = SM_INDEXPTRS_S(s->ls.J),
-                .col = SM_INDEXVALS_S(s->ls.J),
-                .val = SM_DATA_S(s->ls.J)};
-  s->ls.jac_evals++;
-  return rs_model_eval(s->m, &s->work, s->t, y, rates(s, y), s->cj, NULL, &csr);
+  return rs_linsys_assemble(&s->ls, s->m, &s->work, s->t, y, rates(s, y), s->cj);
 }
 
 /* KRYLOV: the Jacobian is assembled where the preconditioner is set up. */
@@ -114,8 +102,6 @@ void rs_steady_free(rs_steady *s)
 {
   if (!s) return;
   if (s->kmem) KINFree(&s->kmem);
-  if (s->red) SUNLinSolFree(s->red);
-  if (s->placeholder) SUNMatDestroy(s->placeholder);
   if (s->gmres) SUNLinSolFree(s->gmres);
   rs_krylov_free(&s->kry);
   rs_linsys_free(&s->ls);
@@ -168,11 +154,7 @@ int rs_steady_create_with(rs_steady **out, const rs_model *m, rs_linear linear, 
   if (linear == RS_LINEAR_AUTO)
     linear = !m->has_plasticity && n >= KRYLOV_FROM_CELLS ? RS_LINEAR_KRYLOV : RS_LINEAR_DENSE;
   s->linear = linear;
-  if (linear == RS_LINEAR_DENSE) {
-    s->placeholder = SUNSparseMatrix(m->neq, m->neq, 1, CSR_MAT, s->ctx);
-    s->red = rs_lsreduced_create(n, m->neq, s->ls.J, s->ls.LS, s->ctx);
-    if (!s->placeholder || !s->red) goto fail;
-  }
+  if (linear == RS_LINEAR_DENSE && rs_linsys_use_reduced(&s->ls, m, s->ctx) != RS_OK) goto fail;
   if (linear == RS_LINEAR_KRYLOV) {
     s->gmres = SUNLinSol_SPGMR(s->u, SUN_PREC_RIGHT, KRYLOV_MAXL, s->ctx);
     if (!s->gmres || SUNLinSol_SPGMRSetMaxRestarts(s->gmres, 4) != 0 ||
@@ -209,8 +191,7 @@ int rs_steady_create_with(rs_steady **out, const rs_model *m, rs_linear linear, 
     flag |= KINSetEtaForm(s->kmem, KIN_ETACONSTANT);
     flag |= KINSetEtaConstValue(s->kmem, KRYLOV_ETA);
   } else {
-    flag |= s->red ? KINSetLinearSolver(s->kmem, s->red, s->placeholder)
-                   : KINSetLinearSolver(s->kmem, s->ls.LS, s->ls.J);
+    flag |= KINSetLinearSolver(s->kmem, rs_linsys_solver(&s->ls), rs_linsys_matrix(&s->ls));
     flag |= KINSetJacFn(s->kmem, steady_jacobian);
   }
   flag |= KINSetMaxSetupCalls(s->kmem, 1);       /* exact Newton */
@@ -443,7 +424,7 @@ int rs_steady_solve(rs_steady *s, double t, double *y, rs_stats *stats, rs_msg *
   free(start);
   if (stats) {
     stats->jac_evals = s->ls.jac_evals + s->coarse_jac_evals;
-    stats->klu_analyses = s->ls.analyses;
+    stats->klu_analyses = rs_linsys_analyses(&s->ls);
   }
   return status;
 }

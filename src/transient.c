@@ -1,6 +1,7 @@
 /* Transient rolling: IDA (variable-order, variable-step BDF with error control)
  * on the semi-discrete DAE, each step's nonlinear system solved by KINSOL with
- * the KLU-factored generalized Jacobian (model.md §6). */
+ * the generalized Jacobian, factored by the Schur-complement solver or by KLU
+ * (model.md §6). */
 #include <ida/ida.h>
 #include <math.h>
 #include <nvector/nvector_serial.h>
@@ -97,6 +98,11 @@ int rs_transient_create(rs_transient **out, const rs_model *m, double t0, const 
   }
   if (rs_work_create(&tr->work, n) != RS_OK) goto fail;
   if (rs_linsys_create(&tr->ls, m, tr->y, tr->ctx) != RS_OK) goto fail;
+  /* Linear algebra: the Schur-complement solver (linsys_reduced.h) whenever the model
+   * has the 3 n per-cell unknowns only, KLU on the whole matrix otherwise (as the
+   * steady solver does). */
+  const rs_linear linear = m->neq != 3 * n ? RS_LINEAR_KLU : o->linear;
+  if (linear != RS_LINEAR_KLU && rs_linsys_use_reduced(&tr->ls, m, tr->ctx) != RS_OK) goto fail;
   tr->cj = 0.0;
   tr->nls = rs_nls_kinsol_create(m, &tr->work, &tr->ls, &tr->cj, o->max_newton, tr->y, tr->ctx);
   if (!tr->nls) goto fail;
@@ -214,5 +220,6 @@ void rs_transient_get_stats(const rs_transient *tr, rs_stats *st)
   st->err_test_fails += tr->before_restart.err_test_fails;
   st->res_evals += tr->before_restart.res_evals;
   st->jac_evals = tr->ls.jac_evals;
-  st->klu_analyses = tr->ls.analyses;
+  st->klu_analyses = rs_linsys_analyses(&tr->ls);
+  st->factorizations = rs_linsys_factorizations(&tr->ls);
 }

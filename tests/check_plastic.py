@@ -5,6 +5,14 @@ regimes FILE RTOL
     E: p = 0;  H: |p| <= min(g, tau_c);  S: |p| = g <= tau_c;  P: |p| = tau_c < g,
     with g = mu p_n, to a tolerance of 20 rtol max(g) (the transient's interpolated
     output between steps carries errors of a few rtol; steady files pass rtol = 1e-9).
+    Exception: a cell whose regime differs from that of the previous or the next
+    record switched near this output time, and if the switch happened inside the IDA
+    step the record was interpolated from, IDA's interpolating polynomial runs through
+    the kink of p(t) and is off the new constraint by O(step x jump of dp/dt), which
+    the error test does not bound (seen: p = 34.9956 for tau_c = 35.0001 in a cell
+    that had just started to flow; the same file passes or fails with rtol 1e-6 or
+    0.9e-6, whichever step falls on the switch). Such cells must still be admissible,
+    |p| <= min(g, tau_c).
 trends SWEEP.nc SATURATED.nc
     The paper's Figure-9 trends on a sweep over (plasticity.k_rel, rolling.creepage):
     F_x falls as k_rel falls at every creepage beyond the linear range; the k_rel = 0
@@ -40,17 +48,24 @@ def regimes(path, rtol):
     g = mu * pn
     tol = 20.0 * rtol * g.max()
     a = np.abs(p)
+    switching = np.zeros(reg.shape, dtype=bool)
+    switching[1:] |= reg[1:] != reg[:-1]
+    switching[:-1] |= reg[:-1] != reg[1:]
+    steady = ~switching
     bad = {
         "E: p = 0": (reg == 0) & (a != 0.0),
         "E: p_n = 0": (reg == 0) & (pn != 0.0),
         "H: |p| <= min(g, tau_c)": (reg == 1) & (a > np.minimum(g, tauc) + tol),
-        "S: |p| = g": (reg == 2) & (np.abs(a - g) > tol),
+        "S: |p| = g": (reg == 2) & steady & (np.abs(a - g) > tol),
         "S: g <= tau_c": (reg == 2) & (g > tauc + tol),
-        "P: |p| = tau_c": (reg == 3) & (np.abs(a - tauc) > tol),
+        "P: |p| = tau_c": (reg == 3) & steady & (np.abs(a - tauc) > tol),
         "P: tau_c < g": (reg == 3) & (tauc > g + tol),
+        "S, P switching: |p| <= min(g, tau_c)": (reg >= 2) & switching
+        & (a > np.minimum(g, tauc) + tol),
     }
     counts = [int((reg == k).sum()) for k in range(4)]
-    print(f"{path}: {p.shape[0]} records x {p.shape[1]} cells, E/H/S/P cell-records {counts}, tol {tol:.3g} N/mm2")
+    print(f"{path}: {p.shape[0]} records x {p.shape[1]} cells, E/H/S/P cell-records {counts}, "
+          f"{int(((reg >= 2) & switching).sum())} S/P cell-records at a regime switch, tol {tol:.3g} N/mm2")
     for what, mask in bad.items():
         n = int(mask.sum())
         detail = ""

@@ -7,7 +7,18 @@
  * mu p0 of the exact discrete solution; we allow max|dp| <= 1e-8 p0 (two orders of
  * magnitude of conditioning) and identical regime counts. Cases: Carter elastic at
  * 100 and 800 cells; the Figure 7 plastic case (k_rel = 0.6, hardening) at 100
- * cells, and with k_rel = 0.98 at 400 cells. */
+ * cells, and with k_rel = 0.98 at 400 cells.
+ *
+ * The transient (IDA, KINSOL in every step) with KLU and with the dense Schur
+ * complement, from rest: each Newton step agrees to roundoff, but a roundoff-sized
+ * difference can move a regime switch to the other side of a step and IDA then
+ * takes a different step sequence, so the two F_x(t) histories agree only to the
+ * time-integration error, not to roundoff. The assertion: the paths differ by no
+ * more than the KLU path's own global error, measured against a KLU run with
+ * rtol 100 times smaller: max_t |F_dense - F_klu| <= max_t |F_klu - F_ref|; and that
+ * error is below 100 rtol max|F_x| (a few rtol expected), so that a broken reference
+ * cannot make room for a broken path. Cases: Carter elastic start-up, and the
+ * Figure 7 plastic case (k_rel = 0.6), 100 cells, 6 contact lengths rolled. */
 #include "rollsim/model.h"
 #include "rollsim/solver.h"
 #include "test_support.h"
@@ -87,6 +98,75 @@ static void plastic_case(rs_case *c, int cells, double k_rel) {
   c->tau_c_min = 0.1 * c->tau_c0;
 }
 
+/* F_x at nout equally spaced times up to t_end, from rest (p = 0, consistent rates). */
+static int transient_fx(const rs_model *m, rs_linear lin, double rtol, double t_end, int nout,
+                        double *fx, rs_stats *st) {
+  rs_msg msg = {{0}};
+  double *y = calloc((size_t)m->neq, sizeof *y), *yp = calloc((size_t)m->neq, sizeof *yp);
+  rs_work w;
+  int status = y && yp ? rs_work_create(&w, m->n) : RS_ERR_INTERNAL;
+  if (status == RS_OK) status = rs_model_consistent_rates(m, &w, 0.0, y, yp, &msg);
+  rs_transient_opts o = {.rtol = rtol, .atol = 1e-9, .max_order = 5, .max_steps = 10000000,
+                         .max_newton = 10, .t_stop = t_end, .linear = lin};
+  rs_transient *tr = NULL;
+  if (status == RS_OK) status = rs_transient_create(&tr, m, 0.0, y, yp, &o, &msg);
+  for (int k = 1; status == RS_OK && k <= nout; k++) {
+    status = rs_transient_advance(tr, t_end * k / nout, y, yp, &msg);
+    fx[k - 1] = 0.0;
+    for (int i = 0; i < m->n; i++)
+      fx[k - 1] += y[i] * m->dx;
+  }
+  if (tr) rs_transient_get_stats(tr, st);
+  if (status != RS_OK) printf("FAIL transient, linear path %d: %s\n", (int)lin, msg.text);
+  rs_transient_free(tr);
+  rs_work_free(&w);
+  free(y);
+  free(yp);
+  return status != RS_OK;
+}
+
+static int compare_transient(const char *name, rs_case *c, double contact_lengths) {
+  rs_model m;
+  rs_msg msg = {{0}};
+  c->mode = RS_MODE_TRANSIENT;
+  if (rs_model_create(&m, c, &msg) != RS_OK) {
+    printf("FAIL model %s: %s\n", name, msg.text);
+    return 1;
+  }
+  enum { NOUT = 100 };
+  const double rtol = 1e-6;
+  const double t_end = contact_lengths * 2.0 * m.hertz_a / c->velocity.value;
+  double fx[3][NOUT];
+  const rs_linear lin[3] = {RS_LINEAR_KLU, RS_LINEAR_DENSE, RS_LINEAR_KLU};
+  const double tol[3] = {rtol, rtol, 1e-2 * rtol};
+  const char *pname[3] = {"klu", "dense", "klu reference"};
+  int fail = 0;
+  for (int k = 0; k < 3 && !fail; k++) {
+    rs_stats st = {0};
+    fail |= transient_fx(&m, lin[k], tol[k], t_end, NOUT, fx[k], &st);
+    printf("%s, %s (rtol %g): F_x(t_end) = %.10g N/mm, IDA steps %ld, Newton %ld, "
+           "factorisations %ld\n",
+           name, pname[k], tol[k], fx[k][NOUT - 1], st.steps, st.nonlin_iters, st.factorizations);
+  }
+  if (!fail) {
+    double fx_max = 0.0, d_paths = 0.0, d_klu = 0.0;
+    for (int j = 0; j < NOUT; j++) {
+      fx_max = fmax(fx_max, fabs(fx[2][j]));
+      d_paths = fmax(d_paths, fabs(fx[1][j] - fx[0][j]));
+      d_klu = fmax(d_klu, fabs(fx[0][j] - fx[2][j]));
+    }
+    char what[200];
+    snprintf(what, sizeof what, "%s: max|F_dense - F_klu| <= max|F_klu - F_ref| (%.3g N/mm)",
+             name, d_klu);
+    ts_check_true(what, d_paths <= d_klu);
+    printf("     max|F_dense - F_klu| = %.3g N/mm = %.3g max|F_x|\n", d_paths, d_paths / fx_max);
+    snprintf(what, sizeof what, "%s: max|F_klu - F_ref| / max|F_x|", name);
+    ts_check(what, d_klu / fx_max, 0.0, 100.0 * rtol);
+  }
+  rs_model_free(&m);
+  return fail;
+}
+
 int main(void) {
   rs_case c;
   int fail = 0;
@@ -98,6 +178,10 @@ int main(void) {
   fail |= compare("Carter plastic k_rel = 0.6, 100 cells", &c);
   plastic_case(&c, 400, 0.98);
   fail |= compare("Carter plastic k_rel = 0.98, 400 cells", &c);
+  ts_carter_case(&c, 100);
+  fail |= compare_transient("Carter elastic start-up, 100 cells", &c, 6.0);
+  plastic_case(&c, 100, 0.6);
+  fail |= compare_transient("Carter plastic k_rel = 0.6 start-up, 100 cells", &c, 6.0);
   if (fail) ts_failures++;
   printf("%s\n", ts_failures ? "FAILED" : "all passed");
   return ts_failures ? 1 : 0;

@@ -2,7 +2,9 @@
  *  - steady rolling: KINSOL (exact semismooth Newton) on F(y, y' = 0) = 0;
  *  - transient: IDA (variable-order BDF) whose nonlinear systems are solved by
  *    KINSOL through a custom SUNNonlinearSolver;
- * both with the generalized Jacobian in a SUNSparseMatrix factored by KLU. */
+ * both with the generalized Jacobian in a SUNSparseMatrix (CSR), factored by KLU,
+ * or with its sparse rows eliminated and the Schur complement of the dense traction
+ * rows factored by LAPACK (see rs_linear). */
 #ifndef ROLLSIM_SOLVER_H
 #define ROLLSIM_SOLVER_H
 
@@ -18,8 +20,9 @@ typedef struct rs_stats {
   long err_test_fails;   /* IDA error-test failures */
   long res_evals;        /* residual evaluations */
   long jac_evals;        /* Jacobian evaluations = KLU factorizations */
-  long klu_analyses;     /* symbolic analyses (the active set changed) */
+  long klu_analyses;     /* KLU symbolic analyses (the sparsity pattern changed) */
   long lin_solves;       /* linear solves (direct) or Krylov iterations (steady solver) */
+  long factorizations;   /* of the iteration matrix (transient; a matrix equal to the last keeps it) */
 } rs_stats;
 
 /* Steady rolling (V > 0): a reusable solver so that continuation (creep curves)
@@ -54,6 +57,12 @@ typedef struct rs_transient_opts {
    * a status other than RS_OK stops the integration with that status. */
   int (*step_hook)(void *ctx, double t, const double *y);
   void *hook_ctx;
+  /* Linear algebra of the Newton iterations: KLU, or the dense Schur complement for
+   * AUTO (0), DENSE and KRYLOV alike (Newton-Krylov with the near-field preconditioner
+   * was about 10 times slower than DENSE on the 400-cell start-up: with c_j > 0 the
+   * elastic rows carry the slowly decaying A(i-j) itself); KLU whenever the model has
+   * unknowns beyond the 3 n per-cell ones. */
+  rs_linear linear;
 } rs_transient_opts;
 
 /* y0, yp0: a consistent initial state (see rs_model_consistent_rates). */
