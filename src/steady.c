@@ -411,10 +411,11 @@ int rs_steady_solve(rs_steady *s, double t, double *y, rs_stats *stats, rs_msg *
   const int sequence_first = m->has_plasticity && cold && m->n >= 2 * COARSE_MIN_CELLS;
   int status = sequence_first ? grid_sequencing(s, t, y, stats) : RS_ERR_SOLVER;
   if (status != RS_OK)
-    /* Plastic models: plain Newton briefly, then the line search, which from a
-     * continuation start converged in 6-9 iterations where plain Newton cycled
+    /* Plastic models from a continuation start: plain Newton briefly, then the line
+     * search, which converged in 6-9 iterations where plain Newton cycled
      * (creep curve, tau_c0 = 200 N/mm^2, k_rel = 0.03, 300 cells). */
-    status = newton(s, y, m->has_plasticity ? 8 : 50, m->has_plasticity ? 40 : 50, stats, &kin_flag);
+    status = newton(s, y, m->has_plasticity && !cold ? 8 : 50, m->has_plasticity ? 40 : 50, stats,
+                    &kin_flag);
   if (status != RS_OK && !sequence_first) status = grid_sequencing(s, t, y, stats);
   if (status != RS_OK) status = pseudo_time_steps(s, y, stats);
   if (status == RS_ERR_SOLVER) {
