@@ -13,17 +13,8 @@
 
 #include "rollsim/model.h"
 #include "rollsim/normal.h"
+#include "bench_util.h"
 #include "util.h" /* rs_wall_clock */
-
-static int cmp(const void *a, const void *b) {
-  const double x = *(const double *)a, y = *(const double *)b;
-  return (x > y) - (x < y);
-}
-
-static double median(double *v, int n) {
-  qsort(v, (size_t)n, sizeof *v, cmp);
-  return v[(n - 1) / 2];
-}
 
 int main(int argc, char **argv) {
   const int reps = argc > 1 ? atoi(argv[1]) : 5;
@@ -71,7 +62,7 @@ int main(int argc, char **argv) {
         }
         t[r] = rs_wall_clock() - t0;
       }
-      printf(" %10.3f %5d", 1e3 * median(t, reps), iter);
+      printf(" %10.3f %5d", 1e3 * bench_median(t, reps), iter);
       fflush(stdout);
     }
     if (cells_n <= maxdirect) {

@@ -13,17 +13,8 @@
 
 #include "rollsim/model.h"
 #include "rollsim/solver.h"
+#include "bench_util.h"
 #include "util.h" /* rs_wall_clock */
-
-static int cmp(const void *a, const void *b) {
-  const double x = *(const double *)a, y = *(const double *)b;
-  return (x > y) - (x < y);
-}
-
-static double median(double *v, int n) {
-  qsort(v, (size_t)n, sizeof *v, cmp);
-  return v[(n - 1) / 2];
-}
 
 int main(int argc, char **argv) {
   const int reps = argc > 1 ? atoi(argv[1]) : 5;
@@ -62,7 +53,7 @@ int main(int argc, char **argv) {
       t[r] = rs_wall_clock() - t0;
       if (r + 1 < reps) rs_model_free(&m);
     }
-    printf("%6d %9.3f", grids[g], 1e3 * median(t, reps));
+    printf("%6d %9.3f", grids[g], 1e3 * bench_median(t, reps));
     logn[g] = log(grids[g]);
     double *y = malloc((size_t)m.neq * sizeof *y);
     for (int k = 0; k < NP; k++) {
@@ -82,7 +73,7 @@ int main(int argc, char **argv) {
           return 1;
         }
       }
-      const double tm = median(t, krep);
+      const double tm = bench_median(t, krep);
       logt[k][g] = log(tm);
       printf(" %9.3f %5ld", 1e3 * tm, st.nonlin_iters);
       fflush(stdout);

@@ -40,13 +40,33 @@ static int solve_normal(const rs_model *m, double load, double *pn, double *appr
   return rs_normal2d_solve(&m->el, m->x, m->radius, load, pn, approach, NULL, msg);
 }
 
+/* Grid of n cells over [-half, half], its influence coefficients, the normal
+ * solution at the load of t = 0 and the traction bound; needs the material, radius,
+ * reference length, mu and the load history of m. On failure the caller frees m. */
+static int build_grid(rs_model *m, int n, double half, rs_msg *msg)
+{
+  m->n = n;
+  m->neq = 3 * n + (m->force_control ? 1 : 0);
+  m->dx = 2.0 * half / n;
+  m->x = malloc((size_t)n * sizeof *m->x);
+  m->pn = malloc((size_t)n * sizeof *m->pn);
+  m->bound = malloc((size_t)n * sizeof *m->bound);
+  if (!m->x || !m->pn || !m->bound)
+    return rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory for a grid of %d cells", n);
+  for (int i = 0; i < n; i++) m->x[i] = -half + (i + 0.5) * m->dx;
+  int status = rs_elastic2d_create(&m->el, n, m->dx, m->shear_modulus, m->poisson_ratio,
+                                   m->reference_length, msg);
+  if (status == RS_OK)
+    status = solve_normal(m, rs_history_eval(&m->load, 0.0), m->pn, &m->approach, msg);
+  if (status != RS_OK) return status;
+  for (int i = 0; i < n; i++) m->bound[i] = m->mu * m->pn[i];
+  return RS_OK;
+}
+
 int rs_model_create(rs_model *m, const rs_case *c, rs_msg *msg)
 {
   memset(m, 0, sizeof *m);
-  const int n = c->cells;
-  m->n = n;
   m->force_control = c->force_control;
-  m->neq = 3 * n + (m->force_control ? 1 : 0);
   /* The grid is sized on the largest load of the run: with a normal-load history the
    * contact grows and shrinks inside it (cells enter and leave the contact). */
   m->load_varies = !rs_history_is_constant(&c->normal_load);
@@ -56,29 +76,10 @@ int rs_model_create(rs_model *m, const rs_case *c, rs_msg *msg)
   m->shear_modulus = c->shear_modulus;
   m->poisson_ratio = c->poisson_ratio;
   m->normal_solution = c->normal_solution;
-  rs_hertz2d(m->normal_load, c->radius, c->shear_modulus, c->poisson_ratio, &m->hertz_a,
-             &m->hertz_p0);
-  const double half = c->extent * m->hertz_a;
-  m->dx = 2.0 * half / n;
-  m->x = malloc((size_t)n * sizeof *m->x);
-  m->pn = malloc((size_t)n * sizeof *m->pn);
-  m->bound = malloc((size_t)n * sizeof *m->bound);
-  if (!m->x || !m->pn || !m->bound || rs_history_copy(&m->load, &c->normal_load) != RS_OK) {
-    rs_model_free(m);
-    return rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory for a grid of %d cells", n);
-  }
-  for (int i = 0; i < n; i++) m->x[i] = -half + (i + 0.5) * m->dx;
-  int status = rs_elastic2d_create(&m->el, n, m->dx, c->shear_modulus, c->poisson_ratio,
-                                   c->reference_length, msg);
-  if (status == RS_OK)
-    status = solve_normal(m, rs_history_eval(&c->normal_load, 0.0), m->pn, &m->approach, msg);
-  if (status != RS_OK) {
-    rs_model_free(m);
-    return status;
-  }
   m->reference_length = c->reference_length;
   m->mu = c->mu;
-  for (int i = 0; i < n; i++) m->bound[i] = m->mu * m->pn[i];
+  rs_hertz2d(m->normal_load, c->radius, c->shear_modulus, c->poisson_ratio, &m->hertz_a,
+             &m->hertz_p0);
   m->layer_flex = c->layer_thickness > 0.0 ? c->layer_thickness / c->layer_shear_modulus : 0.0;
   m->has_plasticity = c->has_plasticity;
   m->tau_c0 = c->tau_c0;
@@ -86,14 +87,17 @@ int rs_model_create(rs_model *m, const rs_case *c, rs_msg *msg)
   m->tau_c_min = c->tau_c_min;
   m->scaling = c->scaling;
   m->time_scale = c->output_interval;
-  if (rs_history_copy(&m->velocity, &c->velocity) != RS_OK ||
+  if (rs_history_copy(&m->load, &c->normal_load) != RS_OK ||
+      rs_history_copy(&m->velocity, &c->velocity) != RS_OK ||
       rs_history_copy(&m->creepage, &c->creepage) != RS_OK ||
       rs_history_copy(&m->shift, &c->shift_velocity) != RS_OK ||
       rs_history_copy(&m->force, &c->tangential_force) != RS_OK) {
     rs_model_free(m);
     return rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory copying input histories");
   }
-  return RS_OK;
+  const int status = build_grid(m, c->cells, c->extent * m->hertz_a, msg);
+  if (status != RS_OK) rs_model_free(m);
+  return status;
 }
 
 void rs_model_free(rs_model *m)
@@ -113,34 +117,20 @@ void rs_model_free(rs_model *m)
 int rs_model_regrid(const rs_model *m, int n, rs_model *out, rs_msg *msg)
 {
   *out = *m; /* scalars and the memory pointer; arrays and histories replaced below */
-  out->n = n;
-  out->neq = 3 * n + (m->force_control ? 1 : 0);
-  out->dx = m->dx * m->n / n;
-  out->x = malloc((size_t)n * sizeof *out->x);
-  out->pn = malloc((size_t)n * sizeof *out->pn);
-  out->bound = malloc((size_t)n * sizeof *out->bound);
+  out->x = out->pn = out->bound = NULL;
   out->el = (rs_elastic2d){0};
   out->velocity = out->creepage = out->shift = out->load = out->force = (rs_history){0};
-  if (!out->x || !out->pn || !out->bound || rs_history_copy(&out->velocity, &m->velocity) != RS_OK ||
+  if (rs_history_copy(&out->velocity, &m->velocity) != RS_OK ||
       rs_history_copy(&out->creepage, &m->creepage) != RS_OK ||
       rs_history_copy(&out->shift, &m->shift) != RS_OK ||
       rs_history_copy(&out->load, &m->load) != RS_OK ||
       rs_history_copy(&out->force, &m->force) != RS_OK) {
     rs_model_free(out);
-    return rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory for a grid of %d cells", n);
+    return rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory copying input histories");
   }
-  const double half = 0.5 * m->n * m->dx;
-  for (int i = 0; i < n; i++) out->x[i] = -half + (i + 0.5) * out->dx;
-  int status = rs_elastic2d_create(&out->el, n, out->dx, m->shear_modulus, m->poisson_ratio,
-                                   m->reference_length, msg);
-  if (status == RS_OK)
-    status = solve_normal(out, rs_history_eval(&m->load, 0.0), out->pn, &out->approach, msg);
-  if (status != RS_OK) {
-    rs_model_free(out);
-    return status;
-  }
-  for (int i = 0; i < n; i++) out->bound[i] = out->mu * out->pn[i];
-  return RS_OK;
+  const int status = build_grid(out, n, 0.5 * m->n * m->dx, msg);
+  if (status != RS_OK) rs_model_free(out);
+  return status;
 }
 
 int rs_model_interpolate_state(const rs_model *from, const double *y_from, const rs_model *to,

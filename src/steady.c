@@ -245,9 +245,9 @@ static int newton(rs_steady *s, double *y, int plain_iters, int search_iters, rs
   return RS_OK;
 }
 
-/* First fallback when Newton cycles between active sets (model.md §9; seen with
- * work hardening, where the trailing end of the plastic zone moves by about one cell
- * per iteration): pseudo-transient continuation with backward-Euler steps of the
+/* Fallback after grid sequencing when Newton cycles between active sets (model.md
+ * §9; seen with work hardening, where the trailing end of the plastic zone moves by
+ * about one cell per iteration): pseudo-transient continuation with backward-Euler steps of the
  * rolling transient, F(y, (y - y_prev)/dtau) = 0, each solved by the same exact
  * Newton. The c_j terms keep the active set close to the previous one, so the steps
  * converge in a few iterations as long as the material rolls less than about one
@@ -295,7 +295,7 @@ static int pseudo_time_steps(rs_steady *s, double *y, rs_stats *stats)
   return status;
 }
 
-/* Fallback when Newton cycles between active sets (seen with moderate hardening,
+/* Last fallback when Newton cycles between active sets (seen with moderate hardening,
  * model.md §9): pseudo-transient continuation, i.e. roll the material through the
  * contact at the inputs of time t (the physical transient, which settles on the
  * steady state), trying Newton from the rolled state after every few contact
@@ -346,12 +346,13 @@ static int pseudo_transient(rs_steady *s, double t, double *y, rs_stats *stats, 
   return status;
 }
 
-/* Second strategy when Newton cycles (model.md §9): grid sequencing. The same problem
- * on a grid of half the cells (solved by this same function, so recursively down to
- * a grid where Newton converges), interpolated to this grid, is a start close enough
- * that the active set settles in a few iterations: the zone boundaries are off by a
- * coarse cell at most, where from p = 0 the trailing end of a work-hardening plastic
- * zone moves by about one cell per iteration. */
+/* Grid sequencing (model.md §9): first for a plastic model from rest, the first
+ * fallback otherwise. The same problem on a grid of half the cells (solved by this
+ * same function, so recursively down to a grid where Newton converges), interpolated
+ * to this grid, is a start close enough that the active set settles in a few
+ * iterations: the zone boundaries are off by a coarse cell at most, where from p = 0
+ * the trailing end of a work-hardening plastic zone moves by about one cell per
+ * iteration. */
 enum { COARSE_MIN_CELLS = 40 };
 static int grid_sequencing(rs_steady *s, double t, double *y, rs_stats *stats)
 {

@@ -87,16 +87,6 @@ static int compare(const char *name, rs_case *c) {
   return fail;
 }
 
-static void plastic_case(rs_case *c, int cells, double k_rel) {
-  /* cases/carter_plast.yaml: tau_c0 = 35 N/mm^2, mu = 0.5, xi = -4e-4. */
-  ts_carter_case(c, cells);
-  c->mu = 0.5;
-  c->creepage.value = -4e-4;
-  c->has_plasticity = 1;
-  c->tau_c0 = 35.0;
-  c->k_tau = c->shear_modulus * k_rel / (1.0 - k_rel);
-  c->tau_c_min = 0.1 * c->tau_c0;
-}
 
 /* F_x at nout equally spaced times up to t_end, from rest (p = 0, consistent rates). */
 static int transient_fx(const rs_model *m, rs_linear lin, double rtol, double t_end, int nout,
@@ -174,13 +164,13 @@ int main(void) {
   fail |= compare("Carter elastic, 100 cells", &c);
   ts_carter_case(&c, 800);
   fail |= compare("Carter elastic, 800 cells", &c);
-  plastic_case(&c, 100, 0.6);
+  ts_fig7_case(&c, 100, 0.6);
   fail |= compare("Carter plastic k_rel = 0.6, 100 cells", &c);
-  plastic_case(&c, 400, 0.98);
+  ts_fig7_case(&c, 400, 0.98);
   fail |= compare("Carter plastic k_rel = 0.98, 400 cells", &c);
   ts_carter_case(&c, 100);
   fail |= compare_transient("Carter elastic start-up, 100 cells", &c, 6.0);
-  plastic_case(&c, 100, 0.6);
+  ts_fig7_case(&c, 100, 0.6);
   fail |= compare_transient("Carter plastic k_rel = 0.6 start-up, 100 cells", &c, 6.0);
   if (fail) ts_failures++;
   printf("%s\n", ts_failures ? "FAILED" : "all passed");

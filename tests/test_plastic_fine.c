@@ -17,21 +17,11 @@
 #include "rollsim/solver.h"
 #include "test_support.h"
 
-static void fig7_case(rs_case *c, int cells, double k_rel)
-{
-  ts_carter_case(c, cells);
-  c->mu = 0.5;
-  c->creepage.value = -4e-4;
-  c->has_plasticity = 1;
-  c->tau_c0 = 35.0;
-  c->k_tau = c->shear_modulus * k_rel / (1.0 - k_rel);
-  c->tau_c_min = 3.5;
-}
 
 static void check_solution(double k_rel, int cells)
 {
   rs_case c;
-  fig7_case(&c, cells, k_rel);
+  ts_fig7_case(&c, cells, k_rel);
   rs_model m;
   rs_msg msg = {{0}};
   char what[160];
@@ -49,7 +39,7 @@ static void check_solution(double k_rel, int cells)
   rs_stats st = {0};
   int status = rs_steady_create(&s, &m, &msg);
   if (status == RS_OK) status = rs_steady_solve(s, 0.0, y, &st, &msg);
-  snprintf(what, sizeof what, "k_rel = %g, %d cells: steady solve from rest (%ld Newton iterations)",
+  snprintf(what, sizeof what, "k_rel = %g, %d cells: steady solve from rest (%ld Newton its)",
            k_rel, cells, st.nonlin_iters);
   ts_check_true(what, status == RS_OK);
   if (status == RS_OK) {
@@ -70,7 +60,8 @@ static void check_solution(double k_rel, int cells)
     ts_check(what, fmax(excess, 0.0) / gmax, 0.0, 1e-9);
     snprintf(what, sizeof what, "k_rel = %g: min u* (mm)", k_rel);
     ts_check(what, fmin(usmin, 0.0), 0.0, 1e-15);
-    snprintf(what, sizeof what, "k_rel = %g: largest decrease of u* along the path / max u*", k_rel);
+    snprintf(what, sizeof what, "k_rel = %g: largest decrease of u* along the path / max u*",
+             k_rel);
     ts_check(what, usmax > 0.0 ? decrease / usmax : 0.0, 0.0, 1e-9);
   }
   rs_steady_free(s);
@@ -84,7 +75,7 @@ static void check_solution(double k_rel, int cells)
 static void check_regrid(void)
 {
   rs_case c;
-  fig7_case(&c, 120, 0.6);
+  ts_fig7_case(&c, 120, 0.6);
   rs_model m, same, half;
   rs_msg msg = {{0}};
   if (rs_model_create(&m, &c, &msg) != RS_OK || rs_model_regrid(&m, m.n, &same, &msg) != RS_OK ||

@@ -53,14 +53,8 @@ static int steady(rs_case *c, result *r)
 
 static void fig7_case(rs_case *c, int cells, double k_rel)
 {
-  ts_carter_case(c, cells);
+  ts_fig7_case(c, cells, k_rel);
   c->extent = 1.04;
-  c->mu = 0.5;
-  c->creepage.value = -4e-4;
-  c->has_plasticity = 1;
-  c->tau_c0 = 35.0;
-  c->k_tau = c->shear_modulus * k_rel / (1.0 - k_rel);
-  c->tau_c_min = 3.5;
 }
 
 int main(void)

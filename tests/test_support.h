@@ -40,6 +40,19 @@ static inline void ts_carter_case(rs_case *c, int cells)
   c->max_steps = 1000000;
 }
 
+/* The paper's Figure 7 set on that grid (cases/carter_plast.yaml): mu = 0.5,
+ * xi = -4e-4, tau_c0 = 35 N/mm^2, k_tau = G k_rel/(1 - k_rel), floor 0.1 tau_c0. */
+static inline void ts_fig7_case(rs_case *c, int cells, double k_rel)
+{
+  ts_carter_case(c, cells);
+  c->mu = 0.5;
+  c->creepage.value = -4e-4;
+  c->has_plasticity = 1;
+  c->tau_c0 = 35.0;
+  c->k_tau = c->shear_modulus * k_rel / (1.0 - k_rel);
+  c->tau_c_min = 0.1 * c->tau_c0;
+}
+
 static int ts_failures = 0;
 
 /* Passes when |got - want| <= tol; prints either way. */
