@@ -13,18 +13,8 @@
 
 #include "rollsim/case.h"
 #include "rollsim/output.h"
+#include "test_support.h"
 
-static int failures = 0;
-
-#define CHECK(cond, ...)                                                                    \
-  do {                                                                                      \
-    if (!(cond)) {                                                                          \
-      failures++;                                                                           \
-      fprintf(stderr, "%s:%d: check failed: %s: ", __FILE__, __LINE__, #cond);              \
-      fprintf(stderr, __VA_ARGS__);                                                         \
-      fputc('\n', stderr);                                                                  \
-    }                                                                                       \
-  } while (0)
 
 #define NX 4
 static const double x[NX] = {-1.5, -0.5, 0.5, 1.5};
@@ -49,12 +39,12 @@ static void expect_create_failure(const char *path)
   rs_msg msg = {{0}};
   int status = rs_output_create(&out, &spec, &msg);
   printf("%s -> %d: %s\n", path, status, msg.text);
-  CHECK(status == RS_ERR_OUTPUT, "%s: status %d", path, status);
-  CHECK(out == NULL, "%s: handle not reset", path);
-  CHECK(strstr(msg.text, path) != NULL, "message \"%s\" names %s", msg.text, path);
+  TS_CHECK(status == RS_ERR_OUTPUT, "%s: status %d", path, status);
+  TS_CHECK(out == NULL, "%s: handle not reset", path);
+  TS_CHECK(strstr(msg.text, path) != NULL, "message \"%s\" names %s", msg.text, path);
   char part[600];
   snprintf(part, sizeof part, "%s.part", path);
-  CHECK(access(part, F_OK) != 0, "%s left behind", part);
+  TS_CHECK(access(part, F_OK) != 0, "%s left behind", part);
 }
 
 int main(int argc, char **argv)
@@ -68,11 +58,11 @@ int main(int argc, char **argv)
   expect_create_failure("/proc/x.nc");
 
   /* a parent "directory" that is a regular file */
-  CHECK(mkdir(dir, 0777) == 0 || access(dir, W_OK) == 0, "cannot use %s", dir);
+  TS_CHECK(mkdir(dir, 0777) == 0 || access(dir, W_OK) == 0, "cannot use %s", dir);
   char plain[256];
   snprintf(plain, sizeof plain, "%s/plain_file", dir);
   FILE *f = fopen(plain, "w");
-  CHECK(f != NULL, "cannot create %s", plain);
+  TS_CHECK(f != NULL, "cannot create %s", plain);
   if (f)
     fclose(f);
   snprintf(path, sizeof path, "%s/sub/x.nc", plain);
@@ -80,14 +70,14 @@ int main(int argc, char **argv)
 
   /* the path is an existing directory */
   snprintf(path, sizeof path, "%s/a_directory.nc", dir);
-  CHECK(mkdir(path, 0777) == 0 || access(path, F_OK) == 0, "cannot make %s", path);
+  TS_CHECK(mkdir(path, 0777) == 0 || access(path, F_OK) == 0, "cannot make %s", path);
   expect_create_failure(path);
 
   /* no path at all */
   {
     rs_output_spec spec = spec_for("");
     rs_output *out = NULL;
-    CHECK(rs_output_create(&out, &spec, &msg) == RS_ERR_OUTPUT && out == NULL, "empty path");
+    TS_CHECK(rs_output_create(&out, &spec, &msg) == RS_ERR_OUTPUT && out == NULL, "empty path");
   }
 
   /* an impossible grid is a caller bug */
@@ -96,7 +86,7 @@ int main(int argc, char **argv)
     rs_output_spec spec = spec_for(path);
     spec.nx = 0;
     rs_output *out = NULL;
-    CHECK(rs_output_create(&out, &spec, &msg) == RS_ERR_INTERNAL && out == NULL, "nx = 0");
+    TS_CHECK(rs_output_create(&out, &spec, &msg) == RS_ERR_INTERNAL && out == NULL, "nx = 0");
   }
 
   /* a field in the mask without data: refused, record not counted, file still fine */
@@ -105,36 +95,36 @@ int main(int argc, char **argv)
     rs_output_spec spec = spec_for(path);
     rs_output *out = NULL;
     int status = rs_output_create(&out, &spec, &msg);
-    CHECK(status == RS_OK, "create %s: %s", path, msg.text);
+    TS_CHECK(status == RS_OK, "create %s: %s", path, msg.text);
     if (status == RS_OK) {
       double px[NX] = {1, 2, 3, 4};
       signed char regime[NX] = {0, 1, 2, 3};
       rs_record rec = {.time = 0.0, .Fx = 1.0, .Fn = 2.0, .px = px, .regime = NULL};
       status = rs_output_write(out, &rec, &msg);
-      CHECK(status == RS_ERR_INTERNAL, "write without regime: %d", status);
-      CHECK(strstr(msg.text, "regime") != NULL, "message \"%s\" names the field", msg.text);
-      CHECK(rs_output_records(out) == 0, "records %zu", rs_output_records(out));
+      TS_CHECK(status == RS_ERR_INTERNAL, "write without regime: %d", status);
+      TS_CHECK(strstr(msg.text, "regime") != NULL, "message \"%s\" names the field", msg.text);
+      TS_CHECK(rs_output_records(out) == 0, "records %zu", rs_output_records(out));
       /* nothing of the refused record may reach the file, even after close */
-      CHECK(rs_output_close(out, &msg) == RS_OK, "close: %s", msg.text);
+      TS_CHECK(rs_output_close(out, &msg) == RS_OK, "close: %s", msg.text);
       int ncid, dimid;
       size_t nrec = 99;
-      CHECK(nc_open(path, NC_NOWRITE, &ncid) == NC_NOERR, "reopen %s", path);
-      CHECK(nc_inq_dimid(ncid, "time", &dimid) == NC_NOERR &&
+      TS_CHECK(nc_open(path, NC_NOWRITE, &ncid) == NC_NOERR, "reopen %s", path);
+      TS_CHECK(nc_inq_dimid(ncid, "time", &dimid) == NC_NOERR &&
                 nc_inq_dimlen(ncid, dimid, &nrec) == NC_NOERR && nrec == 0,
             "%s holds %zu records after a refused one", path, nrec);
-      CHECK(nc_close(ncid) == NC_NOERR, "close %s", path);
+      TS_CHECK(nc_close(ncid) == NC_NOERR, "close %s", path);
       /* a complete record is accepted */
       status = rs_output_create(&out, &spec, &msg);
-      CHECK(status == RS_OK, "create %s: %s", path, msg.text);
+      TS_CHECK(status == RS_OK, "create %s: %s", path, msg.text);
       rec.regime = regime;
       status = rs_output_write(out, &rec, &msg);
-      CHECK(status == RS_OK && rs_output_records(out) == 1, "write: %s", msg.text);
-      CHECK(rs_output_close(out, &msg) == RS_OK, "close: %s", msg.text);
+      TS_CHECK(status == RS_OK && rs_output_records(out) == 1, "write: %s", msg.text);
+      TS_CHECK(rs_output_close(out, &msg) == RS_OK, "close: %s", msg.text);
     }
   }
 
-  if (failures) {
-    fprintf(stderr, "%d check(s) failed\n", failures);
+  if (ts_failures) {
+    fprintf(stderr, "%d check(s) failed\n", ts_failures);
     return 1;
   }
   printf("test_output_errors: all checks passed\n");

@@ -13,6 +13,7 @@
 
 #include "rollsim/case.h"
 #include "rollsim/output.h"
+#include "test_support.h"
 
 #ifndef RS_VERSION
 #define RS_VERSION "unknown"
@@ -24,17 +25,6 @@
   (RS_FIELD_PX | RS_FIELD_PN | RS_FIELD_SLIP | RS_FIELD_UPL | RS_FIELD_USTAR |              \
    RS_FIELD_TAUC | RS_FIELD_REGIME)
 
-static int failures = 0;
-
-#define CHECK(cond, ...)                                                                    \
-  do {                                                                                      \
-    if (!(cond)) {                                                                          \
-      failures++;                                                                           \
-      fprintf(stderr, "%s:%d: check failed: %s: ", __FILE__, __LINE__, #cond);              \
-      fprintf(stderr, __VA_ARGS__);                                                         \
-      fputc('\n', stderr);                                                                  \
-    }                                                                                       \
-  } while (0)
 
 /* A netCDF call on the reading side that must succeed. */
 #define NC(call)                                                                            \
@@ -126,22 +116,22 @@ static void write_file(const char *path, unsigned mask, int dimension, int nrec,
     fprintf(stderr, "rs_output_create(%s): %d: %s\n", path, status, msg.text);
     exit(1);
   }
-  CHECK(rs_output_records(out) == 0, "records after create");
+  TS_CHECK(rs_output_records(out) == 0, "records after create");
   for (int rec = 0; rec < nrec; rec++) {
     record_data d;
     make_record(&d, rec, mask);
     status = rs_output_write(out, &d.rec, &msg);
-    CHECK(status == RS_OK, "write record %d: %s", rec, msg.text);
-    CHECK(rs_output_records(out) == (size_t)rec + 1, "records after write %d", rec);
+    TS_CHECK(status == RS_OK, "write record %d: %s", rec, msg.text);
+    TS_CHECK(rs_output_records(out) == (size_t)rec + 1, "records after write %d", rec);
     if (rec == 0) {
       status = rs_output_set_status(out, "failed: something long enough to differ", &msg);
-      CHECK(status == RS_OK, "set_status: %s", msg.text);
+      TS_CHECK(status == RS_OK, "set_status: %s", msg.text);
     }
   }
   status = rs_output_set_status(out, final_status, &msg);
-  CHECK(status == RS_OK, "set_status: %s", msg.text);
+  TS_CHECK(status == RS_OK, "set_status: %s", msg.text);
   status = rs_output_close(out, &msg);
-  CHECK(status == RS_OK, "close: %s", msg.text);
+  TS_CHECK(status == RS_OK, "close: %s", msg.text);
 }
 
 static void check_text_att(int ncid, int varid, const char *name, const char *expected)
@@ -149,14 +139,14 @@ static void check_text_att(int ncid, int varid, const char *name, const char *ex
   size_t len;
   nc_type type;
   int err = nc_inq_att(ncid, varid, name, &type, &len);
-  CHECK(err == NC_NOERR, "attribute %s (varid %d): %s", name, varid, nc_strerror(err));
+  TS_CHECK(err == NC_NOERR, "attribute %s (varid %d): %s", name, varid, nc_strerror(err));
   if (err != NC_NOERR)
     return;
-  CHECK(type == NC_CHAR, "attribute %s has type %d", name, (int)type);
+  TS_CHECK(type == NC_CHAR, "attribute %s has type %d", name, (int)type);
   char *text = calloc(len + 1, 1);
   NC(nc_get_att_text(ncid, varid, name, text));
   /* text attributes may be NUL-padded (status): compare as C strings */
-  CHECK(strcmp(text, expected) == 0, "attribute %s = \"%s\", expected \"%s\"", name, text,
+  TS_CHECK(strcmp(text, expected) == 0, "attribute %s = \"%s\", expected \"%s\"", name, text,
         expected);
   free(text);
 }
@@ -196,14 +186,14 @@ static void check_full_file(const char *path)
 
   int format;
   NC(nc_inq_format(ncid, &format));
-  CHECK(format == NC_FORMAT_64BIT_OFFSET, "format %d", format);
+  TS_CHECK(format == NC_FORMAT_64BIT_OFFSET, "format %d", format);
 
   int unlimdim, timedim;
   NC(nc_inq_unlimdim(ncid, &unlimdim));
   NC(nc_inq_dimid(ncid, "time", &timedim));
-  CHECK(unlimdim == timedim, "time is the unlimited dimension");
-  CHECK(dim_len(ncid, "time") == NREC, "records %zu", dim_len(ncid, "time"));
-  CHECK(dim_len(ncid, "x") == NX, "x length %zu", dim_len(ncid, "x"));
+  TS_CHECK(unlimdim == timedim, "time is the unlimited dimension");
+  TS_CHECK(dim_len(ncid, "time") == NREC, "records %zu", dim_len(ncid, "time"));
+  TS_CHECK(dim_len(ncid, "x") == NX, "x length %zu", dim_len(ncid, "x"));
 
   /* global attributes */
   check_text_att(ncid, NC_GLOBAL, "Conventions", "CF-1.10");
@@ -216,12 +206,12 @@ static void check_full_file(const char *path)
   /* every variable has units and long_name */
   int nvars;
   NC(nc_inq_nvars(ncid, &nvars));
-  CHECK(nvars == 2 + 12 + 7, "nvars %d", nvars);
+  TS_CHECK(nvars == 2 + 12 + 7, "nvars %d", nvars);
   for (int v = 0; v < nvars; v++) {
     char name[NC_MAX_NAME + 1];
     NC(nc_inq_varname(ncid, v, name));
-    CHECK(nc_inq_att(ncid, v, "units", NULL, NULL) == NC_NOERR, "%s has units", name);
-    CHECK(nc_inq_att(ncid, v, "long_name", NULL, NULL) == NC_NOERR, "%s has long_name", name);
+    TS_CHECK(nc_inq_att(ncid, v, "units", NULL, NULL) == NC_NOERR, "%s has units", name);
+    TS_CHECK(nc_inq_att(ncid, v, "long_name", NULL, NULL) == NC_NOERR, "%s has long_name", name);
   }
 
   /* coordinates */
@@ -234,7 +224,7 @@ static void check_full_file(const char *path)
   NC(nc_inq_varid(ncid, "x", &varid));
   NC(nc_get_var_double(ncid, varid, x));
   for (int i = 0; i < NX; i++)
-    CHECK(x[i] == cell_x(i), "x[%d] = %g", i, x[i]);
+    TS_CHECK(x[i] == cell_x(i), "x[%d] = %g", i, x[i]);
 
   /* units of the scalars (2D) and fields */
   check_var_text(ncid, "Fx", "units", "N/mm");
@@ -252,13 +242,13 @@ static void check_full_file(const char *path)
   size_t len;
   NC(nc_inq_varid(ncid, "regime", &varid));
   NC(nc_inq_vartype(ncid, varid, &type));
-  CHECK(type == NC_BYTE, "regime type %d", (int)type);
+  TS_CHECK(type == NC_BYTE, "regime type %d", (int)type);
   NC(nc_inq_att(ncid, varid, "flag_values", &type, &len));
-  CHECK(type == NC_BYTE && len == 4, "flag_values type %d len %zu", (int)type, len);
+  TS_CHECK(type == NC_BYTE && len == 4, "flag_values type %d len %zu", (int)type, len);
   signed char flags[4] = {-1, -1, -1, -1};
   NC(nc_get_att_schar(ncid, varid, "flag_values", flags));
   for (int k = 0; k < 4; k++)
-    CHECK(flags[k] == k, "flag_values[%d] = %d", k, flags[k]);
+    TS_CHECK(flags[k] == k, "flag_values[%d] = %d", k, flags[k]);
   check_text_att(ncid, varid, "flag_meanings", "exterior adhesion slip plastic");
 
   /* every value of every record */
@@ -266,21 +256,21 @@ static void check_full_file(const char *path)
     record_data d;
     make_record(&d, rec, ALL_FIELDS);
     const rs_record *r = &d.rec;
-    CHECK(get_scalar(ncid, "time", rec) == r->time, "time[%d]", rec);
-    CHECK(get_scalar(ncid, "Fx", rec) == r->Fx, "Fx[%d]", rec);
-    CHECK(get_scalar(ncid, "Fn", rec) == r->Fn, "Fn[%d]", rec);
+    TS_CHECK(get_scalar(ncid, "time", rec) == r->time, "time[%d]", rec);
+    TS_CHECK(get_scalar(ncid, "Fx", rec) == r->Fx, "Fx[%d]", rec);
+    TS_CHECK(get_scalar(ncid, "Fn", rec) == r->Fn, "Fn[%d]", rec);
     const double mu = get_scalar(ncid, "traction_coefficient", rec);
-    CHECK(mu == (r->Fn != 0.0 ? r->Fx / r->Fn : 0.0), "traction_coefficient[%d] = %g", rec,
+    TS_CHECK(mu == (r->Fn != 0.0 ? r->Fx / r->Fn : 0.0), "traction_coefficient[%d] = %g", rec,
           mu);
-    CHECK(get_scalar(ncid, "creepage", rec) == r->creepage, "creepage[%d]", rec);
-    CHECK(get_scalar(ncid, "velocity", rec) == r->velocity, "velocity[%d]", rec);
-    CHECK(get_scalar(ncid, "n_exterior", rec) == r->n_exterior, "n_exterior[%d]", rec);
-    CHECK(get_scalar(ncid, "n_adhesion", rec) == r->n_adhesion, "n_adhesion[%d]", rec);
-    CHECK(get_scalar(ncid, "n_slip", rec) == r->n_slip, "n_slip[%d]", rec);
-    CHECK(get_scalar(ncid, "n_plastic", rec) == r->n_plastic, "n_plastic[%d]", rec);
-    CHECK(get_scalar(ncid, "frictional_power", rec) == r->frictional_power, "fp[%d]", rec);
-    CHECK(get_scalar(ncid, "plastic_power", rec) == r->plastic_power, "pp[%d]", rec);
-    CHECK(get_scalar(ncid, "elastic_energy", rec) == r->elastic_energy, "ee[%d]", rec);
+    TS_CHECK(get_scalar(ncid, "creepage", rec) == r->creepage, "creepage[%d]", rec);
+    TS_CHECK(get_scalar(ncid, "velocity", rec) == r->velocity, "velocity[%d]", rec);
+    TS_CHECK(get_scalar(ncid, "n_exterior", rec) == r->n_exterior, "n_exterior[%d]", rec);
+    TS_CHECK(get_scalar(ncid, "n_adhesion", rec) == r->n_adhesion, "n_adhesion[%d]", rec);
+    TS_CHECK(get_scalar(ncid, "n_slip", rec) == r->n_slip, "n_slip[%d]", rec);
+    TS_CHECK(get_scalar(ncid, "n_plastic", rec) == r->n_plastic, "n_plastic[%d]", rec);
+    TS_CHECK(get_scalar(ncid, "frictional_power", rec) == r->frictional_power, "fp[%d]", rec);
+    TS_CHECK(get_scalar(ncid, "plastic_power", rec) == r->plastic_power, "pp[%d]", rec);
+    TS_CHECK(get_scalar(ncid, "elastic_energy", rec) == r->elastic_energy, "ee[%d]", rec);
 
     const size_t start[2] = {(size_t)rec, 0}, count[2] = {1, NX};
     for (int f = 0; f < 6; f++) {
@@ -288,14 +278,14 @@ static void check_full_file(const char *path)
       NC(nc_inq_varid(ncid, field_names[f], &varid));
       NC(nc_get_vara_double(ncid, varid, start, count, v));
       for (int i = 0; i < NX; i++)
-        CHECK(v[i] == field_value(f, rec, i), "%s[%d][%d] = %g", field_names[f], rec, i,
+        TS_CHECK(v[i] == field_value(f, rec, i), "%s[%d][%d] = %g", field_names[f], rec, i,
               v[i]);
     }
     signed char regime[NX];
     NC(nc_inq_varid(ncid, "regime", &varid));
     NC(nc_get_vara_schar(ncid, varid, start, count, regime));
     for (int i = 0; i < NX; i++)
-      CHECK(regime[i] == regime_value(rec, i), "regime[%d][%d] = %d", rec, i, regime[i]);
+      TS_CHECK(regime[i] == regime_value(rec, i), "regime[%d][%d] = %d", rec, i, regime[i]);
   }
   NC(nc_close(ncid));
 }
@@ -305,27 +295,27 @@ static void check_subset_file(const char *path)
 {
   int ncid, varid;
   NC(nc_open(path, NC_NOWRITE, &ncid));
-  CHECK(dim_len(ncid, "time") == 2, "records %zu", dim_len(ncid, "time"));
-  CHECK(nc_inq_varid(ncid, "px", &varid) == NC_NOERR, "px present");
-  CHECK(nc_inq_varid(ncid, "regime", &varid) == NC_NOERR, "regime present");
+  TS_CHECK(dim_len(ncid, "time") == 2, "records %zu", dim_len(ncid, "time"));
+  TS_CHECK(nc_inq_varid(ncid, "px", &varid) == NC_NOERR, "px present");
+  TS_CHECK(nc_inq_varid(ncid, "regime", &varid) == NC_NOERR, "regime present");
   for (int f = 1; f < 6; f++)
-    CHECK(nc_inq_varid(ncid, field_names[f], &varid) == NC_ENOTVAR, "%s absent",
+    TS_CHECK(nc_inq_varid(ncid, field_names[f], &varid) == NC_ENOTVAR, "%s absent",
           field_names[f]);
-  CHECK(nc_inq_varid(ncid, "Fx", &varid) == NC_NOERR, "scalars present");
+  TS_CHECK(nc_inq_varid(ncid, "Fx", &varid) == NC_NOERR, "scalars present");
   double px[NX];
   const size_t start[2] = {1, 0}, count[2] = {1, NX};
   NC(nc_inq_varid(ncid, "px", &varid));
   NC(nc_get_vara_double(ncid, varid, start, count, px));
   for (int i = 0; i < NX; i++)
-    CHECK(px[i] == field_value(0, 1, i), "px[1][%d] = %g", i, px[i]);
+    TS_CHECK(px[i] == field_value(0, 1, i), "px[1][%d] = %g", i, px[i]);
   /* a status longer than the attribute is truncated, not rejected */
   char status[RS_OUTPUT_STATUS_LEN + 1];
   size_t len;
   NC(nc_inq_attlen(ncid, NC_GLOBAL, "status", &len));
-  CHECK(len == RS_OUTPUT_STATUS_LEN, "status length %zu", len);
+  TS_CHECK(len == RS_OUTPUT_STATUS_LEN, "status length %zu", len);
   memset(status, 0, sizeof status);
   NC(nc_get_att_text(ncid, NC_GLOBAL, "status", status));
-  CHECK(strlen(status) == RS_OUTPUT_STATUS_LEN - 1 && strncmp(status, "failed: ", 8) == 0,
+  TS_CHECK(strlen(status) == RS_OUTPUT_STATUS_LEN - 1 && strncmp(status, "failed: ", 8) == 0,
         "truncated status \"%.20s...\" (%zu chars)", status, strlen(status));
   NC(nc_close(ncid));
 }
@@ -353,14 +343,14 @@ int main(int argc, char **argv)
   write_file(full, ALL_FIELDS, 2, NREC, "complete");
   check_full_file(full);
   snprintf(part, sizeof part, "%s.part", full);
-  CHECK(access(part, F_OK) != 0, "no %s left behind", part);
+  TS_CHECK(access(part, F_OK) != 0, "no %s left behind", part);
 
   /* overwrite: a second run replaces the file (here with fewer records), then again */
   write_file(full, ALL_FIELDS, 2, 1, "running");
   {
     int ncid;
     NC(nc_open(full, NC_NOWRITE, &ncid));
-    CHECK(dim_len(ncid, "time") == 1, "overwritten file has %zu records", dim_len(ncid, "time"));
+    TS_CHECK(dim_len(ncid, "time") == 1, "overwritten file has %zu records", dim_len(ncid, "time"));
     NC(nc_close(ncid));
   }
   write_file(full, ALL_FIELDS, 2, NREC, "complete");
@@ -379,10 +369,10 @@ int main(int argc, char **argv)
   check_3d_units(three_d);
 
   /* close(NULL) is allowed */
-  CHECK(rs_output_close(NULL, NULL) == RS_OK, "close(NULL)");
+  TS_CHECK(rs_output_close(NULL, NULL) == RS_OK, "close(NULL)");
 
-  if (failures) {
-    fprintf(stderr, "%d check(s) failed\n", failures);
+  if (ts_failures) {
+    fprintf(stderr, "%d check(s) failed\n", ts_failures);
     return 1;
   }
   printf("test_output_roundtrip: all checks passed\n");

@@ -55,6 +55,17 @@ static inline void ts_fig7_case(rs_case *c, int cells, double k_rel)
 
 static int ts_failures = 0;
 
+/* Counts a failure and prints where and why (printf-style message) unless cond. */
+#define TS_CHECK(cond, ...)                                                                 \
+  do {                                                                                      \
+    if (!(cond)) {                                                                          \
+      ts_failures++;                                                                        \
+      fprintf(stderr, "%s:%d: check failed: %s: ", __FILE__, __LINE__, #cond);              \
+      fprintf(stderr, __VA_ARGS__);                                                         \
+      fputc('\n', stderr);                                                                  \
+    }                                                                                       \
+  } while (0)
+
 /* Passes when |got - want| <= tol; prints either way. */
 static inline void ts_check(const char *what, double got, double want, double tol)
 {
