@@ -13,6 +13,7 @@
 
 #include "linsys.h"
 #include "linsys_krylov.h"
+#include "nvector_fast.h"
 #include "rollsim/solver.h"
 
 struct rs_steady {
@@ -147,6 +148,10 @@ int rs_steady_create_with(rs_steady **out, const rs_model *m, rs_linear linear, 
   s->yp = calloc((size_t)m->neq, sizeof *s->yp);
   s->y_prev = calloc((size_t)m->neq, sizeof *s->y_prev);
   if (!s->u || !s->uscale || !s->fscale || !s->yp || !s->y_prev) goto fail;
+  /* KINSOL's work vectors and the Krylov basis are clones of u: optimised kernels. */
+  if (rs_nvector_fast_ops(s->u) != RS_OK || rs_nvector_fast_ops(s->uscale) != RS_OK ||
+      rs_nvector_fast_ops(s->fscale) != RS_OK)
+    goto fail;
   if (rs_work_create(&s->work, n) != RS_OK) goto fail;
   if (rs_linsys_create(&s->ls, m, s->u, s->ctx) != RS_OK) goto fail;
   /* The fast paths know the 3 n per-cell unknowns only. */

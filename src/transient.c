@@ -9,6 +9,7 @@
 #include <string.h>
 
 #include "linsys.h"
+#include "nvector_fast.h"
 #include "nls_kinsol.h"
 #include "rollsim/solver.h"
 
@@ -79,6 +80,10 @@ int rs_transient_create(rs_transient **out, const rs_model *m, double t0, const 
   tr->yp = N_VNew_Serial(m->neq, tr->ctx);
   tr->atol = N_VNew_Serial(m->neq, tr->ctx);
   if (!tr->y || !tr->yp || !tr->atol) goto fail;
+  /* IDA's work vectors are clones of y: they inherit the optimised kernels. */
+  if (rs_nvector_fast_ops(tr->y) != RS_OK || rs_nvector_fast_ops(tr->yp) != RS_OK ||
+      rs_nvector_fast_ops(tr->atol) != RS_OK)
+    goto fail;
   memcpy(N_VGetArrayPointer(tr->y), y0, (size_t)m->neq * sizeof *y0);
   memcpy(N_VGetArrayPointer(tr->yp), yp0, (size_t)m->neq * sizeof *yp0);
   /* Absolute tolerances: tractions in N/mm^2 as given; plastic displacements in mm,
@@ -92,7 +97,7 @@ int rs_transient_create(rs_transient **out, const rs_model *m, double t0, const 
    * differential ones (sum p dx = F_x): left out of the error test, as IDA allows. */
   if (m->force_control) {
     at[3 * n] = 1e-4 * o->rtol;
-    if (!(id = N_VNew_Serial(m->neq, tr->ctx))) goto fail;
+    if (!(id = N_VNew_Serial(m->neq, tr->ctx)) || rs_nvector_fast_ops(id) != RS_OK) goto fail;
     N_VConst(1.0, id);
     N_VGetArrayPointer(id)[3 * n] = 0.0;
   }

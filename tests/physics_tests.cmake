@@ -9,3 +9,6 @@ rs_unit_test(test_hou_single_cell)
 rs_unit_test(test_plastic_limits)
 rs_unit_test(test_plastic_transient_to_steady)
 rs_unit_test(test_sine_creepage)
+# The optimised SUNDIALS vector kernels (a private header of src/).
+rs_unit_test(test_nvector_fast)
+target_include_directories(test_nvector_fast PRIVATE ${PROJECT_SOURCE_DIR}/src)
