@@ -53,29 +53,42 @@ int rs_krylov_setup(rs_krylov *k, const rs_csr *full, double t, double cj) {
   k->lin.memory = NULL; /* fresh inflow: no twin-disc memory in the linear part */
   k->setups++;
 
-  /* Near field: all entries of sparse rows; in dense rows the traction columns within
-   * the band and every other column. */
+  /* The near-field matrix: the assembled one (full->band = k->band) on a pattern that
+   * does not depend on the contact regimes, so that the symbolic analysis (AMD, BTF)
+   * is done once: every traction row holds its band and its upl columns (a row at a
+   * bound has explicit zeros there); the other rows are copied. */
+  if (full->band != w) return RS_ERR_INTERNAL;
   int64_t nnz = 0;
   k->rp[0] = 0;
   for (int i = 0; i < neq; i++) {
     const int64_t b = full->rowptr[i], e = full->rowptr[i + 1];
-    const int dense = i < n && e - b > 1;
-    if (i < n) k->dense[i] = (unsigned char)dense;
-    /* A dense row holds every traction column in order (columns 0..n-1 at b..b+n-1):
-     * start at the band. */
-    const int64_t q0 =
-        dense && e - b > n && full->col[b + n - 1] == n - 1 && i - w > 0 ? b + i - w : b;
-    for (int64_t q = q0; q < e; q++) {
-      const int64_t j = full->col[q];
-      if (dense && j < n && (j < i - w || j > i + w)) {
-        if (j > i + w)
-          q = b + n - 1; /* past the band: jump to the columns after the traction block */
-        continue;
+    if (i < n) {
+      k->dense[i] = (unsigned char)(e - b > 1);
+      const int j0 = i > w ? i - w : 0, j1 = i + w < n ? i + w + 1 : n;
+      const int64_t band_len = j1 - j0, len = band_len + (i + 1 < n ? 2 : 1) + (m->force_control ? 1 : 0);
+      if (nnz + len > k->cap) return RS_ERR_INTERNAL;
+      for (int64_t q = 0; q < len; q++) k->vx[nnz + q] = 0.0;
+      for (int j = j0; j < j1; j++) k->ci[nnz + j - j0] = j;
+      k->ci[nnz + band_len] = n + i;
+      if (i + 1 < n) k->ci[nnz + band_len + 1] = n + i + 1;
+      if (m->force_control) k->ci[nnz + len - 1] = 3 * n;
+      for (int64_t q = b; q < e; q++) {
+        const int64_t c = full->col[q];
+        int64_t at = -1;
+        if (c >= j0 && c < j1) at = c - j0;
+        else if (c == n + i) at = band_len;
+        else if (c == n + i + 1 && i + 1 < n) at = band_len + 1;
+        else if (c == 3 * n && m->force_control) at = len - 1;
+        if (at < 0) return RS_ERR_INTERNAL; /* not a near-field matrix */
+        k->vx[nnz + at] = full->val[q];
       }
-      if (nnz >= k->cap) return RS_ERR_INTERNAL;
-      k->ci[nnz] = j;
-      k->vx[nnz] = full->val[q];
-      nnz++;
+      nnz += len;
+    } else {
+      if (nnz + (e - b) > k->cap) return RS_ERR_INTERNAL;
+      for (int64_t q = b; q < e; q++, nnz++) {
+        k->ci[nnz] = full->col[q];
+        k->vx[nnz] = full->val[q];
+      }
     }
     k->rp[i + 1] = nnz;
   }
@@ -92,10 +105,14 @@ int rs_krylov_setup(rs_krylov *k, const rs_csr *full, double t, double cj) {
     k->analyses++;
     if (!k->sym) return RS_ERR_SOLVER;
   }
-  /* Same pattern: refactor with the pivot order of the last factorisation (a
-   * preconditioner tolerates its small pivots); a new factorisation if that fails. */
+  /* Same pattern: refactor with the pivot order of the last factorisation; a new
+   * factorisation (partial pivoting) if that meets a zero pivot or a pivot so small
+   * (diagonal of U, relative) that the preconditioner would be poor. Rows change
+   * between band rows and unit rows with the contact regimes, so the old order is
+   * not always good. */
   if (same && k->num && klu_l_refactor(k->rp, k->ci, k->vx, k->sym, k->num, &k->common) &&
-      k->common.status == KLU_OK)
+      k->common.status == KLU_OK && klu_l_rcond(k->sym, k->num, &k->common) &&
+      k->common.rcond > 1e-8)
     return RS_OK;
   if (k->num) klu_l_free_numeric(&k->num, &k->common);
   k->num = klu_l_factor(k->rp, k->ci, k->vx, k->sym, &k->common);

@@ -10,8 +10,9 @@
  * in rs_model_eval, and the elastic product inside it is an FFT convolution. The
  * sparse rows are applied from the assembled matrix.
  *
- * Preconditioner: the assembled Jacobian with the dense rows cut to the band
- * |i - j| <= band of their traction columns (the near field), factored by KLU. */
+ * Preconditioner: the Jacobian assembled with the dense rows cut to the band
+ * |i - j| <= band of their traction columns (the near field), factored by KLU. The
+ * far field is never assembled: the sparse rows and the near field are O(n band). */
 #ifndef ROLLSIM_LINSYS_KRYLOV_H
 #define ROLLSIM_LINSYS_KRYLOV_H
 
@@ -40,9 +41,11 @@ typedef struct rs_krylov {
 int rs_krylov_create(rs_krylov *k, const rs_model *m, int band);
 void rs_krylov_free(rs_krylov *k);
 /* New Jacobian: full is the generalized Jacobian at (t, y, y', cj) as assembled by
- * rs_model_eval (CSR, neq rows). Builds and factors the near-field preconditioner. */
+ * rs_model_eval with full->band = the band of k (CSR, neq rows: every sparse row,
+ * the near field of the dense ones). Factors it as the preconditioner. */
 int rs_krylov_setup(rs_krylov *k, const rs_csr *full, double t, double cj);
-/* Jv = J v (exact up to roundoff). full: the matrix of the last setup. */
+/* Jv = J v (exact up to roundoff). full: the matrix of the last setup (its sparse
+ * rows are exact; the dense rows are applied by FFT). */
 int rs_krylov_times(rs_krylov *k, const rs_csr *full, const double *v, double *Jv);
 /* v <- P^-1 v. */
 int rs_krylov_psolve(rs_krylov *k, double *v);

@@ -389,7 +389,9 @@ int rs_model_eval(const rs_model *m, rs_work *w, double t, const double *y, cons
       csr_put(jac, i, 1.0);
     } else {
       /* r dv_s/dp_j = r [cj A(i-j) - a (A(i+1-j) - A(i-j))] (+ layer on the diagonal) */
-      for (int j = 0; j < n; j++) {
+      const int j0 = jac->band > 0 && i > jac->band ? i - (int)jac->band : 0;
+      const int j1 = jac->band > 0 && i + jac->band < n ? i + (int)jac->band + 1 : n;
+      for (int j = j0; j < j1; j++) {
         double v = cj * coef[i - j] - a * (coef[i + 1 - j] - coef[i - j]);
         if (j == i) v += (cj + a) * c3;
         if (j == i + 1) v -= a * c3;

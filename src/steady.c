@@ -72,7 +72,8 @@ static int krylov_psetup(N_Vector u, N_Vector uscale, N_Vector fval, N_Vector fs
                      .cap = SM_NNZ_S(s->ls.J),
                      .rowptr = SM_INDEXPTRS_S(s->ls.J),
                      .col = SM_INDEXVALS_S(s->ls.J),
-                     .val = SM_DATA_S(s->ls.J)};
+                     .val = SM_DATA_S(s->ls.J),
+                     .band = s->kry.band};
   s->ls.jac_evals++;
   if (rs_model_eval(s->m, &s->work, s->t, y, rates(s, y), s->cj, NULL, &s->full) != RS_OK) return -1;
   return rs_krylov_setup(&s->kry, &s->full, s->t, s->cj) == RS_OK ? 0 : 1;

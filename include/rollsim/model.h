@@ -68,6 +68,8 @@ typedef struct rs_csr {
   int64_t *rowptr; /* [nrows + 1] */
   int64_t *col;    /* [cap] */
   double *val;     /* [cap] */
+  int64_t band;    /* 0: every entry; > 0: the dense traction rows of adhesion cells keep only
+                      their traction columns j with |i - j| <= band (a near-field matrix) */
 } rs_csr;
 
 /* Work arrays for residual/Jacobian evaluation. */
