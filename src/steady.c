@@ -117,17 +117,20 @@ void rs_steady_free(rs_steady *s)
   free(s);
 }
 
-/* AUTO: Newton-Krylov for elastic models from this many cells, the dense Schur
- * complement otherwise. Measured (bench/RESULTS.md): Carter elastic, one solve from
- * p = 0, dense/Krylov 4.3/7.0 ms at 200 cells, 10.5/9.3 at 300, 21.9/12.9 at 400,
- * 72/26 at 600. With plasticity the inexact linear solves make semismooth Newton
- * cycle much more often (Carter k_rel = 0.98: 38 dense vs 45 Krylov iterations at
- * 400 cells, and at 600 cells Krylov fell back to pseudo-time stepping for minutes
- * where dense needed 35 iterations), so plastic models always use the dense path. */
+/* AUTO: Newton-Krylov from this many cells, the dense Schur complement below.
+ * Measured (bench/RESULTS.md): Carter elastic, one solve from p = 0, dense/Krylov
+ * 4.3/7.0 ms at 200 cells, 10.5/9.3 at 300, 21.9/12.9 at 400, 72/26 at 600.
+ * Plastic models use it too, with a tight forcing term: with the loose one of the
+ * elastic case the inexact solves made semismooth Newton cycle (Carter k_rel = 0.98
+ * at 600 cells fell back to pseudo-time stepping for minutes); with 1e-6 the plastic
+ * creep curve at 850 cells takes 391 Newton iterations against 345 with the exact
+ * dense solves, in 1.0 s against 6.6 s, and Carter k_rel = 0.6 at 1600 cells 0.08 s
+ * against 0.31 s (same F_x to 6 digits). */
 enum { KRYLOV_FROM_CELLS = 300 };
 /* Krylov: near-field half band (cells), GMRES basis size, forcing term (1e-3: fewest
  * GMRES iterations for the elastic creep curve at 850 cells; 1e-6 cost 30 % more). */
 enum { KRYLOV_BAND = 16, KRYLOV_MAXL = 60 };
+#define KRYLOV_ETA_PLASTIC 1e-6
 #define KRYLOV_ETA 1e-3
 
 int rs_steady_create(rs_steady **out, const rs_model *m, rs_msg *msg)
@@ -158,7 +161,7 @@ int rs_steady_create_with(rs_steady **out, const rs_model *m, rs_linear linear, 
   /* The fast paths know the 3 n per-cell unknowns only. */
   if (m->neq != 3 * n) linear = RS_LINEAR_KLU;
   if (linear == RS_LINEAR_AUTO)
-    linear = !m->has_plasticity && n >= KRYLOV_FROM_CELLS ? RS_LINEAR_KRYLOV : RS_LINEAR_DENSE;
+    linear = n >= KRYLOV_FROM_CELLS ? RS_LINEAR_KRYLOV : RS_LINEAR_DENSE;
   s->linear = linear;
   if (linear == RS_LINEAR_DENSE && rs_linsys_use_reduced(&s->ls, m, s->ctx) != RS_OK) goto fail;
   if (linear == RS_LINEAR_KRYLOV) {
@@ -195,7 +198,7 @@ int rs_steady_create_with(rs_steady **out, const rs_model *m, rs_linear linear, 
     /* The residual is piecewise linear: once the active set is right, an accurate
      * linear solve ends the iteration (a loose forcing term would add iterations). */
     flag |= KINSetEtaForm(s->kmem, KIN_ETACONSTANT);
-    flag |= KINSetEtaConstValue(s->kmem, KRYLOV_ETA);
+    flag |= KINSetEtaConstValue(s->kmem, m->has_plasticity ? KRYLOV_ETA_PLASTIC : KRYLOV_ETA);
   } else {
     flag |= KINSetLinearSolver(s->kmem, rs_linsys_solver(&s->ls), rs_linsys_matrix(&s->ls));
     flag |= KINSetJacFn(s->kmem, steady_jacobian);
@@ -360,6 +363,9 @@ static int pseudo_transient(rs_steady *s, double t, double *y, rs_stats *stats, 
  * the trailing end of a work-hardening plastic zone moves by about one cell per
  * iteration. */
 enum { COARSE_MIN_CELLS = 40 };
+/* grid_sequencing: the coarse solution was found but Newton did not converge from
+ * its interpolation, which is left in y as the start of the next fallback. */
+enum { RS_START_ONLY = -1 };
 static int grid_sequencing(rs_steady *s, double t, double *y, rs_stats *stats)
 {
   const rs_model *m = s->m;
@@ -387,15 +393,18 @@ static int grid_sequencing(rs_steady *s, double t, double *y, rs_stats *stats)
   if (status == RS_OK) status = rs_model_interpolate_state(&coarse, yc, m, &s->work, t, z, &cmsg);
   if (status == RS_OK) {
     s->cj = 0.0;
-    status = newton(s, z, 10, 40, stats, &(int){0});
-    if (status == RS_OK) memcpy(y, z, (size_t)m->neq * sizeof *y);
+    memcpy(y, z, (size_t)m->neq * sizeof *y); /* solution or, failing that, a close start */
+    if (newton(s, y, 10, 40, stats, &(int){0}) != RS_OK) {
+      memcpy(y, z, (size_t)m->neq * sizeof *y);
+      status = RS_START_ONLY;
+    }
   }
   free(z);
   free(yc);
   rs_steady_free(cs);
   rs_work_free(&cw);
   rs_model_free(&coarse);
-  return status == RS_OK ? RS_OK : RS_ERR_SOLVER;
+  return status == RS_OK || status == RS_START_ONLY ? status : RS_ERR_SOLVER;
 }
 
 int rs_steady_solve(rs_steady *s, double t, double *y, rs_stats *stats, rs_msg *msg)
@@ -417,13 +426,15 @@ int rs_steady_solve(rs_steady *s, double t, double *y, rs_stats *stats, rs_msg *
   for (int i = 0; i < m->n && cold; i++) cold = y[i] == 0.0;
   const int sequence_first = m->has_plasticity && cold && m->n >= 2 * COARSE_MIN_CELLS;
   int status = sequence_first ? grid_sequencing(s, t, y, stats) : RS_ERR_SOLVER;
-  if (status != RS_OK)
+  if (status == RS_ERR_SOLVER)
     /* Plastic models from a continuation start: plain Newton briefly, then the line
      * search, which converged in 6-9 iterations where plain Newton cycled
      * (creep curve, tau_c0 = 200 N/mm^2, k_rel = 0.03, 300 cells). */
     status = newton(s, y, m->has_plasticity && !cold ? 8 : 50, m->has_plasticity ? 40 : 50, stats,
                     &kin_flag);
-  if (status != RS_OK && !sequence_first) status = grid_sequencing(s, t, y, stats);
+  if (status == RS_ERR_SOLVER && !sequence_first) status = grid_sequencing(s, t, y, stats);
+  /* Pseudo-time from the interpolated coarse solution when there is one (a few steps
+   * settle the trailing end of the plastic zone), else from the caller's start. */
   if (status != RS_OK) status = pseudo_time_steps(s, y, stats);
   if (status == RS_ERR_SOLVER) {
     memcpy(y, start, (size_t)m->neq * sizeof *y);
