@@ -138,8 +138,11 @@ void rs_elastic2d_apply(const rs_elastic2d *el, const double *coef_table, const 
   }
   for (int i = 0; i < nout; i++) {
     const double *row = coef_table + i + n; /* row[-j] = coef(i - j) */
-    double sum = 0.0;
-    for (int j = 0; j < n; j++) sum += row[-j] * p[j];
-    u[i] = sum;
+    double s[4] = {0.0, 0.0, 0.0, 0.0}; /* independent partial sums: no add latency chain */
+    int j = 0;
+    for (; j + 4 <= n; j += 4)
+      for (int k = 0; k < 4; k++) s[k] += row[-(j + k)] * p[j + k];
+    for (; j < n; j++) s[0] += row[-j] * p[j];
+    u[i] = (s[0] + s[1]) + (s[2] + s[3]);
   }
 }
