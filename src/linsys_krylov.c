@@ -6,6 +6,7 @@
 
 int rs_krylov_create(rs_krylov *k, const rs_model *m, int band) {
   memset(k, 0, sizeof *k);
+  if (m->neq != 3 * m->n) return RS_ERR_INTERNAL; /* the 3 n per-cell unknowns only */
   k->m = m;
   k->lin = *m;
   k->band = band;
@@ -68,20 +69,18 @@ int rs_krylov_setup(rs_krylov *k, const rs_csr *full, double t, double cj) {
     if (i < n) {
       k->dense[i] = (unsigned char)(e - b > 1);
       const int j0 = i > w ? i - w : 0, j1 = i + w < n ? i + w + 1 : n;
-      const int64_t band_len = j1 - j0, len = band_len + (i + 1 < n ? 2 : 1) + (m->force_control ? 1 : 0);
+      const int64_t band_len = j1 - j0, len = band_len + (i + 1 < n ? 2 : 1);
       if (nnz + len > k->cap) return RS_ERR_INTERNAL;
       for (int64_t q = 0; q < len; q++) k->vx[nnz + q] = 0.0;
       for (int j = j0; j < j1; j++) k->ci[nnz + j - j0] = j;
       k->ci[nnz + band_len] = n + i;
       if (i + 1 < n) k->ci[nnz + band_len + 1] = n + i + 1;
-      if (m->force_control) k->ci[nnz + len - 1] = 3 * n;
       for (int64_t q = b; q < e; q++) {
         const int64_t c = full->col[q];
         int64_t at = -1;
         if (c >= j0 && c < j1) at = c - j0;
         else if (c == n + i) at = band_len;
         else if (c == n + i + 1 && i + 1 < n) at = band_len + 1;
-        else if (c == 3 * n && m->force_control) at = len - 1;
         if (at < 0) return RS_ERR_INTERNAL; /* not a near-field matrix */
         k->vx[nnz + at] = full->val[q];
       }

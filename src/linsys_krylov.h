@@ -38,6 +38,7 @@ typedef struct rs_krylov {
   long setups, analyses, products;
 } rs_krylov;
 
+/* Models with the 3 n per-cell unknowns only (no force-control row). */
 int rs_krylov_create(rs_krylov *k, const rs_model *m, int band);
 void rs_krylov_free(rs_krylov *k);
 /* New Jacobian: full is the generalized Jacobian at (t, y, y', cj) as assembled by

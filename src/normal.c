@@ -38,6 +38,16 @@ double rs_normal2d_start_width(const rs_elastic2d *el, double radius, double loa
   return K > 0.0 ? sqrt(2.0 * load * radius * K) : INFINITY;
 }
 
+double rs_normal2d_profile(const double *x, int n, double radius, double *h)
+{
+  double hmax = 0.0;
+  for (int i = 0; i < n; i++) {
+    h[i] = x[i] * x[i] / (2.0 * radius);
+    hmax = fmax(hmax, h[i]);
+  }
+  return hmax;
+}
+
 int rs_normal2d_solve_direct(const rs_elastic2d *el, const double *x, double radius, double load,
                              double *pn, double *delta_out, int *iterations, rs_msg *msg)
 {
@@ -58,11 +68,9 @@ int rs_normal2d_solve_direct(const rs_elastic2d *el, const double *x, double rad
    * after one or two solves instead of shrinking the contact from the whole grid.
    * Any start gives the same solution. */
   const double a_start = rs_normal2d_start_width(el, radius, load);
-  double hmax = 0.0;
+  const double hmax = rs_normal2d_profile(x, n, radius, h);
   int nstart = 0;
   for (int i = 0; i < n; i++) {
-    h[i] = x[i] * x[i] / (2.0 * radius);
-    hmax = fmax(hmax, h[i]);
     active[i] = fabs(x[i]) < a_start;
     nstart += active[i];
     pn[i] = 0.0;

@@ -84,11 +84,9 @@ int rs_normal2d_solve_cg(const rs_elastic2d *el, const double *x, double radius,
   /* Start: the Hertz ellipse on the estimated half-width (uniform pressure when there
    * is no estimate). Any start gives the same solution. */
   const double a_start = rs_normal2d_start_width(el, radius, load);
-  double hmax = 0.0;
+  const double hmax = rs_normal2d_profile(x, n, radius, h);
   int nstart = 0;
   for (int i = 0; i < n; i++) {
-    h[i] = x[i] * x[i] / (2.0 * radius);
-    hmax = fmax(hmax, h[i]);
     const double xi = x[i] / a_start;
     pn[i] = fabs(xi) < 1.0 ? sqrt(1.0 - xi * xi) : 0.0;
     nstart += pn[i] > 0.0;

@@ -393,11 +393,9 @@ static int grid_sequencing(rs_steady *s, double t, double *y, rs_stats *stats)
   if (status == RS_OK) status = rs_model_interpolate_state(&coarse, yc, m, &s->work, t, z, &cmsg);
   if (status == RS_OK) {
     s->cj = 0.0;
-    memcpy(y, z, (size_t)m->neq * sizeof *y); /* solution or, failing that, a close start */
-    if (newton(s, y, 10, 40, stats, &(int){0}) != RS_OK) {
-      memcpy(y, z, (size_t)m->neq * sizeof *y);
-      status = RS_START_ONLY;
-    }
+    /* the solution or, when Newton fails (y unchanged), a close start */
+    memcpy(y, z, (size_t)m->neq * sizeof *y);
+    if (newton(s, y, 10, 40, stats, &(int){0}) != RS_OK) status = RS_START_ONLY;
   }
   free(z);
   free(yc);

@@ -36,6 +36,20 @@ def run(rollsim, case, out, sets):
     return netCDF4.Dataset(out)
 
 
+def same_fx(a, b, label, failure, fails):
+    """F_x(t) of runs a and b agree to 1e-5 of max|F_x| (see above); False if the
+    record counts differ."""
+    fa, fb = a["Fx"][:].data, b["Fx"][:].data
+    if fa.shape != fb.shape:
+        fails.append(f"record counts differ: {fa.shape} vs {fb.shape}")
+        return False
+    dev = np.abs(fa - fb).max() / np.abs(fb).max()
+    print(f"{label}: max |dF_x| / max|F_x| = {dev:.2e}")
+    if dev > 1e-5:
+        fails.append(f"{failure} by {dev:.2e}")
+    return True
+
+
 def main():
     rollsim, twin, plain, work = sys.argv[1:5]
     os.makedirs(work, exist_ok=True)
@@ -84,14 +98,8 @@ def main():
             plain_sets + ["--set", "plasticity=null"] + TIGHT)
     for name, ds in (("twin disc", a), ("plain", b)):
         print(f"{name}: {len(ds['time'])} records, final F_x = {ds['Fx'][-1]:.6f} N/mm")
-    fa, fb = a["Fx"][:].data, b["Fx"][:].data
-    if fa.shape != fb.shape:
-        fails.append(f"record counts differ: {fa.shape} vs {fb.shape}")
-    else:
-        dev = np.abs(fa - fb).max() / np.abs(fb).max()
-        print(f"tau_c0 high vs plain elastic rolling: max |dF_x| / max|F_x| = {dev:.2e}")
-        if dev > 1e-5:
-            fails.append(f"tau_c0 high differs from plain rolling by {dev:.2e}")
+    if same_fx(a, b, "tau_c0 high vs plain elastic rolling",
+               "tau_c0 high differs from plain rolling", fails):
         plain_elastic_mu = b["traction_coefficient"][-1]
         if mu_rev.max() > plain_elastic_mu * (1 + 1e-6):
             fails.append(f"plastic traction {mu_rev.max():.6f} above the plain rolling "
@@ -101,14 +109,8 @@ def main():
     a = run(rollsim, twin, os.path.join(work, "recovery0.nc"),
             ["--set", "twin_disc.recovery=0"] + TIGHT)
     b = run(rollsim, plain, os.path.join(work, "plain_plastic.nc"), plain_sets + TIGHT)
-    fa, fb = a["Fx"][:].data, b["Fx"][:].data
-    if fa.shape != fb.shape:
-        fails.append(f"record counts differ: {fa.shape} vs {fb.shape}")
-    else:
-        dev = np.abs(fa - fb).max() / np.abs(fb).max()
-        print(f"recovery 0 vs plain plastic rolling: max |dF_x| / max|F_x| = {dev:.2e}")
-        if dev > 1e-5:
-            fails.append(f"recovery 0 differs from rolling with fresh material by {dev:.2e}")
+    if same_fx(a, b, "recovery 0 vs plain plastic rolling",
+               "recovery 0 differs from rolling with fresh material", fails):
         mu0 = a["revolution_traction_coefficient"][:].data
         print("recovery 0, per revolution:", " ".join(f"{m:.5f}" for m in mu0))
     for f in fails:
