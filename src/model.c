@@ -20,12 +20,6 @@
 
 static double sign_of(double v) { return v > 0.0 ? 1.0 : (v < 0.0 ? -1.0 : 0.0); }
 
-/* Direction of the traction fixed by a yield row: that of the slip when the cell also
- * slips, of the flow otherwise. */
-static double yield_direction(unsigned char branch, double arg_f, double arg_pl)
-{
-  return sign_of((branch & RS_BRANCH_SLIP) ? arg_f : arg_pl);
-}
 
 /* Pressure for a load: the discrete normal solution or the Hertz pressure. */
 static int solve_normal(const rs_model *m, double load, double *pn, double *approach, rs_msg *msg)
@@ -354,10 +348,13 @@ int rs_model_eval(const rs_model *m, rs_work *w, double t, const double *y, cons
       }
       if (yield) {
         br |= RS_BRANCH_YIELD;
-        /* Slipping as well (hardened up to the bound): both rows fix p, so both take
-         * the direction of the slip; with the flow's own direction an iterate where
-         * the two disagree would ask tau_c(u*) = -g (u* far below 0). */
-        Fupl = p[i] - tauc * yield_direction(br, arg_f, arg_pl);
+        /* The plain projection, also when the cell slips as well (hardened up to the
+         * bound): p = tau_c sign(p + r Du_pl/Dt) is what makes the flow parallel to p
+         * (lambda >= 0). Taking the slip's direction here instead admitted spurious
+         * zeros with p = -g and the flow opposite to p (negative plastic power) next
+         * to the trailing edge: steady states the transient never reaches (the
+         * Table-1 contact at xi = -1 %: F_x/F_n 0.1385 instead of 0.1350). */
+        Fupl = p[i] - tauc * sign_of(arg_pl);
       } else {
         Fupl = -r * mpl;
       }
@@ -406,9 +403,9 @@ int rs_model_eval(const rs_model *m, rs_work *w, double t, const double *y, cons
   for (int i = 0; i < n; i++) {
     const unsigned char br = w->branch[i];
     if (br & RS_BRANCH_YIELD) {
-      const double arg_pl = p[i] + r * w->dupl[i], arg_f = p[i] - r * w->vslip[i];
+      const double arg_pl = p[i] + r * w->dupl[i];
       csr_put(jac, i, 1.0);
-      csr_put(jac, 2 * n + i, -yield_direction(br, arg_f, arg_pl) * yield_slope(m, us[i]));
+      csr_put(jac, 2 * n + i, -sign_of(arg_pl) * yield_slope(m, us[i]));
     } else {
       const double s = (br & RS_BRANCH_EXTERIOR) ? r : -r;
       csr_put(jac, n + i, s * (cj + a));
