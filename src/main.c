@@ -47,7 +47,8 @@ static void usage(FILE *f)
           "  -o FILE        output file (overrides output.file)\n"
           "  --restart OLD.nc  (run, transient) continue from the last record of an earlier run's\n"
           "                 file: its state (fields px, upl, ustar) and time, up to the case's end\n"
-          "                 time, into a new file; same grid and output times as the old run\n"
+          "                 time, into a new file; same grid and output times as the old run.\n"
+          "                 (run, steady) start Newton from that state instead of from rest\n"
           "  --set KEY=VAL  override a case key by its dotted path, e.g. --set grid.cells=200\n"
           "  --quiet        no progress bar\n"
           "\n"
@@ -212,8 +213,13 @@ int main(int argc, char **argv)
     for (int a = 0; a < sw.naxes; a++) printf(" %s (%d)", sw.axes[a].key, sw.axes[a].n);
     printf(": %zu points solved, %zu failed, Newton iterations %ld, wall time %.3f s\n",
            sres.points_done, sres.points_failed, sres.newton_iters, sres.wall_seconds);
-    printf("  steady points: linear solves %ld, Jacobian evaluations %ld\n", sres.lin_solves,
-           sres.jac_evals);
+    printf("  steady points: linear solves %ld, Jacobian evaluations %ld, continuation steps "
+           "halved %ld\n",
+           sres.lin_solves, sres.jac_evals, sres.refined);
+    if (sres.refused > 0)
+      printf("  steady check: %ld Newton solutions refused as not physical (recomputed by "
+             "rolling the material)\n",
+             sres.refused);
     printf("  output: %s\n", sres.file);
     rs_sweep_free(&sw);
     return exit_code(status);
@@ -241,6 +247,10 @@ int main(int argc, char **argv)
     else
       printf("  Newton iterations %ld, linear solves %ld, Jacobian evaluations %ld\n",
              res.stats.nonlin_iters, res.stats.lin_solves, res.stats.jac_evals);
+    if (res.stats.refused > 0)
+      printf("  steady check: %ld Newton solution(s) refused as not physical (recomputed by "
+             "rolling the material)\n",
+             res.stats.refused);
     if (c.rig.on) {
       const double T = c.rig.revolution_time;
       printf("  twin disc: %.6g revolutions of %.6g s, %.1f IDA steps per revolution "

@@ -567,21 +567,92 @@ int rs_model_diagnostics(const rs_model *m, rs_work *w, double t, const double *
   return RS_OK;
 }
 
-int rs_model_set_rolling(rs_model *m, const rs_case *c, rs_msg *msg)
+/* Reason of the first failed condition, in the user's terms. */
+static int refuse(rs_msg *msg, const rs_model *m, int i, const char *what, double p, double other,
+                  const char *other_name, const char *unit)
 {
-  rs_history v = {0}, xi = {0}, sh = {0};
-  if (rs_history_copy(&v, &c->velocity) != RS_OK || rs_history_copy(&xi, &c->creepage) != RS_OK ||
-      rs_history_copy(&sh, &c->shift_velocity) != RS_OK) {
-    rs_history_free(&v);
-    rs_history_free(&xi);
-    rs_history_free(&sh);
-    return rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory copying input histories");
+  return rs_msg_set(msg, RS_ERR_SOLVER,
+                    "steady solution refused: cell %d (x = %.4g mm): %s (p_x = %.6g N/mm^2, %s = "
+                    "%.6g %s)",
+                    i, m->x[i], what, p, other_name, other, unit);
+}
+
+/* The paper's conditions (eqs. 7-10) cell by cell on the kinematics in w (of a steady
+ * evaluation), rates in traction units through the steady scaling r. */
+static int check_cells(const rs_model *m, const rs_work *w, double t, const double *y, double tol,
+                       rs_msg *msg)
+{
+  const int n = m->n;
+  const double r = rs_model_scaling(m, t, 0.0);
+  for (int i = 0; i < n; i++) {
+    const double p = y[i], g = w->bound[i], tauc = rs_model_yield_limit(m, y[2 * n + i]);
+    const double vs = w->vslip[i], flow = w->dupl[i];
+    if (!(w->pn[i] > 0.0)) {
+      if (fabs(p) > tol)
+        return refuse(msg, m, i, "traction outside the contact", p, w->pn[i], "p_n", "N/mm^2");
+      if (r * fabs(flow) > tol)
+        return refuse(msg, m, i, "plastic flow outside the contact", p, flow, "Du_pl/Dt", "mm/s");
+      continue;
+    }
+    if (fabs(p) > g + tol)
+      return refuse(msg, m, i, "traction above the bound g = mu p_n", p, g, "g", "N/mm^2");
+    if (fabs(p) > tauc + tol)
+      return refuse(msg, m, i, "traction above the yield limit", p, tauc, "tau_c", "N/mm^2");
+    if (r * fabs(vs) > tol) { /* slipping: at the bound, the slip opposite to p */
+      if (fabs(p) < g - tol)
+        return refuse(msg, m, i, "slip below the traction bound", p, vs, "v_s", "mm/s");
+      if (p * vs > 0.0)
+        return refuse(msg, m, i, "slip along the traction (negative frictional power)", p, vs,
+                      "v_s", "mm/s");
+    }
+    if (r * fabs(flow) > tol) { /* flowing: at the yield limit, the flow parallel to p */
+      if (fabs(p) < tauc - tol)
+        return refuse(msg, m, i, "plastic flow below the yield limit", p, flow, "Du_pl/Dt", "mm/s");
+      if (p * flow < 0.0)
+        return refuse(msg, m, i, "plastic flow opposite to the traction (negative plastic power)",
+                      p, flow, "Du_pl/Dt", "mm/s");
+    }
+    if (r * fabs(w->dustar[i] - fabs(flow)) > tol)
+      return refuse(msg, m, i, "u* does not grow with |Du_pl/Dt|", p, w->dustar[i], "Du*/Dt",
+                    "mm/s");
   }
-  rs_history_free(&m->velocity);
-  rs_history_free(&m->creepage);
-  rs_history_free(&m->shift);
-  m->velocity = v;
-  m->creepage = xi;
-  m->shift = sh;
   return RS_OK;
+}
+
+int rs_model_check_steady(const rs_model *m, rs_work *w, double t, const double *y, rs_msg *msg)
+{
+  double *F = malloc((size_t)m->neq * sizeof *F), *yp = calloc((size_t)m->neq, sizeof *yp);
+  if (!F || !yp) {
+    free(F);
+    free(yp);
+    return rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory checking the steady solution");
+  }
+  /* Kinematics of the steady state: y' = 0 gives the same v_s, Du_pl/Dt and Dustar/Dt
+   * for every c_j. */
+  int status = rs_model_eval(m, w, t, y, yp, 0.0, NULL, NULL);
+  double pref = 0.0;
+  for (int i = 0; i < m->n; i++) pref = fmax(pref, w->bound[i]);
+  if (!(pref > 0.0)) pref = 1.0;
+  const double tol = RS_STEADY_CHECK_TOL * pref;
+  if (status != RS_OK)
+    status = rs_msg_set(msg, status, "normal problem failed at t = %g s", t);
+  else
+    status = check_cells(m, w, t, y, tol, msg);
+  /* The residual of the transient at y' = 0, with the scaling of a time step of one
+   * cell passage (c_j = V/dx): another r, the same zero set. */
+  const double V = rs_history_eval(&m->velocity, t);
+  if (status == RS_OK) status = rs_model_eval(m, w, t, y, yp, V > 0.0 ? V / m->dx : 0.0, F, NULL);
+  if (status == RS_OK) {
+    int worst = 0;
+    for (int i = 1; i < m->neq; i++)
+      if (fabs(F[i]) > fabs(F[worst])) worst = i;
+    if (!(fabs(F[worst]) <= tol))
+      status = rs_msg_set(msg, RS_ERR_SOLVER,
+                          "steady solution refused: the transient residual there is %.3g N/mm^2 "
+                          "(row %d, allowed %.3g): not a steady state of the DAE",
+                          fabs(F[worst]), worst, tol);
+  }
+  free(F);
+  free(yp);
+  return status;
 }

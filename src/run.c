@@ -282,11 +282,6 @@ static int read_restart(run_state *s, const rs_run_opts *o, const char *out_path
                         rs_msg *msg)
 {
   const rs_case *c = s->c;
-  if (c->mode != RS_MODE_TRANSIENT)
-    return rs_msg_set(msg, RS_ERR_INPUT,
-                      "--restart %s: restart applies to transient runs (simulation.mode: "
-                      "transient), this case is steady",
-                      o->restart_path);
   /* Writing the continuation over the file it starts from would destroy the old
    * records (the output file is created by renaming over its path). */
   struct stat st_old, st_new;
@@ -298,6 +293,10 @@ static int read_restart(run_state *s, const rs_run_opts *o, const char *out_path
   int status = rs_restart_read(o->restart_path, (size_t)s->m.n, s->m.x, t0, s->y,
                                s->m.force_control ? s->y + 3 * s->m.n : NULL, msg);
   if (status != RS_OK) return status;
+  if (c->mode == RS_MODE_STEADY) { /* the stored state starts Newton at the case's inputs */
+    *t0 = 0.0;
+    return RS_OK;
+  }
   if (*t0 >= c->end_time - 1e-9 * c->output_interval)
     return rs_msg_set(msg, RS_ERR_INPUT,
                       "--restart %s: nothing left to run: its last record is at t = %.9g s, "
@@ -380,8 +379,12 @@ int rs_run(const rs_case *c, const rs_run_opts *o, rs_run_result *res, rs_msg *m
       free_state(&s);
       return status;
     }
-    snprintf(history, len, "%s%s(restart from %s at t = %.9g s)", base, *base ? " " : "",
-             o->restart_path, t0);
+    if (c->mode == RS_MODE_STEADY)
+      snprintf(history, len, "%s%s(steady solve started from the last record of %s)", base,
+               *base ? " " : "", o->restart_path);
+    else
+      snprintf(history, len, "%s%s(restart from %s at t = %.9g s)", base, *base ? " " : "",
+               o->restart_path, t0);
   }
   /* The yield limit is infinite without plasticity: not written then. */
   const unsigned fields = c->has_plasticity ? c->fields : (c->fields & ~(unsigned)RS_FIELD_TAUC);
@@ -403,8 +406,8 @@ int rs_run(const rs_case *c, const rs_run_opts *o, rs_run_result *res, rs_msg *m
   }
 
   /* Initial state: rest (no traction, fresh material), steady rolling, or the restart
-   * file's last record (already in s.y). */
-  if (!o->restart_path && (c->mode == RS_MODE_STEADY || c->initial_state == RS_START_STEADY)) {
+   * file's last record (already in s.y; in steady mode, Newton's start). */
+  if (c->mode == RS_MODE_STEADY || (!o->restart_path && c->initial_state == RS_START_STEADY)) {
     rs_steady *st = NULL;
     status = rs_steady_create(&st, &s.m, msg);
     if (status == RS_OK) status = rs_steady_solve(st, 0.0, s.y, &res->stats, msg);

@@ -434,9 +434,25 @@ int rs_steady_solve(rs_steady *s, double t, double *y, rs_stats *stats, rs_msg *
   /* Pseudo-time from the interpolated coarse solution when there is one (a few steps
    * settle the trailing end of the plastic zone), else from the caller's start. */
   if (status != RS_OK) status = pseudo_time_steps(s, y, stats);
+  int rolled = 0; /* the result comes from rolling the material (the physical path) */
   if (status == RS_ERR_SOLVER) {
     memcpy(y, start, (size_t)m->neq * sizeof *y);
     status = pseudo_transient(s, t, y, stats, msg);
+    rolled = 1;
+  }
+  /* Every result is checked (rs_model_check_steady): a zero of the residual that is not
+   * a physical steady state is refused; the transient path from the caller's start
+   * then decides, and its result must pass the same check. */
+  rs_msg why = {{0}};
+  if (status == RS_OK && (status = rs_model_check_steady(m, &s->work, t, y, &why)) != RS_OK) {
+    if (stats) stats->refused++;
+    if (!rolled && status == RS_ERR_SOLVER) {
+      memcpy(y, start, (size_t)m->neq * sizeof *y);
+      status = pseudo_transient(s, t, y, stats, msg);
+      if (status == RS_OK) status = rs_model_check_steady(m, &s->work, t, y, &why);
+      else why.text[0] = '\0'; /* msg says why the transient path failed */
+    }
+    if (status != RS_OK && why.text[0]) rs_msg_set(msg, status, "%s", why.text);
   }
   free(start);
   if (stats) {

@@ -43,8 +43,10 @@ typedef struct steady_chain {
   long jac_now;   /* Jacobian evaluations of the current solver (it counts from its creation) */
   double *yprev, *ylast; /* solutions of the last two points on this chain (secant predictor) */
   double xprev, xlast; /* their values of the swept input */
+  signed char *reg_last, *reg_new; /* regimes of the last solution and of a new one */
   int nsolved;    /* points solved on this chain */
   long jac_evals; /* of solvers already freed */
+  long refined;   /* continuation steps halved (regime jump or failure) */
 } steady_chain;
 
 static void chain_drop(steady_chain *ch)
@@ -57,7 +59,10 @@ static void chain_drop(steady_chain *ch)
   free(ch->yp);
   free(ch->yprev);
   free(ch->ylast);
+  free(ch->reg_last);
+  free(ch->reg_new);
   ch->yp = ch->yprev = ch->ylast = NULL;
+  ch->reg_last = ch->reg_new = NULL;
   ch->nsolved = 0;
   if (ch->have_model) rs_model_free(&ch->m);
   ch->have_model = 0;
@@ -70,23 +75,89 @@ static int rolling_key(const char *key)
          !strcmp(key, "rolling.shift_velocity");
 }
 
+/* The model's rolling input `key` held at x (an intermediate continuation point). */
+static void set_rolling_value(rs_model *m, const char *key, double x)
+{
+  rs_history *h = !strcmp(key, "rolling.creepage") ? &m->creepage
+                  : !strcmp(key, "rolling.velocity") ? &m->velocity
+                                                     : &m->shift;
+  rs_history_free(h);
+  *h = (rs_history){.kind = RS_HISTORY_CONSTANT, .value = x};
+}
+
+/* Continuation step refinement: a step whose solution changes the regime of more
+ * than max(JUMP_MIN_CELLS, n/JUMP_FRACTION) cells, or fails, is halved (at most
+ * MAX_HALVINGS times in a row), so that Newton follows the path of solutions instead
+ * of leaping across a change of the active set to another zero of the residual.
+ * Measured on cases/creep_curves.yaml (41 points, 100 cells): up to 16 cells change
+ * per step along the physical path, 1-3 in most steps. */
+enum { JUMP_MIN_CELLS = 4, JUMP_FRACTION = 10, MAX_HALVINGS = 3 };
+
+static int regimes_of(steady_chain *ch, const double *y, signed char *reg)
+{
+  rs_diag d;
+  return rs_model_diagnostics(&ch->m, &ch->w, 0.0, y, ch->yp, &d, NULL, NULL, reg);
+}
+
+/* From the last solution on the chain (in y on entry) to the swept input at x: secant
+ * predictor y + (y - y_prev)(x - x_last)/(x_last - x_prev) (the tractions follow the
+ * input piecewise linearly between changes of the active set), Newton, and the step
+ * halved where the regimes jump. On success y and the chain hold the solution at x. */
+static int continue_to(steady_chain *ch, const char *key, double x, double *y, int depth,
+                       rs_stats *stats, rs_msg *msg)
+{
+  const int neq = ch->m.neq, n = ch->m.n;
+  set_rolling_value(&ch->m, key, x);
+  if (ch->nsolved >= 2 && ch->xlast != ch->xprev) {
+    const double f = (x - ch->xlast) / (ch->xlast - ch->xprev);
+    for (int i = 0; i < neq; i++) y[i] += f * (ch->ylast[i] - ch->yprev[i]);
+  }
+  int status = rs_steady_solve(ch->st, 0.0, y, stats, msg);
+  int changed = 0;
+  if (status == RS_OK && (status = regimes_of(ch, y, ch->reg_new)) == RS_OK)
+    for (int i = 0; i < n; i++) changed += ch->reg_new[i] != ch->reg_last[i];
+  const int jump = changed > (n / JUMP_FRACTION > JUMP_MIN_CELLS ? n / JUMP_FRACTION : JUMP_MIN_CELLS);
+  if ((status == RS_ERR_SOLVER || (status == RS_OK && jump)) && depth < MAX_HALVINGS) {
+    ch->refined++;
+    const double xmid = 0.5 * (ch->xlast + x);
+    memcpy(y, ch->ylast, (size_t)neq * sizeof *y);
+    status = continue_to(ch, key, xmid, y, depth + 1, stats, msg);
+    if (status == RS_OK) status = continue_to(ch, key, x, y, depth + 1, stats, msg);
+    return status;
+  }
+  if (status != RS_OK) return status;
+  memcpy(ch->yprev, ch->ylast, (size_t)neq * sizeof *y);
+  memcpy(ch->ylast, y, (size_t)neq * sizeof *y);
+  memcpy(ch->reg_last, ch->reg_new, (size_t)n);
+  ch->xprev = ch->xlast;
+  ch->xlast = x;
+  ch->nsolved++;
+  return RS_OK;
+}
+
 /* One steady point, warm-started from y (length neq of this grid) when warm; the
- * model and solver of the previous point are reused when reuse. */
+ * model and solver of the previous point are reused (continuation in the rolling
+ * input `key`) when reuse. */
 static int steady_point(const rs_case *c, steady_chain *ch, double **y, int *ny, int warm,
-                        int reuse, double x, rs_diag *d, rs_stats *sum, rs_msg *msg)
+                        int reuse, const char *key, double x, rs_diag *d, rs_stats *sum,
+                        rs_msg *msg)
 {
   int status = RS_OK;
-  if (reuse && ch->have_model && ch->st) {
-    status = rs_model_set_rolling(&ch->m, c, msg);
-  } else {
+  const int chained = reuse && warm && ch->have_model && ch->st && ch->nsolved >= 1 &&
+                      *ny == ch->m.neq;
+  if (!chained) {
     chain_drop(ch);
     status = rs_model_create(&ch->m, c, msg);
     if (status != RS_OK) return status;
     ch->have_model = 1;
-    ch->yp = calloc((size_t)ch->m.neq, sizeof *ch->yp);
-    ch->yprev = calloc((size_t)ch->m.neq, sizeof *ch->yprev);
-    ch->ylast = calloc((size_t)ch->m.neq, sizeof *ch->ylast);
-    if (!ch->yp || !ch->yprev || !ch->ylast || rs_work_create(&ch->w, ch->m.n) != RS_OK)
+    const size_t neq = (size_t)ch->m.neq, n = (size_t)ch->m.n;
+    ch->yp = calloc(neq, sizeof *ch->yp);
+    ch->yprev = calloc(neq, sizeof *ch->yprev);
+    ch->ylast = calloc(neq, sizeof *ch->ylast);
+    ch->reg_last = calloc(n, 1);
+    ch->reg_new = calloc(n, 1);
+    if (!ch->yp || !ch->yprev || !ch->ylast || !ch->reg_last || !ch->reg_new ||
+        rs_work_create(&ch->w, ch->m.n) != RS_OK)
       status = rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory");
     if (status == RS_OK) status = rs_steady_create(&ch->st, &ch->m, msg);
   }
@@ -96,27 +167,22 @@ static int steady_point(const rs_case *c, steady_chain *ch, double **y, int *ny,
     *ny = ch->m.neq;
     if (!*y) status = rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory");
   }
-  /* Secant predictor along the chain: y + (y - y_prev) (x - x_last)/(x_last - x_prev).
-   * The tractions follow the creepage piecewise linearly (between changes of the
-   * active set), so the start is exact or close to it; the plastic state is
-   * extrapolated alike. */
-  const int chained = status == RS_OK && reuse && warm && ch->nsolved >= 1;
-  if (chained) memcpy(ch->ylast, *y, (size_t)ch->m.neq * sizeof *ch->ylast);
-  if (chained && ch->nsolved >= 2 && ch->xlast != ch->xprev) {
-    const double f = (x - ch->xlast) / (ch->xlast - ch->xprev);
-    for (int i = 0; i < ch->m.neq; i++) (*y)[i] += f * (ch->ylast[i] - ch->yprev[i]);
-  }
   rs_stats stats = {0};
-  if (status == RS_OK) status = rs_steady_solve(ch->st, 0.0, *y, &stats, msg);
-  if (status == RS_OK) {
-    if (chained) memcpy(ch->yprev, ch->ylast, (size_t)ch->m.neq * sizeof *ch->yprev);
-    ch->xprev = ch->xlast;
-    ch->xlast = x;
-    ch->nsolved = chained ? ch->nsolved + 1 : 1;
+  if (status == RS_OK && chained) {
+    status = continue_to(ch, key, x, *y, 0, &stats, msg);
+  } else if (status == RS_OK) {
+    status = rs_steady_solve(ch->st, 0.0, *y, &stats, msg);
+    if (status == RS_OK) status = regimes_of(ch, *y, ch->reg_last);
+    if (status == RS_OK) {
+      memcpy(ch->ylast, *y, (size_t)ch->m.neq * sizeof **y);
+      ch->xlast = x;
+      ch->nsolved = reuse ? 1 : 0; /* a chain starts only along a rolling input */
+    }
   }
   if (status == RS_OK) rs_model_diagnostics(&ch->m, &ch->w, 0.0, *y, ch->yp, d, NULL, NULL, NULL);
   sum->nonlin_iters += stats.nonlin_iters;
   sum->lin_solves += stats.lin_solves;
+  sum->refused += stats.refused;
   ch->jac_now = stats.jac_evals;
   if (status != RS_OK) chain_drop(ch); /* no reuse after a failure */
   return status;
@@ -183,8 +249,8 @@ int rs_sweep_run(const rs_sweep *s, const char *case_path, const char *const *se
     int ps = rs_case_load(&c, case_path, all, nsets + s->naxes, &point_msg);
     if (ps == RS_OK) {
       if (c.mode == RS_MODE_STEADY) {
-        const int along = last_index > 0 && rolling_key(s->axes[s->naxes - 1].key);
-        ps = steady_point(&c, &chain, &y, &ny, last_index > 0, along,
+        const char *key = s->axes[s->naxes - 1].key;
+        ps = steady_point(&c, &chain, &y, &ny, last_index > 0, rolling_key(key), key,
                           s->axes[s->naxes - 1].values[last_index], &d, &steady_sum, &point_msg);
       } else {
         rs_run_opts po = *o;
@@ -228,6 +294,8 @@ int rs_sweep_run(const rs_sweep *s, const char *case_path, const char *const *se
   res->newton_iters += steady_sum.nonlin_iters;
   res->lin_solves = steady_sum.lin_solves;
   res->jac_evals = chain.jac_evals;
+  res->refused = steady_sum.refused;
+  res->refined = chain.refined;
   free(y);
   if (status == RS_OK && res->points_failed > 0)
     status = rs_msg_set(msg, RS_ERR_SOLVER, "%zu of %zu sweep points did not converge (NaN in the file)",

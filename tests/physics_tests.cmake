@@ -8,6 +8,8 @@ rs_unit_test(test_transient_to_steady)
 rs_unit_test(test_hou_single_cell)
 rs_unit_test(test_plastic_limits)
 rs_unit_test(test_plastic_transient_to_steady)
+# The physical check of steady solutions, with a stored wrong steady state as input.
+rs_unit_test(test_steady_check ${RS_TESTS}/data/meierhofer_spurious_state.csv)
 rs_unit_test(test_sine_creepage)
 # The optimised SUNDIALS vector kernels (a private header of src/).
 rs_unit_test(test_nvector_fast)

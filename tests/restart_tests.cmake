@@ -84,9 +84,9 @@ add_test(NAME restart_error_grid_x COMMAND ${RS_RST_CHECK} error "its grid diffe
 add_test(NAME restart_error_nothing_left COMMAND ${RS_RST_CHECK} error "nothing left to run"
               ${RS_BIN} run ${RS_RST_EL} --set simulation.rolled_distance=3
               --restart ${RS_RST}/elastic_first.nc -o ${RS_RST}/err_done.nc)
-# Steady mode.
-add_test(NAME restart_error_steady COMMAND ${RS_RST_CHECK} error "restart applies to transient runs"
-              ${RS_BIN} run ${RS_RST_EL} --set simulation.mode=steady
+# Steady mode (the stored state starts Newton): the same grid checks.
+add_test(NAME restart_error_steady_grid COMMAND ${RS_RST_CHECK} error "its grid has"
+              ${RS_BIN} run ${RS_RST_EL} --set simulation.mode=steady --set grid.cells=41
               --restart ${RS_RST}/elastic_first.nc -o ${RS_RST}/err_steady.nc)
 # Missing file.
 add_test(NAME restart_error_no_file COMMAND ${RS_RST_CHECK} error "restart file ${RS_RST}/no_such.nc: cannot open"
@@ -98,7 +98,7 @@ add_test(NAME restart_error_same_file COMMAND ${RS_RST_CHECK} error "it is also 
 add_test(NAME restart_error_sweep COMMAND ${RS_RST_CHECK} error "--restart applies to 'rollsim run' only"
               ${RS_BIN} sweep ${RS_CASES}/carter_plast.yaml --restart ${RS_RST}/elastic_first.nc)
 set_tests_properties(restart_error_grid restart_error_grid_x restart_error_nothing_left
-                     restart_error_steady restart_error_same_file restart_error_sweep
+                     restart_error_steady_grid restart_error_same_file restart_error_sweep
                      PROPERTIES FIXTURES_REQUIRED rst_elastic_first)
 add_test(NAME restart_help COMMAND ${RS_BIN} --help)
 set_tests_properties(restart_help PROPERTIES PASS_REGULAR_EXPRESSION "--restart OLD.nc")

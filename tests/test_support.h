@@ -53,6 +53,23 @@ static inline void ts_fig7_case(rs_case *c, int cells, double k_rel)
   c->tau_c_min = 0.1 * c->tau_c0;
 }
 
+/* The paper's Table-1 contact (cases/meierhofer.yaml): q = 1323.6 N/mm, R = 11.75 mm,
+ * G = 77519.4, nu = 0.29, mu = 0.5, grid +-1.05a; tau_c0, k_rel and xi as given. */
+static inline void ts_table1_case(rs_case *c, int cells, double tau_c0, double k_rel, double xi)
+{
+  ts_carter_case(c, cells);
+  c->normal_load.value = 1323.6;
+  c->radius = 11.75;
+  c->shear_modulus = 77519.4;
+  c->poisson_ratio = 0.29;
+  c->mu = 0.5;
+  c->creepage.value = xi;
+  c->has_plasticity = 1;
+  c->tau_c0 = tau_c0;
+  c->k_tau = c->shear_modulus * k_rel / (1.0 - k_rel);
+  c->tau_c_min = 0.1 * tau_c0;
+}
+
 static int ts_failures = 0;
 
 /* Counts a failure and prints where and why (printf-style message) unless cond. */

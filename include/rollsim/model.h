@@ -146,9 +146,14 @@ double rs_model_next_breakpoint(const rs_model *m, double t);
 /* Yield limit of a cell with accumulated plastic deformation ustar. */
 double rs_model_yield_limit(const rs_model *m, double ustar);
 
-/* Replace the rolling inputs (velocity, creepage and shift-velocity histories) by
- * those of c, keeping grid, coefficients and normal solution: for sweeps along a
- * rolling input, where c differs from the model's case in those keys only. */
-int rs_model_set_rolling(rs_model *m, const rs_case *c, rs_msg *msg);
+/* Checks a steady state y (y' = 0) at time t: the transient residual there (the DAE
+ * residual with the scaling of a time step, not the steady one) and the paper's
+ * contact conditions cell by cell (eqs. 7-10: |p| <= min(g, tau_c); slip only at the
+ * bound and opposite to p; plastic flow only at the yield limit and parallel to p;
+ * Dustar/Dt = |Du_pl/Dt|; nothing outside the contact), each to RS_STEADY_CHECK_TOL
+ * times the largest traction bound (slip and flow rates in traction units through
+ * r). RS_OK, or RS_ERR_SOLVER with the first failed condition, cell and values in msg. */
+#define RS_STEADY_CHECK_TOL 1e-6
+int rs_model_check_steady(const rs_model *m, rs_work *w, double t, const double *y, rs_msg *msg);
 
 #endif

@@ -15,9 +15,10 @@ typedef struct rs_run_opts {
   const char *history;      /* netCDF history attribute (command line and date) */
   int progress;             /* draw a progress bar on stderr */
   int no_output;            /* compute only (sweep points): no netCDF file */
-  /* Transient mode only: continue from the last record (state and time) of this
-   * earlier output file (rollsim/restart.h) instead of rest or steady rolling; the run
-   * then covers [t_last, end_time] on the same output grid k*output_interval. */
+  /* Transient mode: continue from the last record (state and time) of this earlier
+   * output file (rollsim/restart.h) instead of rest or steady rolling; the run then
+   * covers [t_last, end_time] on the same output grid k*output_interval. Steady mode:
+   * the stored state is Newton's start (the result is checked like every steady one). */
   const char *restart_path;
   /* Set asynchronously (signal handler) to stop at the next output record. */
   volatile sig_atomic_t *interrupt_flag;
@@ -44,7 +45,7 @@ void rs_run_result_free(rs_run_result *res);
 
 /* Returns RS_OK, RS_ERR_SOLVER (status "failed: ..."), RS_ERR_INTERRUPTED,
  * RS_ERR_OUTPUT or RS_ERR_INTERNAL; msg says what happened. Records written
- * before a failure are kept. RS_ERR_INPUT for an invalid restart (steady mode, file
+ * before a failure are kept. RS_ERR_INPUT for an invalid restart (file
  * missing or unreadable, a state field missing, another grid, nothing left to run):
  * then no file is written. */
 int rs_run(const rs_case *c, const rs_run_opts *o, rs_run_result *res, rs_msg *msg);

@@ -23,6 +23,8 @@ typedef struct rs_stats {
   long klu_analyses;     /* KLU symbolic analyses (the sparsity pattern changed) */
   long lin_solves;       /* linear solves (direct) or Krylov iterations (steady solver) */
   long factorizations;   /* of the iteration matrix (transient; a matrix equal to the last keeps it) */
+  long refused;          /* steady solutions refused by rs_model_check_steady (then recomputed
+                            by rolling the material, or the solve failed) */
 } rs_stats;
 
 /* Steady rolling (V > 0): a reusable solver so that continuation (creep curves)
