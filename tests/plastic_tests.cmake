@@ -28,3 +28,24 @@ set_tests_properties(plastic_trends_sweep plastic_trends_saturated PROPERTIES FI
 add_test(NAME plastic_trends COMMAND ${SYSTEM_PYTHON3} ${RS_TESTS}/check_plastic.py trends
                                      ${RS_PL}/trends.nc ${RS_PL}/trends_sat.nc)
 set_tests_properties(plastic_trends PROPERTIES FIXTURES_REQUIRED pl_trends)
+
+# Steady results are steady states (the steady-plastic issue): every point of the sweep
+# of each case, single steady runs and (Table 1) a steady run started from a stored wrong
+# state, against the transient from rest on the same grid, to 1e-4 relative; no traction
+# against the creepage. Transients roll 150-200 mm (175-235 contact lengths) until they
+# change by < 1e-6 over the last quarter.
+set(RS_ST_CHECK ${SYSTEM_PYTHON3} ${RS_TESTS}/check_steady_transient.py ${RS_BIN})
+add_test(NAME steady_transient_table1
+         COMMAND ${RS_ST_CHECK} ${RS_TESTS}/cases/steady_transient_table1.yaml ${RS_PL}/st_table1 150
+                 --start ${RS_TESTS}/data/meierhofer_spurious_state.csv)
+add_test(NAME steady_transient_fig9
+         COMMAND ${RS_ST_CHECK} ${RS_TESTS}/cases/steady_transient_fig9.yaml ${RS_PL}/st_fig9 150)
+add_test(NAME steady_transient_fig7
+         COMMAND ${RS_ST_CHECK} ${RS_CASES}/carter_plast.yaml ${RS_PL}/st_fig7 200)
+# The shipped Figure-9 study: every curve free of jumps.
+add_test(NAME plastic_creep_curves_sweep
+         COMMAND ${RS_BIN} sweep ${RS_CASES}/creep_curves.yaml -o ${RS_PL}/creep_curves.nc --quiet)
+set_tests_properties(plastic_creep_curves_sweep PROPERTIES FIXTURES_SETUP pl_curves)
+add_test(NAME plastic_creep_curves_no_jumps
+         COMMAND ${SYSTEM_PYTHON3} ${RS_TESTS}/check_plastic.py curves ${RS_PL}/creep_curves.nc)
+set_tests_properties(plastic_creep_curves_no_jumps PROPERTIES FIXTURES_REQUIRED pl_curves)
