@@ -14,7 +14,7 @@
 #include "rollsim/model.h"
 #include "rollsim/solver.h"
 #include "bench_util.h"
-#include "util.h" /* rs_wall_clock */
+#include "base/util.h" /* rs_wall_clock */
 
 int main(int argc, char **argv) {
   const int reps = argc > 1 ? atoi(argv[1]) : 5;

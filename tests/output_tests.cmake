@@ -1,4 +1,4 @@
-# netCDF output (src/output.c): round trip through the C API, errors, a check with the
+# netCDF output (src/io/output.c): round trip through the C API, errors, a check with the
 # Python reader post-processing uses, ncdump, and crash safety under SIGKILL.
 # Included from tests/CMakeLists.txt (rs_unit_test, RS_TESTS, SYSTEM_PYTHON3).
 

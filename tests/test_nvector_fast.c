@@ -8,7 +8,7 @@
  * clones of the vectors rollsim creates). */
 #include <nvector/nvector_serial.h>
 
-#include "nvector_fast.h"
+#include "solve/nvector_fast.h"
 #include "rollsim/status.h"
 #include "test_support.h"
 

@@ -2,7 +2,7 @@
  * terms: "case.yaml:12: plasticity.k_tau: expected a number, got \"abc\"", or
  * "--set rolling.creepage: ..." for a node that came from a --set. */
 #define _POSIX_C_SOURCE 200809L
-#include "case_internal.h"
+#include "io/case_internal.h"
 
 #include <ctype.h>
 #include <math.h>

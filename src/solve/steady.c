@@ -11,9 +11,9 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "linsys.h"
-#include "linsys_krylov.h"
-#include "nvector_fast.h"
+#include "solve/linsys.h"
+#include "solve/linsys_krylov.h"
+#include "solve/nvector_fast.h"
 #include "rollsim/solver.h"
 
 struct rs_steady {

@@ -11,7 +11,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "output_internal.h"
+#include "io/output_internal.h"
 #include "rollsim/output.h"
 
 enum { SW_DOUBLE, SW_INT };

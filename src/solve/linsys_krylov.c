@@ -1,5 +1,5 @@
 /* Newton-Krylov products and near-field preconditioner (see linsys_krylov.h). */
-#include "linsys_krylov.h"
+#include "solve/linsys_krylov.h"
 
 #include <stdlib.h>
 #include <string.h>

@@ -15,7 +15,7 @@
 
 #include "rollsim/normal.h"
 #include "rollsim/rig.h"
-#include "util.h"
+#include "base/util.h"
 
 
 static double sign_of(double v) { return v > 0.0 ? 1.0 : (v < 0.0 ? -1.0 : 0.0); }

@@ -3,13 +3,13 @@
  * equations A_CC p_C - delta = -h_C, dx sum p_C = load, then drop cells with tension
  * and add cells that penetrate, until neither happens. Large grids use the
  * conjugate-gradient method of normal_cg.c instead (same solution). */
-#include "normal_internal.h"
+#include "physics/normal_internal.h"
 
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "util.h"
+#include "base/util.h"
 
 
 void rs_hertz2d(double load, double radius, double shear_modulus, double poisson_ratio,

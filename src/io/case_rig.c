@@ -5,7 +5,7 @@
 #include <math.h>
 #include <stdlib.h>
 
-#include "case_internal.h"
+#include "io/case_internal.h"
 
 int rs_case_protocol(const rs_case_doc *d, const yaml_node_t *n, const char *key, rs_twin_disc *rig)
 {

@@ -31,7 +31,7 @@
 #define _POSIX_C_SOURCE 200809L
 
 #include "rollsim/output.h"
-#include "output_internal.h"
+#include "io/output_internal.h"
 
 #include <errno.h>
 #include <math.h>

@@ -1,6 +1,6 @@
 /* The KLU-factored sparse generalized Jacobian (see linsys.h). */
-#include "linsys.h"
-#include "linsys_reduced.h"
+#include "solve/linsys.h"
+#include "solve/linsys_reduced.h"
 
 #include <stdlib.h>
 #include <string.h>

@@ -7,7 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "case_internal.h"
+#include "io/case_internal.h"
 #include "rollsim/sweep.h"
 
 void rs_sweep_free(rs_sweep *s)

@@ -8,9 +8,9 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "linsys.h"
-#include "nvector_fast.h"
-#include "nls_kinsol.h"
+#include "solve/linsys.h"
+#include "solve/nvector_fast.h"
+#include "solve/nls_kinsol.h"
 #include "rollsim/solver.h"
 
 struct rs_transient {

@@ -3,7 +3,7 @@
  * created, so messages can point at the --set), and emission of the document
  * as run (the netCDF `case` attribute). */
 #define _POSIX_C_SOURCE 200809L
-#include "case_internal.h"
+#include "io/case_internal.h"
 
 #include <errno.h>
 #include <stdio.h>

@@ -2,7 +2,7 @@
  * solver.max_steps, simulation.rolled_distance, sweep:): one table giving each
  * key's type, field, unit and allowed range, and the walk of the document that
  * fills an rs_case from it. Cross-key rules and derived values are in case.c. */
-#include "case_internal.h"
+#include "io/case_internal.h"
 
 #include <math.h>
 #include <stdlib.h>

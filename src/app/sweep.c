@@ -13,7 +13,7 @@
 #include "rollsim/output.h"
 #include "rollsim/solver.h"
 #include "rollsim/sweep.h"
-#include "util.h"
+#include "base/util.h"
 
 static void fill_point(rs_sweep_point *pt, const rs_diag *d)
 {

@@ -8,7 +8,7 @@
 
 #include <sundials/sundials_nonlinearsolver.h>
 
-#include "linsys.h"
+#include "solve/linsys.h"
 
 /* cj_slot: where the DAE residual reads the current cj (it sets the scaling r).
  * max_iters: Newton iterations per step before the step is declared failed. */

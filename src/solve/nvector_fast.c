@@ -1,5 +1,5 @@
 /* Optimised serial N_Vector kernels (see nvector_fast.h). */
-#include "nvector_fast.h"
+#include "solve/nvector_fast.h"
 
 #include <math.h>
 #include <nvector/nvector_serial.h>

@@ -1,6 +1,6 @@
 /* Private helpers shared by several modules (util.h). */
 #define _POSIX_C_SOURCE 200809L
-#include "util.h"
+#include "base/util.h"
 
 #include <time.h>
 

@@ -1,5 +1,5 @@
 /* Schur-complement direct solver for the generalized Jacobian (see linsys_reduced.h). */
-#include "linsys_reduced.h"
+#include "solve/linsys_reduced.h"
 
 #include <klu.h>
 #include <stdint.h>
@@ -9,7 +9,7 @@
 #include <sunlinsol/sunlinsol_klu.h>
 #include <sunmatrix/sunmatrix_sparse.h>
 
-#include "util.h"
+#include "base/util.h"
 
 typedef struct red_content {
   int n, neq;

@@ -2,7 +2,7 @@
  * weights w and a tolerance; we solve for the correction ycor with KINSOL, with
  * u-scaling w and f-scaling w / (diagonal of the iteration matrix), so that
  * KINSOL's scaled norms measure the correction in IDA's weighted norm. */
-#include "nls_kinsol.h"
+#include "solve/nls_kinsol.h"
 
 #include <ida/ida.h>
 #include <kinsol/kinsol.h>

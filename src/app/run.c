@@ -13,7 +13,7 @@
 #include "rollsim/output.h"
 #include "rollsim/restart.h"
 #include "rollsim/rig.h"
-#include "util.h"
+#include "base/util.h"
 
 typedef struct run_state {
   const rs_case *c;

@@ -4,7 +4,7 @@
  * A table is two columns time,value (an optional header line, # comments), its
  * path relative to the case file's directory. */
 #define _POSIX_C_SOURCE 200809L
-#include "case_internal.h"
+#include "io/case_internal.h"
 
 #include <ctype.h>
 #include <errno.h>

@@ -3,7 +3,7 @@
  *   k_tau = G*k_rel/(1 - k_rel),  tau_c_min = 0.1*tau_c0 by default,
  *   end_time = rolled_distance/V when the rolled distance is given. */
 #define _POSIX_C_SOURCE 200809L
-#include "case_internal.h"
+#include "io/case_internal.h"
 #include "rollsim/elastic.h" /* RS_PI */
 
 #include <math.h>
