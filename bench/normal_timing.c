@@ -12,6 +12,7 @@
 #include <stdlib.h>
 
 #include "rollsim/model.h"
+#include "rollsim/run.h"
 #include "rollsim/normal.h"
 #include "bench_util.h"
 #include "base/util.h" /* rs_wall_clock */
@@ -39,14 +40,16 @@ int main(int argc, char **argv) {
     const char *sets[] = {cells};
     rs_model m;
     if (rs_case_load(&c, RS_CARTER_CASE, sets, 1, &msg) != RS_OK ||
-        rs_model_create(&m, &c, &msg) != RS_OK) {
+        rs_model_from_case(&m, &c, &msg) != RS_OK) {
       fprintf(stderr, "%s\n", msg.text);
       return 1;
     }
     double *pn[NM];
+    rs_elastic_work ew;
+    if (rs_elastic_work_create(&ew, &m.el) != RS_OK) return 1;
     printf("%6d", cells_n);
     for (int k = 0; k < NM; k++) {
-      pn[k] = malloc((size_t)m.n * sizeof *pn[k]);
+      pn[k] = malloc((size_t)m.grid.n * sizeof *pn[k]);
       if (methods[k] == RS_NORMAL2D_DIRECT && cells_n > maxdirect) {
         printf(" %10s %5s", "-", "-");
         continue;
@@ -55,8 +58,8 @@ int main(int argc, char **argv) {
       for (int r = 0; r < reps; r++) {
         double delta;
         const double t0 = rs_wall_clock();
-        if (rs_normal2d_solve_with(&m.el, m.x, m.radius, m.normal_load, methods[k], pn[k], &delta,
-                                   &iter, &msg) != RS_OK) {
+        if (rs_normal2d_solve_with(&m.el.line, &ew.line, m.gap, m.normal_load, methods[k], pn[k],
+                                   &delta, &iter, &msg) != RS_OK) {
           fprintf(stderr, "%s: %s\n", names[k], msg.text);
           return 1;
         }
@@ -67,7 +70,7 @@ int main(int argc, char **argv) {
     }
     if (cells_n <= maxdirect) {
       double diff = 0.0, pmax = 0.0;
-      for (int i = 0; i < m.n; i++) {
+      for (int i = 0; i < m.grid.n; i++) {
         diff = fmax(diff, fabs(pn[1][i] - pn[0][i]));
         pmax = fmax(pmax, pn[0][i]);
       }
@@ -75,6 +78,7 @@ int main(int argc, char **argv) {
     }
     printf("\n");
     for (int k = 0; k < NM; k++) free(pn[k]);
+    rs_elastic_work_free(&ew);
     rs_model_free(&m);
     rs_case_free(&c);
   }

@@ -12,6 +12,7 @@
 #include <string.h>
 
 #include "rollsim/model.h"
+#include "rollsim/run.h"
 #include "rollsim/solver.h"
 #include "bench_util.h"
 #include "base/util.h" /* rs_wall_clock */
@@ -46,7 +47,7 @@ int main(int argc, char **argv) {
     rs_model m;
     for (int r = 0; r < reps; r++) {
       const double t0 = rs_wall_clock();
-      if (rs_model_create(&m, &c, &msg) != RS_OK) {
+      if (rs_model_from_case(&m, &c, &msg) != RS_OK) {
         fprintf(stderr, "%s\n", msg.text);
         return 1;
       }
@@ -55,16 +56,16 @@ int main(int argc, char **argv) {
     }
     printf("%6d %9.3f", grids[g], 1e3 * bench_median(t, reps));
     logn[g] = log(grids[g]);
-    double *y = malloc((size_t)m.neq * sizeof *y);
+    double *y = malloc((size_t)m.lay.neq * sizeof *y);
     for (int k = 0; k < NP; k++) {
       rs_stats st = {0};
       int krep = paths[k] == RS_LINEAR_KLU && grids[g] > 400 ? 1 : reps; /* slow: once */
       for (int r = 0; r < krep; r++) {
-        memset(y, 0, (size_t)m.neq * sizeof *y);
+        memset(y, 0, (size_t)m.lay.neq * sizeof *y);
         memset(&st, 0, sizeof st);
         rs_steady *s = NULL;
         const double t0 = rs_wall_clock();
-        int status = rs_steady_create_with(&s, &m, paths[k], &msg);
+        int status = rs_steady_create_with(&s, &m, NULL, paths[k], &msg);
         if (status == RS_OK) status = rs_steady_solve(s, 0.0, y, &st, &msg);
         t[r] = rs_wall_clock() - t0;
         rs_steady_free(s);

@@ -15,25 +15,25 @@ static int solve(rs_case *c, double *fx_rel, int *n_adh, double *dx, double *fx,
 {
   rs_model m;
   rs_msg msg = {{0}};
-  if (rs_model_create(&m, c, &msg) != RS_OK) {
+  if (rs_model_from_case(&m, c, &msg) != RS_OK) {
     printf("FAIL model: %s\n", msg.text);
     return 1;
   }
   rs_steady *s = NULL;
-  double *y = calloc((size_t)m.neq, sizeof *y), *yp = calloc((size_t)m.neq, sizeof *yp);
+  double *y = calloc((size_t)m.lay.neq, sizeof *y), *yp = calloc((size_t)m.lay.neq, sizeof *yp);
   rs_work w;
-  rs_work_create(&w, m.n);
-  int status = rs_steady_create(&s, &m, &msg);
+  rs_work_create(&w, &m);
+  int status = rs_steady_create(&s, &m, NULL, &msg);
   if (status == RS_OK) status = rs_steady_solve(s, 0.0, y, st, &msg);
   if (status != RS_OK) {
     printf("FAIL steady solve: %s\n", msg.text);
   } else {
     rs_diag d;
-    rs_model_diagnostics(&m, &w, 0.0, y, yp, &d, NULL, NULL, NULL);
-    *fx_rel = d.Fx / (m.mu * d.Fn);
+    ts_diagnostics(&m, &w, 0.0, y, yp, &d, NULL, NULL, NULL);
+    *fx_rel = d.Fx / (m.par.friction.mu * d.Fn);
     *fx = d.Fx;
     *n_adh = d.count[RS_ADHESION];
-    *dx = m.dx;
+    *dx = m.grid.dx;
   }
   rs_steady_free(s);
   rs_work_free(&w);

@@ -20,7 +20,7 @@
 static double force_of(const rs_model *m, const double *y)
 {
   double f = 0.0;
-  for (int i = 0; i < m->n; i++) f += y[i] * m->dx;
+  for (int i = 0; i < m->grid.n; i++) f += y[i] * m->grid.dx;
   return f;
 }
 
@@ -29,18 +29,19 @@ static int steady(const rs_case *c, double *fx, double *xi)
 {
   rs_model m;
   rs_msg msg = {{0}};
-  if (rs_model_create(&m, c, &msg) != RS_OK) {
+  if (rs_model_from_case(&m, c, &msg) != RS_OK) {
     printf("FAIL model: %s\n", msg.text);
     return 1;
   }
-  double *y = calloc((size_t)m.neq, sizeof *y);
+  double *y = calloc((size_t)m.lay.neq, sizeof *y);
   rs_steady *s = NULL;
   rs_stats st = {0};
-  int status = rs_steady_create(&s, &m, &msg);
+  int status = rs_steady_create(&s, &m, NULL, &msg);
   if (status == RS_OK) status = rs_steady_solve(s, 0.0, y, &st, &msg);
   if (status != RS_OK) printf("FAIL steady: %s\n", msg.text);
   *fx = force_of(&m, y);
-  *xi = rs_model_creepage(&m, 0.0, y);
+  const rs_inputs in = ts_inputs(&m, 0.0);
+  *xi = rs_model_creepage(&m, &in, y);
   rs_steady_free(s);
   free(y);
   rs_model_free(&m);
@@ -100,32 +101,32 @@ static void check_transient(void)
                                     .start = 0.0, .duration = ramp};
   rs_model m;
   rs_msg msg = {{0}};
-  if (rs_model_create(&m, &c, &msg) != RS_OK) {
+  if (rs_model_from_case(&m, &c, &msg) != RS_OK) {
     printf("FAIL model: %s\n", msg.text);
     return (void)ts_failures++;
   }
-  double *y = calloc((size_t)m.neq, sizeof *y), *yp = calloc((size_t)m.neq, sizeof *yp);
+  double *y = calloc((size_t)m.lay.neq, sizeof *y), *yp = calloc((size_t)m.lay.neq, sizeof *yp);
   rs_work w;
-  rs_work_create(&w, m.n);
+  rs_work_create(&w, &m);
   const double t_end = 15 * 2 * m.hertz_a / c.velocity.value;
   rs_transient_opts o = {.rtol = 1e-6, .atol = 1e-6, .max_order = 5, .max_steps = 200000,
                          .max_newton = 10, .t_stop = ramp};
   rs_transient *tr = NULL;
   double worst = 0.0;
-  if (rs_model_consistent_rates(&m, &w, 0.0, y, yp, &msg) ||
-      rs_transient_create(&tr, &m, 0.0, y, yp, &o, &msg)) {
+  if (ts_consistent_rates(&m, &w, 0.0, y, yp, &msg) ||
+      rs_transient_create(&tr, &m, NULL, 0.0, y, yp, &o, &msg)) {
     printf("FAIL setup: %s\n", msg.text);
     ts_failures++;
     goto done;
   }
-  printf("transient: creepage at rest from the bordered rates: %.6g\n", y[3 * m.n]);
+  printf("transient: creepage at rest from the bordered rates: %.6g\n", y[3 * m.grid.n]);
   const int nout = 150;
   int restarted = 0;
   for (int k = 1; k <= nout; k++) {
     const double t = t_end * k / nout;
     if (!restarted && t > ramp) { /* stop at the end of the ramp, restart there */
       if (rs_transient_advance(tr, ramp, y, yp, &msg) ||
-          rs_model_consistent_rates(&m, &w, ramp, y, yp, &msg) ||
+          ts_consistent_rates(&m, &w, ramp, y, yp, &msg) ||
           rs_transient_restart(tr, ramp, y, yp, t_end, &msg)) {
         printf("FAIL at the ramp end: %s\n", msg.text);
         ts_failures++;
@@ -138,12 +139,12 @@ static void check_transient(void)
       ts_failures++;
       goto done;
     }
-    const double want = rs_history_eval(&m.force, t);
+    const double want = rs_history_eval(&m.par.force, t);
     worst = fmax(worst, fabs(force_of(&m, y) - want) / target);
   }
   printf("transient: %d records over %.3g s (15 contact lengths)\n", nout, t_end);
   ts_check("transient: max |F_x - F(t)| / F over the records", worst, 0.0, 1e-6);
-  ts_check("transient: final creepage / steady creepage", y[3 * m.n] / xi_s, 1.0, 1e-5);
+  ts_check("transient: final creepage / steady creepage", y[3 * m.grid.n] / xi_s, 1.0, 1e-5);
 done:
   rs_transient_free(tr);
   rs_work_free(&w);

@@ -78,11 +78,11 @@ static int run_variant(const char *name, double k, double layer_h3, double layer
   c.output_interval = 1e-4;
   rs_model m;
   rs_msg msg = {{0}};
-  if (rs_model_create(&m, &c, &msg) != RS_OK) {
+  if (rs_model_from_case(&m, &c, &msg) != RS_OK) {
     printf("FAIL model: %s\n", msg.text);
     return 1;
   }
-  hou_law L = {.c = rs_elastic2d_tang(&m.el, 0) + m.layer_flex,
+  hou_law L = {.c = rs_elastic2d_tang(&m.el.line, 0) + m.layer_flex,
                .g = m.bound[0],
                .tau_c0 = c.tau_c0,
                .k = k,
@@ -92,10 +92,10 @@ static int run_variant(const char *name, double k, double layer_h3, double layer
                          .max_newton = 10, .t_stop = st[1]};
   double y[3] = {0, 0, 0}, yp[3];
   rs_work w;
-  rs_work_create(&w, 1);
-  rs_model_consistent_rates(&m, &w, 0.0, y, yp, &msg);
+  rs_work_create(&w, &m);
+  ts_consistent_rates(&m, &w, 0.0, y, yp, &msg);
   rs_transient *tr = NULL;
-  if (rs_transient_create(&tr, &m, 0.0, y, yp, &o, &msg)) {
+  if (rs_transient_create(&tr, &m, NULL, 0.0, y, yp, &o, &msg)) {
     printf("FAIL create: %s\n", msg.text);
     return 1;
   }
@@ -117,11 +117,11 @@ static int run_variant(const char *name, double k, double layer_h3, double layer
     max_err = fmax(max_err, fabs(-y[0] - hs.q));
     rs_diag d;
     signed char reg;
-    rs_model_diagnostics(&m, &w, t, y, yp, &d, NULL, NULL, &reg);
+    ts_diagnostics(&m, &w, t, y, yp, &d, NULL, NULL, &reg);
     regimes_seen[(int)reg] = 1;
     if (t == bp && seg < 4) { /* breakpoint of the shift history: restart */
       seg++;
-      rs_model_consistent_rates(&m, &w, t, y, yp, &msg);
+      ts_consistent_rates(&m, &w, t, y, yp, &msg);
       rs_transient_restart(tr, t, y, yp, seg < 4 ? st[seg] : t_end, &msg);
     }
   }

@@ -28,19 +28,19 @@
 static int solve(const rs_model *m, rs_linear lin, double *y, rs_diag *d, rs_stats *st) {
   rs_msg msg = {{0}};
   rs_steady *s = NULL;
-  memset(y, 0, (size_t)m->neq * sizeof *y);
+  memset(y, 0, (size_t)m->lay.neq * sizeof *y);
   memset(st, 0, sizeof *st);
-  int status = rs_steady_create_with(&s, m, lin, &msg);
+  int status = rs_steady_create_with(&s, m, NULL, lin, &msg);
   if (status == RS_OK) status = rs_steady_solve(s, 0.0, y, st, &msg);
   rs_steady_free(s);
   if (status != RS_OK) {
     printf("FAIL linear path %d: %s\n", (int)lin, msg.text);
     return 1;
   }
-  double *yp = calloc((size_t)m->neq, sizeof *yp);
+  double *yp = calloc((size_t)m->lay.neq, sizeof *yp);
   rs_work w;
-  rs_work_create(&w, m->n);
-  rs_model_diagnostics(m, &w, 0.0, y, yp, d, NULL, NULL, NULL);
+  rs_work_create(&w, m);
+  ts_diagnostics(m, &w, 0.0, y, yp, d, NULL, NULL, NULL);
   rs_work_free(&w);
   free(yp);
   return 0;
@@ -49,7 +49,7 @@ static int solve(const rs_model *m, rs_linear lin, double *y, rs_diag *d, rs_sta
 static int compare(const char *name, rs_case *c) {
   rs_model m;
   rs_msg msg = {{0}};
-  if (rs_model_create(&m, c, &msg) != RS_OK) {
+  if (rs_model_from_case(&m, c, &msg) != RS_OK) {
     printf("FAIL model %s: %s\n", name, msg.text);
     return 1;
   }
@@ -59,17 +59,17 @@ static int compare(const char *name, rs_case *c) {
   rs_diag d[3];
   int fail = 0;
   for (int k = 0; k < 3; k++) {
-    y[k] = calloc((size_t)m.neq, sizeof *y[k]);
+    y[k] = calloc((size_t)m.lay.neq, sizeof *y[k]);
     rs_stats st;
     fail |= solve(&m, paths[k], y[k], &d[k], &st);
     printf("%s, %s: Fx/(mu Fn) = %.10f, E/H/S/P = %d/%d/%d/%d, Newton %ld, linear %ld\n", name,
-           pname[k], d[k].Fx / (m.mu * d[k].Fn), d[k].count[0], d[k].count[1], d[k].count[2],
+           pname[k], d[k].Fx / (m.par.friction.mu * d[k].Fn), d[k].count[0], d[k].count[1], d[k].count[2],
            d[k].count[3], st.nonlin_iters, st.lin_solves);
   }
   if (!fail) {
     for (int k = 1; k < 3; k++) {
       double dp = 0.0;
-      for (int i = 0; i < m.n; i++)
+      for (int i = 0; i < m.grid.n; i++)
         dp = fmax(dp, fabs(y[k][i] - y[0][i]));
       char what[160];
       snprintf(what, sizeof what, "%s: max|p_%s - p_klu| / p0", name, pname[k]);
@@ -92,19 +92,19 @@ static int compare(const char *name, rs_case *c) {
 static int transient_fx(const rs_model *m, rs_linear lin, double rtol, double t_end, int nout,
                         double *fx, rs_stats *st) {
   rs_msg msg = {{0}};
-  double *y = calloc((size_t)m->neq, sizeof *y), *yp = calloc((size_t)m->neq, sizeof *yp);
+  double *y = calloc((size_t)m->lay.neq, sizeof *y), *yp = calloc((size_t)m->lay.neq, sizeof *yp);
   rs_work w;
-  int status = y && yp ? rs_work_create(&w, m->n) : RS_ERR_INTERNAL;
-  if (status == RS_OK) status = rs_model_consistent_rates(m, &w, 0.0, y, yp, &msg);
+  int status = y && yp ? rs_work_create(&w, m) : RS_ERR_INTERNAL;
+  if (status == RS_OK) status = ts_consistent_rates(m, &w, 0.0, y, yp, &msg);
   rs_transient_opts o = {.rtol = rtol, .atol = 1e-9, .max_order = 5, .max_steps = 10000000,
                          .max_newton = 10, .t_stop = t_end, .linear = lin};
   rs_transient *tr = NULL;
-  if (status == RS_OK) status = rs_transient_create(&tr, m, 0.0, y, yp, &o, &msg);
+  if (status == RS_OK) status = rs_transient_create(&tr, m, NULL, 0.0, y, yp, &o, &msg);
   for (int k = 1; status == RS_OK && k <= nout; k++) {
     status = rs_transient_advance(tr, t_end * k / nout, y, yp, &msg);
     fx[k - 1] = 0.0;
-    for (int i = 0; i < m->n; i++)
-      fx[k - 1] += y[i] * m->dx;
+    for (int i = 0; i < m->grid.n; i++)
+      fx[k - 1] += y[i] * m->grid.dx;
   }
   if (tr) rs_transient_get_stats(tr, st);
   if (status != RS_OK) printf("FAIL transient, linear path %d: %s\n", (int)lin, msg.text);
@@ -119,7 +119,7 @@ static int compare_transient(const char *name, rs_case *c, double contact_length
   rs_model m;
   rs_msg msg = {{0}};
   c->mode = RS_MODE_TRANSIENT;
-  if (rs_model_create(&m, c, &msg) != RS_OK) {
+  if (rs_model_from_case(&m, c, &msg) != RS_OK) {
     printf("FAIL model %s: %s\n", name, msg.text);
     return 1;
   }

@@ -24,9 +24,9 @@
 /* Gap h - delta + A p at every cell by direct sums (not the FFT path). */
 static void gap_direct(const rs_model *m, const double *pn, double delta, double *gap)
 {
-  for (int i = 0; i < m->n; i++) {
-    double g = m->x[i] * m->x[i] / (2.0 * m->radius) - delta;
-    for (int j = 0; j < m->n; j++) g += rs_elastic2d_norm(&m->el, i - j) * pn[j];
+  for (int i = 0; i < m->grid.n; i++) {
+    double g = m->grid.x[i] * m->grid.x[i] / (2.0 * m->par.radius) - delta;
+    for (int j = 0; j < m->grid.n; j++) g += rs_elastic2d_norm(&m->el.line, i - j) * pn[j];
     gap[i] = g;
   }
 }
@@ -37,12 +37,12 @@ static void check_grid(int cells, double load_fraction)
   ts_carter_case(&c, cells);
   rs_model m;
   rs_msg msg = {{0}};
-  if (rs_model_create(&m, &c, &msg) != RS_OK) {
+  if (rs_model_from_case(&m, &c, &msg) != RS_OK) {
     printf("FAIL model: %s\n", msg.text);
     ts_failures++;
     return;
   }
-  const int n = m.n;
+  const int n = m.grid.n;
   const double load = load_fraction * m.normal_load;
   double *p_dir = malloc((size_t)n * sizeof *p_dir);
   double *p_cg = malloc((size_t)n * sizeof *p_cg);
@@ -50,14 +50,16 @@ static void check_grid(int cells, double load_fraction)
   double *gap = malloc((size_t)n * sizeof *gap);
   double d_dir = 0.0, d_cg = 0.0, d_auto = 0.0;
   int it_dir = 0, it_cg = 0, it_auto = 0;
+  rs_elastic_work ew;
+  rs_elastic_work_create(&ew, &m.el);
   printf("-- %d cells, load %g N/mm\n", cells, load);
-  int st = rs_normal2d_solve_with(&m.el, m.x, m.radius, load, RS_NORMAL2D_DIRECT, p_dir, &d_dir,
+  int st = rs_normal2d_solve_with(&m.el.line, &ew.line, m.gap, load, RS_NORMAL2D_DIRECT, p_dir, &d_dir,
                                   &it_dir, &msg);
   if (st == RS_OK)
-    st = rs_normal2d_solve_with(&m.el, m.x, m.radius, load, RS_NORMAL2D_CG, p_cg, &d_cg, &it_cg,
+    st = rs_normal2d_solve_with(&m.el.line, &ew.line, m.gap, load, RS_NORMAL2D_CG, p_cg, &d_cg, &it_cg,
                                 &msg);
   if (st == RS_OK)
-    st = rs_normal2d_solve(&m.el, m.x, m.radius, load, p_auto, &d_auto, &it_auto, &msg);
+    st = rs_normal2d_solve(&m.el.line, &ew.line, m.gap, load, p_auto, &d_auto, &it_auto, &msg);
   if (st != RS_OK) {
     printf("FAIL solve: %s\n", msg.text);
     ts_failures++;
@@ -73,13 +75,13 @@ static void check_grid(int cells, double load_fraction)
     pmin_cg = fmin(pmin_cg, p_cg[i]);
     sum_dir += p_dir[i];
     sum_cg += p_cg[i];
-    hmax = fmax(hmax, m.x[i] * m.x[i] / (2.0 * m.radius));
+    hmax = fmax(hmax, m.grid.x[i] * m.grid.x[i] / (2.0 * m.par.radius));
     same_as_cg = same_as_cg && p_auto[i] == p_cg[i];
   }
   ts_check("pressure CG - direct, relative to p_max", dp / pmax, 0.0, 1e-10);
   ts_check("approach delta CG - direct, relative", (d_cg - d_dir) / fabs(d_dir), 0.0, 2e-10);
-  ts_check("load dx sum p, CG (relative)", m.dx * sum_cg / load, 1.0, 1e-12);
-  ts_check("load dx sum p, direct (relative)", m.dx * sum_dir / load, 1.0, 1e-12);
+  ts_check("load dx sum p, CG (relative)", m.grid.dx * sum_cg / load, 1.0, 1e-12);
+  ts_check("load dx sum p, direct (relative)", m.grid.dx * sum_dir / load, 1.0, 1e-12);
   ts_check_true("no tension in the CG pressure (p >= 0)", pmin_cg >= 0.0);
   ts_check_true("rs_normal2d_solve takes the CG path on this grid",
                 n >= RS_NORMAL2D_CG_FROM && same_as_cg && d_auto == d_cg && it_auto == it_cg);
@@ -103,7 +105,7 @@ static void check_grid(int cells, double load_fraction)
 
   if (load_fraction == 1.0 && cells >= 1000) {
     double second = 0.0;
-    for (int i = 0; i < n; i++) second += m.x[i] * m.x[i] * p_cg[i] * m.dx;
+    for (int i = 0; i < n; i++) second += m.grid.x[i] * m.grid.x[i] * p_cg[i] * m.grid.dx;
     const double a_est = 2.0 * sqrt(second / load); /* Int x^2 p / Int p = a^2/4 */
     ts_check("CG: a from the pressure vs Hertz, 1 %", a_est, m.hertz_a, 0.01 * m.hertz_a);
     ts_check("CG: p_max vs Hertz p0, 1 %", pmax, m.hertz_p0, 0.01 * m.hertz_p0);
@@ -113,6 +115,7 @@ done:
   free(p_cg);
   free(p_auto);
   free(gap);
+  rs_elastic_work_free(&ew);
   rs_model_free(&m);
 }
 
@@ -127,11 +130,14 @@ int main(void)
   ts_carter_case(&c, 300);
   rs_model m;
   rs_msg msg = {{0}};
-  if (rs_model_create(&m, &c, &msg) == RS_OK) {
-    double *pn = malloc((size_t)m.n * sizeof *pn);
+  if (rs_model_from_case(&m, &c, &msg) == RS_OK) {
+    double *pn = malloc((size_t)m.grid.n * sizeof *pn);
+    rs_elastic_work ew;
+    rs_elastic_work_create(&ew, &m.el);
     ts_check_true("CG with zero load returns an error",
-                  rs_normal2d_solve_with(&m.el, m.x, m.radius, 0.0, RS_NORMAL2D_CG, pn, NULL, NULL,
-                                         &msg) != RS_OK);
+                  rs_normal2d_solve_with(&m.el.line, &ew.line, m.gap, 0.0, RS_NORMAL2D_CG, pn, NULL,
+                                         NULL, &msg) != RS_OK);
+    rs_elastic_work_free(&ew);
     free(pn);
     rs_model_free(&m);
   }

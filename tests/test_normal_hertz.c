@@ -12,14 +12,14 @@ int main(void)
   ts_carter_case(&c, 100);
   rs_model m;
   rs_msg msg = {{0}};
-  if (rs_model_create(&m, &c, &msg) != RS_OK) {
+  if (rs_model_from_case(&m, &c, &msg) != RS_OK) {
     printf("FAIL model: %s\n", msg.text);
     return 1;
   }
   double load = 0.0, second = 0.0, pmax = 0.0;
-  for (int i = 0; i < m.n; i++) {
-    load += m.pn[i] * m.dx;
-    second += m.x[i] * m.x[i] * m.pn[i] * m.dx;
+  for (int i = 0; i < m.grid.n; i++) {
+    load += m.pn[i] * m.grid.dx;
+    second += m.grid.x[i] * m.grid.x[i] * m.pn[i] * m.grid.dx;
     pmax = fmax(pmax, m.pn[i]);
   }
   const double a_est = 2.0 * sqrt(second / load);
@@ -30,9 +30,9 @@ int main(void)
   ts_check("p0 from the discrete pressure, 1 %", pmax, m.hertz_p0, 0.01 * m.hertz_p0);
   /* Pressure profile: max deviation from the ellipse, relative to p0, inside |x| < 0.9 a. */
   double dev = 0.0;
-  for (int i = 0; i < m.n; i++)
-    if (fabs(m.x[i]) < 0.9 * m.hertz_a)
-      dev = fmax(dev, fabs(m.pn[i] - m.hertz_p0 * sqrt(1 - pow(m.x[i] / m.hertz_a, 2))));
+  for (int i = 0; i < m.grid.n; i++)
+    if (fabs(m.grid.x[i]) < 0.9 * m.hertz_a)
+      dev = fmax(dev, fabs(m.pn[i] - m.hertz_p0 * sqrt(1 - pow(m.grid.x[i] / m.hertz_a, 2))));
   ts_check("pressure profile inside 0.9a, 1 % of p0", dev / m.hertz_p0, 0.0, 0.01);
   rs_model_free(&m);
   return ts_failures ? 1 : 0;

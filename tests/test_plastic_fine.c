@@ -25,27 +25,27 @@ static void check_solution(double k_rel, int cells)
   rs_model m;
   rs_msg msg = {{0}};
   char what[160];
-  if (rs_model_create(&m, &c, &msg) != RS_OK) {
+  if (rs_model_from_case(&m, &c, &msg) != RS_OK) {
     printf("FAIL model: %s\n", msg.text);
     ts_failures++;
     return;
   }
-  const int n = m.n;
-  double *y = calloc((size_t)m.neq, sizeof *y), *yp = calloc((size_t)m.neq, sizeof *yp);
-  double *F = calloc((size_t)m.neq, sizeof *F);
+  const int n = m.grid.n;
+  double *y = calloc((size_t)m.lay.neq, sizeof *y), *yp = calloc((size_t)m.lay.neq, sizeof *yp);
+  double *F = calloc((size_t)m.lay.neq, sizeof *F);
   rs_work w;
-  rs_work_create(&w, n);
+  rs_work_create(&w, &m);
   rs_steady *s = NULL;
   rs_stats st = {0};
-  int status = rs_steady_create(&s, &m, &msg);
+  int status = rs_steady_create(&s, &m, NULL, &msg);
   if (status == RS_OK) status = rs_steady_solve(s, 0.0, y, &st, &msg);
   snprintf(what, sizeof what, "k_rel = %g, %d cells: steady solve from rest (%ld Newton its)",
            k_rel, cells, st.nonlin_iters);
   ts_check_true(what, status == RS_OK);
   if (status == RS_OK) {
-    rs_model_eval(&m, &w, 0.0, y, yp, 0.0, F, NULL);
+    ts_residual(&m, &w, 0.0, y, yp, 0.0, F);
     double fbig = 0.0, gmax = 0.0, excess = 0.0, usmin = INFINITY, decrease = 0.0, usmax = 0.0;
-    for (int i = 0; i < m.neq; i++) fbig = fmax(fbig, fabs(F[i]));
+    for (int i = 0; i < m.lay.neq; i++) fbig = fmax(fbig, fabs(F[i]));
     for (int i = 0; i < n; i++) {
       const double g = m.bound[i], lim = fmin(g, rs_model_yield_limit(&m, y[2 * n + i]));
       gmax = fmax(gmax, g);
@@ -78,39 +78,40 @@ static void check_regrid(void)
   ts_fig7_case(&c, 120, 0.6);
   rs_model m, same, half;
   rs_msg msg = {{0}};
-  if (rs_model_create(&m, &c, &msg) != RS_OK || rs_model_regrid(&m, m.n, &same, &msg) != RS_OK ||
-      rs_model_regrid(&m, m.n / 2, &half, &msg) != RS_OK) {
+  if (rs_model_from_case(&m, &c, &msg) != RS_OK || rs_model_regrid(&m, m.grid.n, &same, &msg) != RS_OK ||
+      rs_model_regrid(&m, m.grid.n / 2, &half, &msg) != RS_OK) {
     printf("FAIL regrid: %s\n", msg.text);
     ts_failures++;
     return;
   }
   double dp = 0.0, dcoef = 0.0;
-  for (int i = 0; i < m.n; i++) dp = fmax(dp, fabs(same.pn[i] - m.pn[i]));
-  for (int k = -m.n; k <= m.n; k++)
-    dcoef = fmax(dcoef, fabs(rs_elastic2d_tang(&same.el, k) - rs_elastic2d_tang(&m.el, k)));
+  for (int i = 0; i < m.grid.n; i++) dp = fmax(dp, fabs(same.pn[i] - m.pn[i]));
+  for (int k = -m.grid.n; k <= m.grid.n; k++)
+    dcoef = fmax(dcoef, fabs(rs_elastic2d_tang(&same.el.line, k) - rs_elastic2d_tang(&m.el.line, k)));
   ts_check("regrid to the same size: max |delta p_n| / p0", dp / m.hertz_p0, 0.0, 1e-14);
-  ts_check("regrid to the same size: max |delta A(k)| / A(0)", dcoef / rs_elastic2d_tang(&m.el, 0),
+  ts_check("regrid to the same size: max |delta A(k)| / A(0)", dcoef / rs_elastic2d_tang(&m.el.line, 0),
            0.0, 1e-14);
   double load = 0.0;
-  for (int i = 0; i < half.n; i++) load += half.pn[i] * half.dx;
+  for (int i = 0; i < half.grid.n; i++) load += half.pn[i] * half.grid.dx;
   ts_check("regrid to half the cells: dx sum p_n / q", load / c.normal_load.value, 1.0, 1e-10);
-  ts_check("regrid to half the cells: same extent", half.n * half.dx, m.n * m.dx, 1e-12);
+  ts_check("regrid to half the cells: same extent", half.grid.n * half.grid.dx, m.grid.n * m.grid.dx, 1e-12);
 
   /* Linear u_pl and u* from the coarse grid are reproduced on the fine one between
    * the outer coarse centres. */
-  double *yc = calloc((size_t)half.neq, sizeof *yc), *yf = calloc((size_t)m.neq, sizeof *yf);
-  for (int i = 0; i < half.n; i++) {
-    yc[half.n + i] = 2.0 * half.x[i] + 1.0;
-    yc[2 * half.n + i] = 3.0 - half.x[i];
+  double *yc = calloc((size_t)half.lay.neq, sizeof *yc), *yf = calloc((size_t)m.lay.neq, sizeof *yf);
+  for (int i = 0; i < half.grid.n; i++) {
+    yc[half.grid.n + i] = 2.0 * half.grid.x[i] + 1.0;
+    yc[2 * half.grid.n + i] = 3.0 - half.grid.x[i];
   }
   rs_work w;
-  rs_work_create(&w, m.n);
-  rs_model_interpolate_state(&half, yc, &m, &w, 0.0, yf, &msg);
+  rs_work_create(&w, &m);
+  const rs_inputs in = ts_inputs(&m, 0.0);
+  rs_model_interpolate_state(&half, yc, &m, &w, &in, yf, &msg);
   double err = 0.0;
-  for (int i = 0; i < m.n; i++) {
-    if (m.x[i] < half.x[0] || m.x[i] > half.x[half.n - 1]) continue;
-    err = fmax(err, fabs(yf[m.n + i] - (2.0 * m.x[i] + 1.0)));
-    err = fmax(err, fabs(yf[2 * m.n + i] - (3.0 - m.x[i])));
+  for (int i = 0; i < m.grid.n; i++) {
+    if (m.grid.x[i] < half.grid.x[0] || m.grid.x[i] > half.grid.x[half.grid.n - 1]) continue;
+    err = fmax(err, fabs(yf[m.grid.n + i] - (2.0 * m.grid.x[i] + 1.0)));
+    err = fmax(err, fabs(yf[2 * m.grid.n + i] - (3.0 - m.grid.x[i])));
   }
   ts_check("interpolation of linear fields, max error", err, 0.0, 1e-12);
   rs_work_free(&w);

@@ -23,27 +23,27 @@ static int steady(rs_case *c, result *r)
 {
   rs_model m;
   rs_msg msg = {{0}};
-  if (rs_model_create(&m, c, &msg) != RS_OK) {
+  if (rs_model_from_case(&m, c, &msg) != RS_OK) {
     printf("FAIL model: %s\n", msg.text);
     return 1;
   }
-  double *y = calloc((size_t)m.neq, sizeof *y), *yp = calloc((size_t)m.neq, sizeof *yp);
+  double *y = calloc((size_t)m.lay.neq, sizeof *y), *yp = calloc((size_t)m.lay.neq, sizeof *yp);
   rs_work w;
-  rs_work_create(&w, m.n);
+  rs_work_create(&w, &m);
   rs_steady *s = NULL;
   rs_stats st = {0};
-  int status = rs_steady_create(&s, &m, &msg);
+  int status = rs_steady_create(&s, &m, NULL, &msg);
   if (status == RS_OK) status = rs_steady_solve(s, 0.0, y, &st, &msg);
   if (status != RS_OK) {
     printf("FAIL steady: %s\n", msg.text);
     return 1;
   }
-  rs_model_diagnostics(&m, &w, 0.0, y, yp, &r->d, NULL, NULL, NULL);
-  r->n = m.n;
+  ts_diagnostics(&m, &w, 0.0, y, yp, &r->d, NULL, NULL, NULL);
+  r->n = m.grid.n;
   r->p = y;
   r->sum_min_bound = 0;
-  for (int i = 0; i < m.n; i++)
-    r->sum_min_bound += fmin(m.bound[i], c->has_plasticity ? c->tau_c0 : INFINITY) * m.dx;
+  for (int i = 0; i < m.grid.n; i++)
+    r->sum_min_bound += fmin(m.bound[i], c->has_plasticity ? c->tau_c0 : INFINITY) * m.grid.dx;
   rs_steady_free(s);
   rs_work_free(&w);
   free(yp);

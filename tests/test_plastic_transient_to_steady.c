@@ -24,25 +24,25 @@ int main(void)
     c.tau_c_min = 3.5;
     rs_model m;
     rs_msg msg = {{0}};
-    if (rs_model_create(&m, &c, &msg) != RS_OK) return 1;
-    double *ys = calloc((size_t)m.neq, sizeof(double)), *y = calloc((size_t)m.neq, sizeof(double)),
-           *yp = calloc((size_t)m.neq, sizeof(double));
+    if (rs_model_from_case(&m, &c, &msg) != RS_OK) return 1;
+    double *ys = calloc((size_t)m.lay.neq, sizeof(double)), *y = calloc((size_t)m.lay.neq, sizeof(double)),
+           *yp = calloc((size_t)m.lay.neq, sizeof(double));
     rs_work w;
-    rs_work_create(&w, m.n);
+    rs_work_create(&w, &m);
     rs_steady *s = NULL;
     rs_stats st = {0};
-    if (rs_steady_create(&s, &m, &msg) || rs_steady_solve(s, 0.0, ys, &st, &msg)) {
+    if (rs_steady_create(&s, &m, NULL, &msg) || rs_steady_solve(s, 0.0, ys, &st, &msg)) {
       printf("FAIL steady: %s\n", msg.text);
       return 1;
     }
     double fx_steady = 0;
-    for (int i = 0; i < m.n; i++) fx_steady += ys[i] * m.dx;
-    rs_model_consistent_rates(&m, &w, 0.0, y, yp, &msg);
+    for (int i = 0; i < m.grid.n; i++) fx_steady += ys[i] * m.grid.dx;
+    ts_consistent_rates(&m, &w, 0.0, y, yp, &msg);
     const double V = c.velocity.value, rolled = 70.0, t_end = rolled / V;
     rs_transient_opts o = {.rtol = 1e-8, .atol = 1e-6, .max_order = 5, .max_steps = 1000000,
                            .max_newton = 10, .t_stop = t_end};
     rs_transient *tr = NULL;
-    if (rs_transient_create(&tr, &m, 0.0, y, yp, &o, &msg)) return 1;
+    if (rs_transient_create(&tr, &m, NULL, 0.0, y, yp, &o, &msg)) return 1;
     double settled = -1, dev = 1;
     const int nout = 140;
     for (int j = 1; j <= nout; j++) {
@@ -52,7 +52,7 @@ int main(void)
         return 1;
       }
       double fx = 0;
-      for (int i = 0; i < m.n; i++) fx += y[i] * m.dx;
+      for (int i = 0; i < m.grid.n; i++) fx += y[i] * m.grid.dx;
       dev = fabs(fx - fx_steady) / fabs(fx_steady);
       if (dev < 1e-4 && settled < 0) settled = V * t;
       if (dev >= 1e-4) settled = -1;
@@ -60,11 +60,11 @@ int main(void)
     rs_stats ts;
     rs_transient_get_stats(tr, &ts);
     rs_diag d;
-    rs_model_diagnostics(&m, &w, t_end, ys, yp, &d, NULL, NULL, NULL);
+    ts_diagnostics(&m, &w, t_end, ys, yp, &d, NULL, NULL, NULL);
     printf("k_rel = %6.3f: steady F_x/(mu F_n) = %.6f (E/H/S/P %d/%d/%d/%d); transient within 1e-4 "
            "after %.1f mm rolled (%.1f contact lengths); final deviation %.2e; IDA steps %ld, "
            "Newton %ld, failed solves %ld\n",
-           k_rels[k], fx_steady / (m.mu * d.Fn), d.count[0], d.count[1], d.count[2], d.count[3],
+           k_rels[k], fx_steady / (m.par.friction.mu * d.Fn), d.count[0], d.count[1], d.count[2], d.count[3],
            settled, settled / (2 * m.hertz_a), dev, ts.steps, ts.nonlin_iters, ts.nonlin_fails);
     char what[96];
     snprintf(what, sizeof what, "k_rel = %g: transient F_x within 1e-4 of steady", k_rels[k]);

@@ -16,7 +16,7 @@
 static double total_force(const rs_model *m, const double *y)
 {
   double f = 0;
-  for (int i = 0; i < m->n; i++) f += y[i] * m->dx;
+  for (int i = 0; i < m->grid.n; i++) f += y[i] * m->grid.dx;
   return f;
 }
 
@@ -32,11 +32,11 @@ int main(void)
   for (int k = 0; k < 2; k++) {
     c.creepage.value = xi0 + (k ? xia : -xia);
     rs_model m;
-    rs_model_create(&m, &c, &msg);
-    double *y = calloc((size_t)m.neq, sizeof *y);
+    rs_model_from_case(&m, &c, &msg);
+    double *y = calloc((size_t)m.lay.neq, sizeof *y);
     rs_steady *s = NULL;
     rs_stats st = {0};
-    if (rs_steady_create(&s, &m, &msg) || rs_steady_solve(s, 0.0, y, &st, &msg)) {
+    if (rs_steady_create(&s, &m, NULL, &msg) || rs_steady_solve(s, 0.0, y, &st, &msg)) {
       printf("FAIL steady: %s\n", msg.text);
       return 1;
     }
@@ -59,23 +59,23 @@ int main(void)
     c.creepage.phase = 0.0;
     c.mode = RS_MODE_TRANSIENT;
     rs_model m;
-    rs_model_create(&m, &c, &msg);
-    double *y = calloc((size_t)m.neq, sizeof *y), *yp = calloc((size_t)m.neq, sizeof *yp);
+    rs_model_from_case(&m, &c, &msg);
+    double *y = calloc((size_t)m.lay.neq, sizeof *y), *yp = calloc((size_t)m.lay.neq, sizeof *yp);
     rs_work w;
-    rs_work_create(&w, m.n);
+    rs_work_create(&w, &m);
     /* start from the steady state at the mean creepage (the sine starts there) */
     rs_steady *s = NULL;
     rs_stats st = {0};
-    rs_steady_create(&s, &m, &msg);
+    rs_steady_create(&s, &m, NULL, &msg);
     rs_steady_solve(s, 0.0, y, &st, &msg);
     rs_steady_free(s);
-    rs_model_consistent_rates(&m, &w, 0.0, y, yp, &msg);
+    ts_consistent_rates(&m, &w, 0.0, y, yp, &msg);
     const int periods = 8, M = 200; /* fit over the last two periods */
     const double t_end = periods * period;
     rs_transient_opts o = {.rtol = 1e-8, .atol = 1e-12, .max_order = 5, .max_steps = 10000000,
                            .max_newton = 10, .t_stop = t_end};
     rs_transient *tr = NULL;
-    if (rs_transient_create(&tr, &m, 0.0, y, yp, &o, &msg)) return 1;
+    if (rs_transient_create(&tr, &m, NULL, 0.0, y, yp, &o, &msg)) return 1;
     double a = 0, b = 0, mean = 0;
     double *samples = calloc((size_t)(2 * M), sizeof *samples);
     int slip_cells = 0;
@@ -86,7 +86,7 @@ int main(void)
         return 1;
       }
       rs_diag d;
-      rs_model_diagnostics(&m, &w, t, y, yp, &d, NULL, NULL, NULL);
+      ts_diagnostics(&m, &w, t, y, yp, &d, NULL, NULL, NULL);
       slip_cells += d.count[RS_SLIP];
       const double fx = total_force(&m, y), ph = 2 * RS_PI * f * t;
       samples[j - 1] = fx;

@@ -24,20 +24,20 @@ static int read_state(const char *path, const rs_model *m, double *y)
   while (fgets(line, sizeof line, f)) {
     double x, px, upl, us;
     if (line[0] == '#' || sscanf(line, "%lf,%lf,%lf,%lf", &x, &px, &upl, &us) != 4) continue;
-    if (n >= m->n || fabs(x - m->x[n]) > 1e-12) break;
-    y[n] = px;
-    y[m->n + n] = upl;
-    y[2 * m->n + n] = us;
+    if (n >= m->grid.n || fabs(x - m->grid.x[n]) > 1e-12) break;
+    y[rs_at_p(&m->lay, 0, n)] = px;
+    y[rs_at_upl(&m->lay, 0, n)] = upl;
+    y[rs_at_ustar(&m->lay, n)] = us;
     n++;
   }
   fclose(f);
-  return n == m->n;
+  return n == m->grid.n;
 }
 
 static double fx_of(const rs_model *m, const double *y)
 {
   double fx = 0.0;
-  for (int i = 0; i < m->n; i++) fx += y[i] * m->dx;
+  for (int i = 0; i < m->grid.n; i++) fx += y[i] * m->grid.dx;
   return fx;
 }
 
@@ -48,20 +48,21 @@ int main(int argc, char **argv)
   ts_table1_case(&c, 100, 200.0, 0.0387, -0.01);
   rs_model m;
   rs_msg msg = {{0}};
-  if (rs_model_create(&m, &c, &msg) != RS_OK) return 1;
-  double *spurious = calloc((size_t)m.neq, sizeof(double));
-  double *y = calloc((size_t)m.neq, sizeof(double)), *ys = calloc((size_t)m.neq, sizeof(double));
+  if (rs_model_from_case(&m, &c, &msg) != RS_OK) return 1;
+  double *spurious = calloc((size_t)m.lay.neq, sizeof(double));
+  double *y = calloc((size_t)m.lay.neq, sizeof(double)), *ys = calloc((size_t)m.lay.neq, sizeof(double));
   rs_work w;
-  rs_work_create(&w, m.n);
+  rs_work_create(&w, &m);
   rs_steady *s = NULL;
   rs_stats st = {0};
+  const rs_inputs in0 = ts_inputs(&m, 0.0);
   if (!read_state(argv[1], &m, spurious)) {
     printf("FAIL cannot read %s for this grid\n", argv[1]);
     return 1;
   }
 
   /* The stored wrong state is refused, naming cell 4 and the flow against p_x. */
-  const int refused = rs_model_check_steady(&m, &w, 0.0, spurious, &msg);
+  const int refused = rs_model_check_steady(&m, &w, &in0, spurious, &msg);
   printf("check of the stored state: %s\n", msg.text);
   ts_check_true("stored wrong state refused (RS_ERR_SOLVER: exit code 3)", refused == RS_ERR_SOLVER);
   ts_check_true("message names cell 4", strstr(msg.text, "cell 4 ") != NULL);
@@ -69,22 +70,22 @@ int main(int argc, char **argv)
                 strstr(msg.text, "plastic flow opposite to the traction") != NULL);
 
   /* Solution from rest: passes, no traction against the creepage (xi < 0: p_x >= 0). */
-  if (rs_steady_create(&s, &m, &msg) != RS_OK || rs_steady_solve(s, 0.0, ys, &st, &msg) != RS_OK) {
+  if (rs_steady_create(&s, &m, NULL, &msg) != RS_OK || rs_steady_solve(s, 0.0, ys, &st, &msg) != RS_OK) {
     printf("FAIL steady from rest: %s\n", msg.text);
     return 1;
   }
   ts_check_true("solution from rest passes the check",
-                rs_model_check_steady(&m, &w, 0.0, ys, &msg) == RS_OK);
+                rs_model_check_steady(&m, &w, &in0, ys, &msg) == RS_OK);
   int reversed = 0;
-  for (int i = 0; i < m.n; i++) reversed += ys[i] < 0.0;
+  for (int i = 0; i < m.grid.n; i++) reversed += ys[i] < 0.0;
   ts_check("cells with p_x < 0 (from rest)", reversed, 0, 0);
 
   /* The wrong state as Newton's start: corrected to the same solution. */
-  memcpy(y, spurious, (size_t)m.neq * sizeof(double));
+  memcpy(y, spurious, (size_t)m.lay.neq * sizeof(double));
   rs_stats st2 = {0};
   const int status = rs_steady_solve(s, 0.0, y, &st2, &msg);
   ts_check_true("steady solve from the wrong state succeeds", status == RS_OK);
-  ts_check_true("its result passes the check", rs_model_check_steady(&m, &w, 0.0, y, &msg) == RS_OK);
+  ts_check_true("its result passes the check", rs_model_check_steady(&m, &w, &in0, y, &msg) == RS_OK);
   const double fx_rest = fx_of(&m, ys), fx_spur = fx_of(&m, y);
   ts_check("F_x from the wrong start / F_x from rest", fx_spur / fx_rest, 1.0, 1e-9);
   printf("F_x/F_n: stored %.6f, corrected %.6f, from rest %.6f (Newton iterations %ld)\n",

@@ -8,6 +8,8 @@
 #include <string.h>
 
 #include "rollsim/case.h"
+#include "rollsim/model.h"
+#include "rollsim/run.h"
 
 /* The verification.md Carter case: q = 178.9 N/mm, R = 500 mm, G = 82000, nu = 0.28,
  * mu = 0.3, xi = -2.4e-4, V = 30000 mm/s; elastic, steady. */
@@ -68,6 +70,35 @@ static inline void ts_table1_case(rs_case *c, int cells, double tau_c0, double k
   c->tau_c0 = tau_c0;
   c->k_tau = c->shear_modulus * k_rel / (1.0 - k_rel);
   c->tau_c_min = 0.1 * tau_c0;
+}
+
+/* The inputs of model m at time t. */
+static inline rs_inputs ts_inputs(const rs_model *m, double t)
+{
+  rs_inputs in;
+  rs_model_inputs_at(m, t, &in);
+  return in;
+}
+
+/* The model functions at the inputs of time t. */
+static inline int ts_diagnostics(const rs_model *m, rs_work *w, double t, const double *y,
+                                 const double *yp, rs_diag *d, double *slip, double *tauc,
+                                 signed char *regime)
+{
+  const rs_inputs in = ts_inputs(m, t);
+  return rs_model_diagnostics(m, w, &in, y, yp, d, slip, tauc, regime);
+}
+static inline int ts_consistent_rates(const rs_model *m, rs_work *w, double t, double *y,
+                                      double *yp, rs_msg *msg)
+{
+  const rs_inputs in = ts_inputs(m, t);
+  return rs_model_consistent_rates(m, w, &in, y, yp, msg);
+}
+static inline int ts_residual(const rs_model *m, rs_work *w, double t, const double *y,
+                              const double *yp, double cj, double *F)
+{
+  const rs_inputs in = ts_inputs(m, t);
+  return rs_model_residual(m, w, &in, y, yp, cj, F);
 }
 
 static int ts_failures = 0;

@@ -22,25 +22,25 @@ static double settle_distance(double L, double max_rolled, double tol, double *f
   c.mode = RS_MODE_TRANSIENT;
   rs_model m;
   rs_msg msg = {{0}};
-  if (rs_model_create(&m, &c, &msg) != RS_OK) {
+  if (rs_model_from_case(&m, &c, &msg) != RS_OK) {
     printf("FAIL model: %s\n", msg.text);
     return -1;
   }
-  double *ys = calloc((size_t)m.neq, sizeof(double)), *y = calloc((size_t)m.neq, sizeof(double)),
-         *yp = calloc((size_t)m.neq, sizeof(double));
+  double *ys = calloc((size_t)m.lay.neq, sizeof(double)), *y = calloc((size_t)m.lay.neq, sizeof(double)),
+         *yp = calloc((size_t)m.lay.neq, sizeof(double));
   rs_work w;
-  rs_work_create(&w, m.n);
+  rs_work_create(&w, &m);
   rs_steady *s = NULL;
   rs_stats st = {0};
   double result = -1;
-  if (rs_steady_create(&s, &m, &msg) || rs_steady_solve(s, 0.0, ys, &st, &msg)) {
+  if (rs_steady_create(&s, &m, NULL, &msg) || rs_steady_solve(s, 0.0, ys, &st, &msg)) {
     printf("FAIL steady: %s\n", msg.text);
     goto done;
   }
   double fx_steady = 0;
-  for (int i = 0; i < m.n; i++) fx_steady += ys[i] * m.dx;
+  for (int i = 0; i < m.grid.n; i++) fx_steady += ys[i] * m.grid.dx;
   /* rest: y = 0, consistent rates from the adhesion equations */
-  if (rs_model_consistent_rates(&m, &w, 0.0, y, yp, &msg)) {
+  if (ts_consistent_rates(&m, &w, 0.0, y, yp, &msg)) {
     printf("FAIL rates: %s\n", msg.text);
     goto done;
   }
@@ -48,7 +48,7 @@ static double settle_distance(double L, double max_rolled, double tol, double *f
   rs_transient_opts o = {.rtol = 1e-8, .atol = 1e-6, .max_order = 5, .max_steps = 200000,
                          .max_newton = 10, .t_stop = t_end};
   rs_transient *tr = NULL;
-  if (rs_transient_create(&tr, &m, 0.0, y, yp, &o, &msg)) {
+  if (rs_transient_create(&tr, &m, NULL, 0.0, y, yp, &o, &msg)) {
     printf("FAIL create: %s\n", msg.text);
     goto done;
   }
@@ -62,7 +62,7 @@ static double settle_distance(double L, double max_rolled, double tol, double *f
       goto done;
     }
     double fx = 0;
-    for (int i = 0; i < m.n; i++) fx += y[i] * m.dx;
+    for (int i = 0; i < m.grid.n; i++) fx += y[i] * m.grid.dx;
     dev = fabs(fx - fx_steady) / fabs(fx_steady);
     if (dev < tol && settled_at < 0) settled_at = V * t;
     if (dev >= tol) settled_at = -1;

@@ -5,15 +5,11 @@
 
 #include <stdio.h>
 #include "rollsim/history.h"
+#include "rollsim/model.h" /* rs_normal_solution, rs_scaling */
 #include "rollsim/status.h"
 
-typedef enum { RS_NORMAL_DISCRETE = 0, RS_NORMAL_HERTZ = 1 } rs_normal_solution;
 typedef enum { RS_MODE_TRANSIENT = 0, RS_MODE_STEADY = 1 } rs_mode;
 typedef enum { RS_START_REST = 0, RS_START_STEADY = 1 } rs_initial_state;
-
-/* Choice of the semismooth scaling r (model.md §4, §9): r = 1/(c_j*C_self + V*C_shift/dx)
- * with C_shift the steady self-compliance difference (A(0)-A(dx)) or the self-compliance A(0). */
-typedef enum { RS_SCALING_AUTO = 0, RS_SCALING_DIFFERENCE = 1, RS_SCALING_SELF = 2 } rs_scaling;
 
 /* Output fields (bit mask) */
 enum {
@@ -64,6 +60,8 @@ typedef struct rs_case {
   /* grid: */
   int cells;
   double extent;                      /* half-length of the potential contact area, in Hertz a */
+  int grid_from_range;                /* 1: grid.x_range given (instead of grid.extent) */
+  double x_range[2];                  /* mm, outer edges of the potential contact area */
 
   /* material: */
   double shear_modulus;               /* G, N/mm^2 */

@@ -19,8 +19,18 @@ typedef struct rs_elastic2d {
   double dx;      /* cell width, mm */
   double *tang;   /* tangential coefficient for k = -n..n at tang[k + n], mm/(N/mm^2) */
   double *norm;   /* normal coefficient, same layout */
-  struct rs_elastic_fft *fft; /* FFT convolution for products on large grids (NULL: direct) */
+  struct rs_elastic_fft *fft; /* FFT plans and transformed kernels on large grids (NULL:
+                                 direct sums); read-only after creation */
 } rs_elastic2d;
+
+/* Scratch of the FFT products (one per thread of evaluation): apply never writes
+ * through a const rs_elastic2d. Empty (no allocation) for grids below the FFT size. */
+typedef struct rs_elastic2d_work {
+  double *in;  /* [M] */
+  void *out;   /* fftw_complex [M/2 + 1] */
+} rs_elastic2d_work;
+int rs_elastic2d_work_create(rs_elastic2d_work *w, const rs_elastic2d *el);
+void rs_elastic2d_work_free(rs_elastic2d_work *w);
 
 /* Grids from this many cells apply the influence coefficients by FFT convolution
  * (FFTW) instead of the direct O(n^2) sum (the crossover measured in bench/). */
@@ -38,9 +48,8 @@ static inline double rs_elastic2d_norm(const rs_elastic2d *el, int k) { return e
 
 /* u[I] = sum_J coef(I - J) p[J] for I = 0..nout-1 (nout <= n + 1), p of length n.
  * With coef_table el->tang or el->norm on a grid of RS_ELASTIC_FFT_FROM cells or
- * more, by FFT convolution (the same sum up to roundoff; it uses work arrays held
- * in el, so one rs_elastic2d must not be applied from two threads at once). */
-void rs_elastic2d_apply(const rs_elastic2d *el, const double *coef_table, const double *p,
-                        double *u, int nout);
+ * more, by FFT convolution in the buffers of w (the same sum up to roundoff). */
+void rs_elastic2d_apply(const rs_elastic2d *el, rs_elastic2d_work *w, const double *coef_table,
+                        const double *p, double *u, int nout);
 
 #endif

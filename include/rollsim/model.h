@@ -1,159 +1,217 @@
-/* The 2D rolling-contact model with local plasticity (model.md §4-5), semi-
- * discretised in space: the DAE F(t, y, y') = 0 with, per contact-grid cell I,
- *   y = [ p_0..p_{n-1} | upl_0..upl_{n-1} | ustar_0..ustar_{n-1} ( | xi ) ]
- * (tangential traction on body 1, plastic displacement difference, accumulated
- * plastic deformation; with a prescribed tangential force the creepage xi is the
- * last unknown, with the equation sum p dx = F_x(t) (model.md §6)). This module is pure physics: plain arrays, no SUNDIALS. */
+/* The rolling-contact model with local plasticity (model.md §4-5), semi-discretised in
+ * space: the DAE F(t, y, y') = 0 on the contact grid (rollsim/grid.h) with the unknowns
+ * of rollsim/layout.h (traction, plastic displacement, accumulated plastic deformation
+ * per cell; with a prescribed tangential force the creepage as an extra unknown with
+ * the equation sum p dA = F_x(t), model.md §6). Per cell the contact law
+ * (rollsim/contact_law.h) gives the residual rows and their local generalized Jacobian;
+ * this module supplies the kinematics (v_s, Du_pl/Dt, Dustar/Dt through the elastic
+ * operator and the upwind material derivative) and chains the two: residual, Jacobian
+ * (whole or near field), exact J v products and the row structure the solvers need.
+ * Pure physics: plain arrays and values, no SUNDIALS, no case files. */
 #ifndef ROLLSIM_MODEL_H
 #define ROLLSIM_MODEL_H
 
 #include <stdint.h>
-#include "rollsim/case.h"
-#include "rollsim/elastic.h"
+
+#include "rollsim/contact_law.h"
+#include "rollsim/elastic_op.h"
+#include "rollsim/grid.h"
 #include "rollsim/history.h"
+#include "rollsim/layout.h"
 #include "rollsim/status.h"
 
 /* Regime of a cell (paper eqs. 7-10); the values are the netCDF flag values. */
 typedef enum { RS_EXTERIOR = 0, RS_ADHESION = 1, RS_SLIP = 2, RS_PLASTIC = 3 } rs_regime;
 
-/* Active branch of each semismooth equation of a cell (bit flags). */
-enum { RS_BRANCH_EXTERIOR = 1, RS_BRANCH_SLIP = 2, RS_BRANCH_YIELD = 4 };
+/* Pressure the tangential problem sees: the discrete normal solution or Hertz's. */
+typedef enum { RS_NORMAL_DISCRETE = 0, RS_NORMAL_HERTZ = 1 } rs_normal_solution;
+
+/* Choice of the semismooth scaling r (model.md §4, §9): r = 1/(c_j*C_self + V*C_shift/dx)
+ * with C_shift the steady self-compliance difference (A(0)-A(dx)) or the self-compliance A(0). */
+typedef enum { RS_SCALING_AUTO = 0, RS_SCALING_DIFFERENCE = 1, RS_SCALING_SELF = 2 } rs_scaling;
+
+/* Model parameters: plain values (the driver builds them from a case). The histories
+ * are copied by rs_model_create. */
+typedef struct rs_model_params {
+  int cells;                 /* along x */
+  int grid_from_range;       /* 1: x_range given; 0: +-extent Hertz half-widths */
+  double x_range[2];         /* mm, outer edges of the potential contact area */
+  double extent;             /* half-length in Hertz half-widths at the largest load */
+  double radius;             /* combined radius, mm: gap x^2/(2R) */
+  rs_normal_solution normal_solution;
+  double reference_length;   /* mm, L of the 2D kernel */
+  double shear_modulus, poisson_ratio;
+  double layer_thickness, layer_shear_modulus; /* third-body layer: h3 (0: none), G3 */
+  rs_friction friction;
+  rs_plasticity plasticity;
+  rs_history load;           /* normal load, N/mm */
+  rs_history velocity;       /* V, mm/s */
+  rs_history creepage;       /* xi (not used with force control) */
+  rs_history shift_velocity; /* rigid shift rate, mm/s */
+  int force_control;         /* 1: the creepage is unknown, force prescribed */
+  rs_history force;          /* F_x, N/mm */
+  double end_time;           /* s: the grid is sized on the largest load up to it */
+  rs_scaling scaling;
+  double time_scale;         /* s: sets r when there is neither rolling nor a time step */
+} rs_model_params;
 
 typedef struct rs_model {
-  int n;                   /* contact-grid cells */
-  int neq;                 /* 3 n, or 3 n + 1 with force control */
-  int force_control;       /* 1: y[3n] = xi, row 3n: (sum p dx - F_x(t))/(2 a) */
-  rs_history force;        /* F_x, N/mm */
-  double dx;               /* mm */
-  double *x;               /* cell centres, mm [n] */
-  double hertz_a, hertz_p0;
-  rs_elastic2d el;
+  rs_model_params par;     /* owns copies of the histories */
+  rs_grid grid;
+  rs_layout lay;
+  rs_elastic_op el;
   double layer_flex;       /* h3/G3, mm/(N/mm^2), added to the self term only */
-  double normal_load;      /* N/mm: the largest load of the run (it sizes the grid) */
+  double normal_load;      /* the largest load of the run (it sizes the grid) */
+  int load_varies;         /* the load is a history: p_n(t) from rs_model_normal_at */
+  double hertz_a, hertz_p0;
   double approach;         /* delta of the normal solution at t = 0, mm */
+  double *gap;             /* undeformed gap at the cell centres [n] */
   double *pn;              /* pressure at t = 0 [n] */
   double *bound;           /* traction bound g = mu p_n at t = 0 [n] */
-  double radius;           /* combined radius, mm */
-  double shear_modulus, poisson_ratio;
-  rs_normal_solution normal_solution;
-  int load_varies;         /* 1: contact.normal_load is a history; p_n(t) from rs_model_normal_at */
-  rs_history load;         /* N/mm */
-  double mu;
-  int has_plasticity;
-  double tau_c0, k_tau, tau_c_min;
-  double reference_length; /* mm, L of the 2D kernel */
-  rs_history velocity, creepage;
-  rs_history shift;        /* rigid shift velocity, mm/s (pure shift when V = 0) */
-  rs_scaling scaling;
-  double time_scale;       /* s: sets r when there is neither rolling nor a time step */
   /* State of the material entering at the leading edge: fresh (0), or the twin-disc
    * memory when set (rollsim/rig.h; owned by the caller, updated between time steps). */
   const struct rs_rig_memory *memory;
 } rs_model;
 
-/* Build grid, influence coefficients and the normal solution from a case. */
-int rs_model_create(rs_model *m, const rs_case *c, rs_msg *msg);
+/* Grid, elastic operator and the normal solution from plain parameters. */
+int rs_model_create(rs_model *m, const rs_model_params *par, rs_msg *msg);
 void rs_model_free(rs_model *m);
 
-/* The same model on a grid of n cells over the same extent (coarse-grid solves that
- * start Newton on the fine grid, model.md §9): new influence coefficients and normal
- * solution, the same inputs, material and memory. Free with rs_model_free. */
-int rs_model_regrid(const rs_model *m, int n, rs_model *out, rs_msg *msg);
+/* The same model on a grid of `cells` cells over the same extent (coarse-grid solves
+ * that start Newton on the fine grid, model.md §9). Free with rs_model_free. */
+int rs_model_regrid(const rs_model *m, int cells, rs_model *out, rs_msg *msg);
 
+/* The time-dependent inputs at one time: every history of the model is evaluated here
+ * and nowhere else. A frozen copy (rates zero, the inflow looked up at its own t) holds
+ * the inputs of one time for the steady solver's pseudo-transient. */
+typedef struct rs_inputs {
+  double t;              /* s: their time (the inflow state is looked up there) */
+  double velocity;       /* V, mm/s */
+  double creepage;       /* xi (prescribed; with force control the unknown is used) */
+  double shift_velocity; /* mm/s */
+  double load;           /* normal load */
+  double force;          /* prescribed F_x (force control) */
+  double load_rate, force_rate; /* d/dt of load and force */
+  int linear;            /* 1: the linear part only: no rigid slip, no inflow (J v) */
+} rs_inputs;
+void rs_model_inputs_at(const rs_model *m, double t, rs_inputs *in);
+/* Inputs held at their values: rates zero. */
+void rs_inputs_freeze(rs_inputs *in);
 
-/* Compressed sparse row matrix (the generalized Jacobian). Indices are int64 to
- * match SUNDIALS' sunindextype. */
+/* Compressed sparse row matrix (the generalized Jacobian). Indices are int64 to match
+ * SUNDIALS' sunindextype. */
 typedef struct rs_csr {
   int64_t nrows, cap_rows, cap; /* rows assembled, rows of the matrix, entries capacity */
   int64_t *rowptr; /* [nrows + 1] */
   int64_t *col;    /* [cap] */
   double *val;     /* [cap] */
-  int64_t band;    /* 0: every entry; > 0: the dense traction rows of adhesion cells keep only
-                      their traction columns j with |i - j| <= band (a near-field matrix) */
 } rs_csr;
 
-/* Work arrays for residual/Jacobian evaluation. */
+/* Work arrays for residual/Jacobian evaluation (one per solver: every evaluation writes
+ * here, never into the model). */
 typedef struct rs_work {
-  double *uel;     /* elastic displacement difference on the padded grid [n + 1] */
-  double *ueldot;  /* its time derivative [n] */
-  double *vslip;   /* slip velocity v_s [n] */
-  double *dupl;    /* Du_pl/Dt [n] */
+  rs_elastic_work ew;
+  double *uel;     /* tangential elastic displacement, padded grid [ncomp (nx+1) ny] */
+  double *ueldot;  /* its time derivative on the grid [ncomp n] */
+  double *vslip;   /* slip velocity v_s [ncomp n] */
+  double *dupl;    /* Du_pl/Dt [ncomp n] */
   double *dustar;  /* Dustar/Dt [n] */
   unsigned char *branch; /* RS_BRANCH_* flags per cell [n] */
+  rs_law_out *law; /* per cell: rows and local Jacobian of the last evaluation [n] */
+  /* Row structure of the last Jacobian (rs_model_jacobian), per traction row k < ncomp n:
+   * dense[k] = 1 if the row couples to every traction through the elastic operator (it
+   * involves v_s); pivot[k] = the unknown a direct solver eliminates on it (the
+   * traction, or the plastic displacement when the cell's yield rows fix the traction). */
+  unsigned char *dense;
+  int *pivot;
+  double r;        /* scaling of the last evaluation */
   const double *pn, *bound; /* pressure and traction bound at the time of the last evaluation */
   double *pn_buf, *bound_buf; /* their storage when the load varies [n] */
   double load_cached;      /* load of pn_buf (NAN: none) */
+  rs_msg msg;      /* why the last evaluation failed */
 } rs_work;
 
-int rs_work_create(rs_work *w, int n);
+int rs_work_create(rs_work *w, const rs_model *m);
 void rs_work_free(rs_work *w);
 
-/* Pressure and traction bound at time t into w->pn, w->bound: the model's arrays at a
- * constant load; with a normal-load history the normal solution (discrete or Hertz, as
- * the case says) for the load at t, cached in w. Every evaluation below calls it. */
-int rs_model_normal_at(const rs_model *m, rs_work *w, double t, rs_msg *msg);
+/* Pressure and traction bound for the inputs into w->pn, w->bound: the model's arrays at
+ * a constant load; with a normal-load history the normal solution for in->load, cached. */
+int rs_model_normal_at(const rs_model *m, rs_work *w, const rs_inputs *in, rs_msg *msg);
 
-/* Interpolate a state y_from of model from to the grid of model to (linear in x
- * between cell centres, constant beyond the outer centres; tractions then made
- * admissible at time t: zero outside the contact, |p| <= g). */
-int rs_model_interpolate_state(const rs_model *from, const double *y_from, const rs_model *to,
-                               rs_work *w_to, double t, double *y_to, rs_msg *msg);
-
-/* Maximum number of Jacobian nonzeros (dense traction block plus bands). */
-int64_t rs_model_jac_capacity(const rs_model *m);
+/* Creepage at (inputs, y): the prescribed one, or the unknown with force control. */
+double rs_model_creepage(const rs_model *m, const rs_inputs *in, const double *y);
 
 /* The semismooth scaling r (traction per slip velocity), model.md §4:
  * r = 1 / (cj * C_self + V * C_shift / dx). */
-double rs_model_scaling(const rs_model *m, double t, double cj);
+double rs_model_scaling(const rs_model *m, const rs_inputs *in, double cj);
 
-/* Residual F(t, y, yp) (traction units, every row), with r from cj. F may be
- * NULL (only the work arrays are filled). If jac is non-NULL, the generalized
- * Jacobian dF/dy + cj dF/dyp is assembled in it (structurally zero entries are
- * left out; the pattern changes only when w->branch changes). */
-int rs_model_eval(const rs_model *m, rs_work *w, double t, const double *y, const double *yp,
-                  double cj, double *F, rs_csr *jac);
+/* Residual F(t, y, yp) (traction units, every row) with r from cj, into F (may be NULL:
+ * only the kinematics, branches and local laws in w). On failure w->msg says why. */
+int rs_model_residual(const rs_model *m, rs_work *w, const rs_inputs *in, const double *y,
+                      const double *yp, double cj, double *F);
 
-/* Consistent rates at a state y (model.md §9 "consistent start"): solves the
- * adhesion rows for p', exterior p' = 0, slip p' = g' (= 0 at constant load),
- * upl' and ustar' from their transport equations; plastic cells p' = 0. With force
- * control the adhesion rows are bordered by sum p' dx = F_x'(t), which also gives
- * the creepage: y[3n] is set. yp: output [neq]. */
-int rs_model_consistent_rates(const rs_model *m, rs_work *w, double t, double *y, double *yp,
-                              rs_msg *msg);
+/* The generalized Jacobian dF/dy + cj dF/dy' at (y, yp), assembled row by row into J
+ * (CSR, sorted columns; J->rowptr/col/val of capacity rs_model_jac_capacity). band = 0:
+ * every entry, structurally zero ones left out (the pattern follows the branches);
+ * band > 0: the near field, tractions of cells at most `band` cells away in x and y,
+ * on a pattern that does not depend on the branches (every traction row holds its near
+ * field and its own plastic-displacement columns, zeros included), for a preconditioner
+ * whose symbolic analysis is done once. Also fills w->law, w->dense and w->pivot. */
+int rs_model_jacobian(const rs_model *m, rs_work *w, const rs_inputs *in, const double *y,
+                      const double *yp, double cj, int band, rs_csr *J);
+int64_t rs_model_jac_capacity(const rs_model *m, int band);
 
-/* Creepage at (t, y): the history, or the unknown y[3n] with force control. */
-double rs_model_creepage(const rs_model *m, double t, const double *y);
+/* Jv = (dF/dy + cj dF/dy') v, exactly (up to roundoff), at the point of the last
+ * rs_model_jacobian on w; wlin is scratch for the kinematics of v (a second work). */
+int rs_model_jv(const rs_model *m, const rs_work *w, rs_work *wlin, const rs_inputs *in,
+                double cj, const double *v, double *Jv);
 
-/* Make the tractions of y admissible at time t (after a jump of an input history):
- * p = 0 outside the contact, |p| <= g(t) = mu p_n(t) inside (a cell whose bound
- * dropped keeps its direction at the new bound). */
-int rs_model_project_state(const rs_model *m, rs_work *w, double t, double *y, rs_msg *msg);
+/* Consistent rates at a state y (model.md §9 "consistent start"): solves the adhesion
+ * rows for p', exterior p' = 0, at the bound p' = g'; upl' and ustar' from their
+ * transport equations. With force control the adhesion rows are bordered by
+ * sum p' dA = F'(t), which also gives the creepage: its unknown in y is set. */
+int rs_model_consistent_rates(const rs_model *m, rs_work *w, const rs_inputs *in, double *y,
+                              double *yp, rs_msg *msg);
 
-/* Quantities of model.md §7 at (t, y, yp). Arrays of length n, any may be NULL. */
+/* Make the tractions of y admissible (after a jump of an input history): p = 0 outside
+ * the contact, |p| <= g inside (a cell whose bound dropped keeps its direction). */
+int rs_model_project_state(const rs_model *m, rs_work *w, const rs_inputs *in, double *y,
+                           rs_msg *msg);
+
+/* Interpolate a state of model `from` to the grid of model `to` (linear in x between
+ * cell centres, constant beyond the outer centres), then made admissible. */
+int rs_model_interpolate_state(const rs_model *from, const double *y_from, const rs_model *to,
+                               rs_work *w_to, const rs_inputs *in, double *y_to, rs_msg *msg);
+
+/* Quantities of model.md §7 at (y, yp). Arrays of one value per cell, any may be NULL. */
 typedef struct rs_diag {
   double Fx, Fn, creepage, velocity;
   int count[4]; /* by rs_regime */
   double frictional_power, plastic_power, elastic_energy, rigid_slip_power;
 } rs_diag;
 
-int rs_model_diagnostics(const rs_model *m, rs_work *w, double t, const double *y,
+int rs_model_diagnostics(const rs_model *m, rs_work *w, const rs_inputs *in, const double *y,
                          const double *yp, rs_diag *d, double *slip, double *tauc,
                          signed char *regime);
+
+/* Checks a steady state y (y' = 0): the paper's contact conditions cell by cell (eqs.
+ * 7-10: |p| <= min(g, tau_c); slip only at the bound and opposite to p; plastic flow
+ * only at the yield limit and parallel to p; Dustar/Dt = |Du_pl/Dt|; nothing outside
+ * the contact) and the transient residual there (the DAE residual with the scaling of a
+ * time step, not the steady one), each to RS_STEADY_CHECK_TOL times the largest traction
+ * bound (rates in traction units through r). RS_OK, or RS_ERR_SOLVER with the first
+ * failed condition, cell and values in msg. */
+#define RS_STEADY_CHECK_TOL 1e-6
+int rs_model_check_steady(const rs_model *m, rs_work *w, const rs_inputs *in, const double *y,
+                          rs_msg *msg);
 
 /* Next kink or jump of an input history after t (INFINITY if none). */
 double rs_model_next_breakpoint(const rs_model *m, double t);
 
 /* Yield limit of a cell with accumulated plastic deformation ustar. */
-double rs_model_yield_limit(const rs_model *m, double ustar);
-
-/* Checks a steady state y (y' = 0) at time t: the transient residual there (the DAE
- * residual with the scaling of a time step, not the steady one) and the paper's
- * contact conditions cell by cell (eqs. 7-10: |p| <= min(g, tau_c); slip only at the
- * bound and opposite to p; plastic flow only at the yield limit and parallel to p;
- * Dustar/Dt = |Du_pl/Dt|; nothing outside the contact), each to RS_STEADY_CHECK_TOL
- * times the largest traction bound (slip and flow rates in traction units through
- * r). RS_OK, or RS_ERR_SOLVER with the first failed condition, cell and values in msg. */
-#define RS_STEADY_CHECK_TOL 1e-6
-int rs_model_check_steady(const rs_model *m, rs_work *w, double t, const double *y, rs_msg *msg);
+static inline double rs_model_yield_limit(const rs_model *m, double ustar)
+{
+  return rs_yield_limit(&m->par.plasticity, ustar);
+}
 
 #endif

@@ -18,20 +18,23 @@
 #include "rollsim/status.h"
 
 typedef struct rs_rig_memory {
+  int width;        /* values per sample: the state of the trailing column (2D: u_pl, u*) */
   double delay[2];  /* s, per disc */
   double recovery;  /* fraction of the state kept per revolution, [0, 1] */
   size_t start, n, cap; /* samples [start, n) of the arrays are live */
-  double *t, *upl, *ustar;
+  double *t;        /* [cap] */
+  double *value;    /* [cap][width] */
 } rs_rig_memory;
 
-int rs_rig_memory_create(rs_rig_memory *mem, double delay_1, double delay_2, double recovery,
-                         rs_msg *msg);
+int rs_rig_memory_create(rs_rig_memory *mem, int width, double delay_1, double delay_2,
+                         double recovery, rs_msg *msg);
 void rs_rig_memory_free(rs_rig_memory *mem);
-/* Record the state leaving the contact at time t (t not decreasing; a repeated time
- * replaces the last sample). Samples older than the longest delay are dropped. */
-int rs_rig_memory_record(rs_rig_memory *mem, double t, double upl, double ustar, rs_msg *msg);
-/* State of the material entering the contact at time t. */
-void rs_rig_memory_inflow(const rs_rig_memory *mem, double t, double *upl, double *ustar);
+/* Record the state leaving the contact at time t (width values; t not decreasing; a
+ * repeated time replaces the last sample). Samples older than the longest delay are
+ * dropped. */
+int rs_rig_memory_record(rs_rig_memory *mem, double t, const double *state, rs_msg *msg);
+/* State of the material entering the contact at time t (width values). */
+void rs_rig_memory_inflow(const rs_rig_memory *mem, double t, double *state);
 /* Longest time step that keeps every lookup inside the recorded past (s). */
 double rs_rig_memory_max_step(const rs_rig_memory *mem);
 

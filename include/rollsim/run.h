@@ -50,6 +50,11 @@ void rs_run_result_free(rs_run_result *res);
  * then no file is written. */
 int rs_run(const rs_case *c, const rs_run_opts *o, rs_run_result *res, rs_msg *msg);
 
+/* The model's plain parameters from a case (shallow: the histories are the case's;
+ * rs_model_create copies them), and the model itself. */
+void rs_model_params_from_case(const rs_case *c, rs_model_params *p);
+int rs_model_from_case(rs_model *m, const rs_case *c, rs_msg *msg);
+
 /* Print derived parameters of a case (Hertz a, p0, grid, scaling, ...) for `check`. */
 int rs_run_print_derived(const rs_case *c, FILE *out, rs_msg *msg);
 

@@ -9,6 +9,7 @@
 #define ROLLSIM_SOLVER_H
 
 #include <signal.h>
+#include <sundials/sundials_context.h>
 
 #include "rollsim/model.h"
 #include "rollsim/status.h"
@@ -27,10 +28,14 @@ typedef struct rs_stats {
                             by rolling the material, or the solve failed) */
 } rs_stats;
 
+/* One SUNDIALS context per run: the driver creates it and every solver of the run
+ * (steady, coarse grids, pseudo-transient, transient) uses it. A solver created with
+ * ctx = NULL makes a context of its own (for a single solve, e.g. in a test). */
+
 /* Steady rolling (V > 0): a reusable solver so that continuation (creep curves)
  * keeps its allocations. */
 typedef struct rs_steady rs_steady;
-int rs_steady_create(rs_steady **s, const rs_model *m, rs_msg *msg);
+int rs_steady_create(rs_steady **s, const rs_model *m, SUNContext ctx, rs_msg *msg);
 /* Linear algebra of the steady Newton iteration (all give the same solution to the
  * Newton tolerance): KLU on the whole sparse Jacobian; DENSE, the sparse rows
  * eliminated and the Schur complement on the dense traction rows factored by LAPACK;
@@ -38,7 +43,8 @@ int rs_steady_create(rs_steady **s, const rs_model *m, rs_msg *msg);
  * preconditioner; AUTO picks KRYLOV for elastic models from 300 cells, DENSE
  * otherwise (KLU when the model has unknowns beyond the 3 n per-cell ones). */
 typedef enum { RS_LINEAR_AUTO = 0, RS_LINEAR_KLU, RS_LINEAR_DENSE, RS_LINEAR_KRYLOV } rs_linear;
-int rs_steady_create_with(rs_steady **s, const rs_model *m, rs_linear linear, rs_msg *msg);
+int rs_steady_create_with(rs_steady **s, const rs_model *m, SUNContext ctx, rs_linear linear,
+                          rs_msg *msg);
 /* Solve F(y, 0) = 0 at time t (inputs evaluated at t); y holds the initial guess
  * on entry, the solution on return. */
 int rs_steady_solve(rs_steady *s, double t, double *y, rs_stats *stats, rs_msg *msg);
@@ -65,11 +71,15 @@ typedef struct rs_transient_opts {
    * elastic rows carry the slowly decaying A(i-j) itself); KLU whenever the model has
    * unknowns beyond the 3 n per-cell ones. */
   rs_linear linear;
+  /* NULL, or inputs held at these values whatever the time (the steady solver's
+   * pseudo-transient: the material rolls at the inputs of one time). */
+  const rs_inputs *frozen;
 } rs_transient_opts;
 
 /* y0, yp0: a consistent initial state (see rs_model_consistent_rates). */
-int rs_transient_create(rs_transient **tr, const rs_model *m, double t0, const double *y0,
-                        const double *yp0, const rs_transient_opts *opts, rs_msg *msg);
+int rs_transient_create(rs_transient **tr, const rs_model *m, SUNContext ctx, double t0,
+                        const double *y0, const double *yp0, const rs_transient_opts *opts,
+                        rs_msg *msg);
 /* Integrate to tout; y, yp receive the (interpolated) solution at tout. */
 int rs_transient_advance(rs_transient *tr, double tout, double *y, double *yp, rs_msg *msg);
 /* Restart at time t from a consistent state (after a breakpoint of an input

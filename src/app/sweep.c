@@ -35,6 +35,7 @@ static void fill_point(rs_sweep_point *pt, const rs_diag *d)
  * is a rolling input (a creep-force curve): grid, coefficients, normal solution and
  * the solver's allocations are kept, and each point starts from the last solution. */
 typedef struct steady_chain {
+  SUNContext ctx; /* the sweep's (not owned) */
   rs_model m;
   int have_model;
   rs_steady *st;
@@ -78,9 +79,9 @@ static int rolling_key(const char *key)
 /* The model's rolling input `key` held at x (an intermediate continuation point). */
 static void set_rolling_value(rs_model *m, const char *key, double x)
 {
-  rs_history *h = !strcmp(key, "rolling.creepage") ? &m->creepage
-                  : !strcmp(key, "rolling.velocity") ? &m->velocity
-                                                     : &m->shift;
+  rs_history *h = !strcmp(key, "rolling.creepage") ? &m->par.creepage
+                  : !strcmp(key, "rolling.velocity") ? &m->par.velocity
+                                                     : &m->par.shift_velocity;
   rs_history_free(h);
   *h = (rs_history){.kind = RS_HISTORY_CONSTANT, .value = x};
 }
@@ -96,7 +97,9 @@ enum { JUMP_MIN_CELLS = 4, JUMP_FRACTION = 10, MAX_HALVINGS = 3 };
 static int regimes_of(steady_chain *ch, const double *y, signed char *reg)
 {
   rs_diag d;
-  return rs_model_diagnostics(&ch->m, &ch->w, 0.0, y, ch->yp, &d, NULL, NULL, reg);
+  rs_inputs in;
+  rs_model_inputs_at(&ch->m, 0.0, &in);
+  return rs_model_diagnostics(&ch->m, &ch->w, &in, y, ch->yp, &d, NULL, NULL, reg);
 }
 
 /* From the last solution on the chain (in y on entry) to the swept input at x: secant
@@ -106,7 +109,7 @@ static int regimes_of(steady_chain *ch, const double *y, signed char *reg)
 static int continue_to(steady_chain *ch, const char *key, double x, double *y, int depth,
                        rs_stats *stats, rs_msg *msg)
 {
-  const int neq = ch->m.neq, n = ch->m.n;
+  const int neq = ch->m.lay.neq, n = ch->m.grid.n;
   set_rolling_value(&ch->m, key, x);
   if (ch->nsolved >= 2 && ch->xlast != ch->xprev) {
     const double f = (x - ch->xlast) / (ch->xlast - ch->xprev);
@@ -144,27 +147,27 @@ static int steady_point(const rs_case *c, steady_chain *ch, double **y, int *ny,
 {
   int status = RS_OK;
   const int chained = reuse && warm && ch->have_model && ch->st && ch->nsolved >= 1 &&
-                      *ny == ch->m.neq;
+                      *ny == ch->m.lay.neq;
   if (!chained) {
     chain_drop(ch);
-    status = rs_model_create(&ch->m, c, msg);
+    status = rs_model_from_case(&ch->m, c, msg);
     if (status != RS_OK) return status;
     ch->have_model = 1;
-    const size_t neq = (size_t)ch->m.neq, n = (size_t)ch->m.n;
+    const size_t neq = (size_t)ch->m.lay.neq, n = (size_t)ch->m.grid.n;
     ch->yp = calloc(neq, sizeof *ch->yp);
     ch->yprev = calloc(neq, sizeof *ch->yprev);
     ch->ylast = calloc(neq, sizeof *ch->ylast);
     ch->reg_last = calloc(n, 1);
     ch->reg_new = calloc(n, 1);
     if (!ch->yp || !ch->yprev || !ch->ylast || !ch->reg_last || !ch->reg_new ||
-        rs_work_create(&ch->w, ch->m.n) != RS_OK)
+        rs_work_create(&ch->w, &ch->m) != RS_OK)
       status = rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory");
-    if (status == RS_OK) status = rs_steady_create(&ch->st, &ch->m, msg);
+    if (status == RS_OK) status = rs_steady_create(&ch->st, &ch->m, ch->ctx, msg);
   }
-  if (status == RS_OK && (!warm || *ny != ch->m.neq)) {
+  if (status == RS_OK && (!warm || *ny != ch->m.lay.neq)) {
     free(*y);
-    *y = calloc((size_t)ch->m.neq, sizeof **y);
-    *ny = ch->m.neq;
+    *y = calloc((size_t)ch->m.lay.neq, sizeof **y);
+    *ny = ch->m.lay.neq;
     if (!*y) status = rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory");
   }
   rs_stats stats = {0};
@@ -174,12 +177,16 @@ static int steady_point(const rs_case *c, steady_chain *ch, double **y, int *ny,
     status = rs_steady_solve(ch->st, 0.0, *y, &stats, msg);
     if (status == RS_OK) status = regimes_of(ch, *y, ch->reg_last);
     if (status == RS_OK) {
-      memcpy(ch->ylast, *y, (size_t)ch->m.neq * sizeof **y);
+      memcpy(ch->ylast, *y, (size_t)ch->m.lay.neq * sizeof **y);
       ch->xlast = x;
       ch->nsolved = reuse ? 1 : 0; /* a chain starts only along a rolling input */
     }
   }
-  if (status == RS_OK) rs_model_diagnostics(&ch->m, &ch->w, 0.0, *y, ch->yp, d, NULL, NULL, NULL);
+  if (status == RS_OK) {
+    rs_inputs in;
+    rs_model_inputs_at(&ch->m, 0.0, &in);
+    status = rs_model_diagnostics(&ch->m, &ch->w, &in, *y, ch->yp, d, NULL, NULL, NULL);
+  }
   sum->nonlin_iters += stats.nonlin_iters;
   sum->lin_solves += stats.lin_solves;
   sum->refused += stats.refused;
@@ -230,6 +237,12 @@ int rs_sweep_run(const rs_sweep *s, const char *case_path, const char *const *se
   double *y = NULL;
   int ny = 0;
   steady_chain chain = {0};
+  if (SUNContext_Create(NULL, &chain.ctx) != 0) {
+    status = rs_msg_set(msg, RS_ERR_INTERNAL, "could not create the SUNDIALS context");
+    rs_msg tmp;
+    rs_sweep_output_close(out, "failed: could not create the SUNDIALS context", &tmp);
+    goto done;
+  }
   rs_stats steady_sum = {0};
   rs_msg point_msg = {{0}};
   for (size_t p = 0; p < s->npoints && status == RS_OK; p++) {
@@ -291,6 +304,7 @@ int rs_sweep_run(const rs_sweep *s, const char *case_path, const char *const *se
   }
   if (o->progress) fputc('\n', stderr);
   chain_drop(&chain);
+  SUNContext_Free(&chain.ctx);
   res->newton_iters += steady_sum.nonlin_iters;
   res->lin_solves = steady_sum.lin_solves;
   res->jac_evals = chain.jac_evals;

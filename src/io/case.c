@@ -5,6 +5,7 @@
 #define _POSIX_C_SOURCE 200809L
 #include "io/case_internal.h"
 #include "rollsim/elastic.h" /* RS_PI */
+#include "rollsim/normal.h"  /* rs_hertz2d */
 
 #include <math.h>
 #include <stdlib.h>
@@ -278,6 +279,27 @@ static int resolve_force(const resolver *r, rs_case *c)
   return RS_OK;
 }
 
+/* The grid: grid.extent (Hertz half-widths) or grid.x_range (mm, explicit edges), not
+ * both; explicit edges must hold the Hertz contact [-a, a] of the largest load. */
+static int resolve_grid(const resolver *r, rs_case *c)
+{
+  const yaml_node_t *range = given(r, "grid.x_range"), *extent = given(r, "grid.extent");
+  c->grid_from_range = range != NULL;
+  if (!range) return RS_OK;
+  if (extent)
+    return rs_case_error(r->d, range, "grid.x_range",
+                         "give grid.extent (Hertz half-widths) or grid.x_range (mm), not both");
+  double a, p0;
+  rs_hertz2d(rs_history_max_abs(&c->normal_load, 0.0, c->end_time), c->radius, c->shear_modulus,
+             c->poisson_ratio, &a, &p0);
+  if (c->x_range[0] > -a || c->x_range[1] < a)
+    return rs_case_error(r->d, range, "grid.x_range",
+                         "[%g, %g] mm does not hold the Hertz contact [%g, %g] mm (a = %g mm at "
+                         "the largest load): the contact would be cut off",
+                         c->x_range[0], c->x_range[1], -a, a, a);
+  return RS_OK;
+}
+
 /* results/<case file name without .yaml>.nc */
 static char *default_output_file(const char *path)
 {
@@ -317,7 +339,7 @@ static int resolve(const rs_case_doc *d, rs_case_input *in, const yaml_node_t **
                              ? "must be > 0 N/mm, got %g"
                              : "must stay > 0 N/mm over the run, reaches %g N/mm",
                          rs_history_min(&c->normal_load, 0.0, c->end_time));
-  if ((status = resolve_force(&r, c)) != RS_OK)
+  if ((status = resolve_force(&r, c)) != RS_OK || (status = resolve_grid(&r, c)) != RS_OK)
     return status;
   if (c->mode == RS_MODE_STEADY && !(rs_history_min(&c->velocity, 0.0, c->end_time) > 0))
     return rs_case_error(d, given(&r, "rolling.velocity"), "rolling.velocity",
@@ -452,6 +474,19 @@ void rs_case_print(const rs_case *c, FILE *out)
     }
     if (!strcmp(k->path, "rolling.creepage") && c->force_control) {
       fprintf(out, "%s: null  # 1 (computed: the tangential force is prescribed)\n", k->path);
+      continue;
+    }
+    if (!strcmp(k->path, "grid.x_range")) {
+      char lo[32], hi[32];
+      if (c->grid_from_range)
+        fprintf(out, "%s: [%s, %s]  # mm\n", k->path, rs_case_fmt(c->x_range[0], lo, sizeof lo),
+                rs_case_fmt(c->x_range[1], hi, sizeof hi));
+      else
+        fprintf(out, "%s: null  # mm (not given: grid.extent)\n", k->path);
+      continue;
+    }
+    if (!strcmp(k->path, "grid.extent") && c->grid_from_range) {
+      fprintf(out, "%s: null  # Hertz half-widths (not given: grid.x_range)\n", k->path);
       continue;
     }
     if (!strcmp(k->path, "simulation.rolled_distance") && c->rolled_distance < 0) {

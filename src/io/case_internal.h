@@ -73,7 +73,8 @@ typedef enum rs_case_key_kind {
   RS_KEY_CHOICE,  /* int (an enum), one of `choices` */
   RS_KEY_HISTORY, /* rs_history */
   RS_KEY_FIELDS,  /* unsigned mask of RS_FIELD_* */
-  RS_KEY_PROTOCOL /* rs_twin_disc steps: a list of {slip|ramp_to, revolutions} (case_rig.c) */
+  RS_KEY_PROTOCOL, /* rs_twin_disc steps: a list of {slip|ramp_to, revolutions} (case_rig.c) */
+  RS_KEY_RANGE     /* double[2]: [lo, hi] with lo < hi, each within the key's range */
 } rs_case_key_kind;
 
 enum {

@@ -42,6 +42,7 @@ const rs_case_key rs_case_keys[] = {
     {"grid.cells", RS_KEY_INTEGER, F(c.cells), "", 2, 100000, 0, NULL},
     {"grid.extent", RS_KEY_NUMBER, F(c.extent), "Hertz half-widths", 1, 1000, RS_KEY_HI_ABSURD,
      NULL},
+    {"grid.x_range", RS_KEY_RANGE, F(c.x_range), "mm", -1e9, 1e9, RS_KEY_HI_ABSURD, NULL},
 
     {"material", RS_KEY_SECTION, 0, "", 0, 0, 0, NULL},
     {"material.shear_modulus", RS_KEY_NUMBER, F(c.shear_modulus), "N/mm^2", 0, BIG,
@@ -177,6 +178,31 @@ static int parse_fields(const rs_case_doc *d, const yaml_node_t *n, const char *
   return RS_OK;
 }
 
+/* [lo, hi]: two numbers in the key's range, lo < hi. */
+static int parse_range(const rs_case_doc *d, const yaml_node_t *n, const rs_case_key *spec,
+                       double *out)
+{
+  char got[96];
+  const yaml_node_t *item[2] = {NULL, NULL};
+  if (n->type == YAML_SEQUENCE_NODE &&
+      n->data.sequence.items.top - n->data.sequence.items.start == 2)
+    for (int k = 0; k < 2; k++)
+      item[k] = yaml_document_get_node((yaml_document_t *)&d->doc,
+                                       n->data.sequence.items.start[k]);
+  if (!item[0] || !item[1])
+    return rs_case_error(d, n, spec->path, "expected [lo, hi] (%s), got %s", spec->unit,
+                         rs_case_describe(n, got, sizeof got));
+  for (int k = 0; k < 2; k++) {
+    int status = rs_case_number(d, item[k], spec->path, &out[k]);
+    if (status == RS_OK) status = rs_case_check_range(d, item[k], spec, spec->path, out[k]);
+    if (status != RS_OK) return status;
+  }
+  if (!(out[1] > out[0]))
+    return rs_case_error(d, n, spec->path, "expected [lo, hi] with lo < hi, got [%g, %g] %s",
+                         out[0], out[1], spec->unit);
+  return RS_OK;
+}
+
 /* Parse the value of key `spec` into `in`. */
 static int parse_value(const rs_case_doc *d, const rs_case_key *spec, const yaml_node_t *n,
                        rs_case_input *in)
@@ -220,6 +246,8 @@ static int parse_value(const rs_case_doc *d, const rs_case_key *spec, const yaml
     return parse_fields(d, n, spec->path, (unsigned *)field);
   case RS_KEY_PROTOCOL:
     return rs_case_protocol(d, n, spec->path, (rs_twin_disc *)field);
+  case RS_KEY_RANGE:
+    return parse_range(d, n, spec, (double *)field);
   case RS_KEY_SECTION:
   case RS_KEY_OPAQUE:
     break;

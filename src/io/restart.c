@@ -9,7 +9,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* The three state fields, in the order of y (rollsim/model.h). */
+/* The three state fields. */
 static const char *const state_fields[3] = {"px", "upl", "ustar"};
 
 static int nc_fail(rs_msg *msg, const char *path, const char *what, int err)
@@ -18,7 +18,7 @@ static int nc_fail(rs_msg *msg, const char *path, const char *what, int err)
 }
 
 static int read_file(int ncid, const char *path, size_t nx, const double *x, double *t_last,
-                     double *y, double *creepage, double *xold, rs_msg *msg)
+                     double *const state[3], double *creepage, double *xold, rs_msg *msg)
 {
   int err, dim_x, dim_t, var;
   size_t len_x, nrec;
@@ -66,7 +66,7 @@ static int read_file(int ncid, const char *path, size_t nx, const double *x, dou
       return rs_msg_set(msg, RS_ERR_INPUT, "restart file %s: variable '%s' is not a (time, x) field",
                         path, name);
     const size_t start[2] = {last, 0}, count[2] = {1, nx};
-    double *dst = y + (size_t)f * nx;
+    double *dst = state[f];
     if ((err = nc_get_vara_double(ncid, var, start, count, dst)))
       return nc_fail(msg, path, name, err);
     for (size_t i = 0; i < nx; i++)
@@ -86,15 +86,16 @@ static int read_file(int ncid, const char *path, size_t nx, const double *x, dou
   return RS_OK;
 }
 
-int rs_restart_read(const char *path, size_t nx, const double *x, double *t_last, double *y,
-                    double *creepage, rs_msg *msg)
+int rs_restart_read(const char *path, size_t nx, const double *x, double *t_last, double *px,
+                    double *upl, double *ustar, double *creepage, rs_msg *msg)
 {
   if (!path || !*path) return rs_msg_set(msg, RS_ERR_INPUT, "restart: no file given");
   int ncid;
   int err = nc_open(path, NC_NOWRITE, &ncid);
   if (err) return nc_fail(msg, path, "cannot open", err);
   double *xold = malloc((nx ? nx : 1) * sizeof *xold);
-  int status = xold ? read_file(ncid, path, nx, x, t_last, y, creepage, xold, msg)
+  double *const state[3] = {px, upl, ustar};
+  int status = xold ? read_file(ncid, path, nx, x, t_last, state, creepage, xold, msg)
                     : rs_msg_set(msg, RS_ERR_INTERNAL, "restart file %s: out of memory", path);
   free(xold);
   nc_close(ncid);

@@ -12,7 +12,7 @@
  * -(n-1)..n wraps to distinct indices mod M. */
 struct rs_elastic_fft {
   int M;
-  double *in;                 /* [M] */
+  double *in;                 /* [M]: plan-time buffer (the products use a work's) */
   fftw_complex *out;          /* [M/2 + 1] */
   fftw_complex *ktang, *knorm; /* transformed kernels, scaled by 1/M [M/2 + 1] */
   fftw_plan fwd, bwd;
@@ -115,8 +115,29 @@ void rs_elastic2d_free(rs_elastic2d *el)
   el->fft = NULL;
 }
 
-void rs_elastic2d_apply(const rs_elastic2d *el, const double *coef_table, const double *p,
-                        double *u, int nout)
+int rs_elastic2d_work_create(rs_elastic2d_work *w, const rs_elastic2d *el)
+{
+  memset(w, 0, sizeof *w);
+  if (!el->fft) return RS_OK;
+  const int M = el->fft->M;
+  w->in = fftw_alloc_real((size_t)M);
+  w->out = fftw_alloc_complex((size_t)(M / 2 + 1));
+  if (!w->in || !w->out) {
+    rs_elastic2d_work_free(w);
+    return RS_ERR_INTERNAL;
+  }
+  return RS_OK;
+}
+
+void rs_elastic2d_work_free(rs_elastic2d_work *w)
+{
+  fftw_free(w->in);
+  fftw_free(w->out);
+  memset(w, 0, sizeof *w);
+}
+
+void rs_elastic2d_apply(const rs_elastic2d *el, rs_elastic2d_work *w, const double *coef_table,
+                        const double *p, double *u, int nout)
 {
   const int n = el->n;
   int nonzero = 0;
@@ -125,15 +146,16 @@ void rs_elastic2d_apply(const rs_elastic2d *el, const double *coef_table, const 
     for (int i = 0; i < nout; i++) u[i] = 0.0;
     return;
   }
-  struct rs_elastic_fft *f = el->fft;
-  if (f && (coef_table == el->tang || coef_table == el->norm)) {
+  const struct rs_elastic_fft *f = el->fft;
+  if (f && w->in && (coef_table == el->tang || coef_table == el->norm)) {
     const fftw_complex *k = coef_table == el->tang ? f->ktang : f->knorm;
-    memcpy(f->in, p, (size_t)n * sizeof *p);
-    memset(f->in + n, 0, (size_t)(f->M - n) * sizeof *f->in);
-    fftw_execute(f->fwd);
-    for (int q = 0; q < f->M / 2 + 1; q++) f->out[q] *= k[q];
-    fftw_execute(f->bwd);
-    memcpy(u, f->in, (size_t)nout * sizeof *u);
+    fftw_complex *out = w->out;
+    memcpy(w->in, p, (size_t)n * sizeof *p);
+    memset(w->in + n, 0, (size_t)(f->M - n) * sizeof *w->in);
+    fftw_execute_dft_r2c(f->fwd, w->in, out);
+    for (int q = 0; q < f->M / 2 + 1; q++) out[q] *= k[q];
+    fftw_execute_dft_c2r(f->bwd, out, w->in);
+    memcpy(u, w->in, (size_t)nout * sizeof *u);
     return;
   }
   for (int i = 0; i < nout; i++) {

@@ -12,13 +12,6 @@
 #include "base/util.h"
 
 
-void rs_hertz2d(double load, double radius, double shear_modulus, double poisson_ratio,
-                double *a, double *p0)
-{
-  *a = sqrt(4.0 * load * radius * (1.0 - poisson_ratio) / (RS_PI * shear_modulus));
-  *p0 = 2.0 * load / (RS_PI * *a);
-}
-
 void rs_normal2d_hertz(const double *x, int n, double a, double p0, double *pn)
 {
   for (int i = 0; i < n; i++) {
@@ -27,30 +20,16 @@ void rs_normal2d_hertz(const double *x, int n, double a, double p0, double *pn)
   }
 }
 
-double rs_normal2d_start_width(const rs_elastic2d *el, double radius, double load)
+void rs_normal2d_profile(const double *x, int n, double radius, double *h)
 {
-  /* a = sqrt(2 q R K) with K = 2(1-nu)/(pi G) read off the far field of the
-   * coefficients (A(k) ~ -K dx ln|k dx| + const). */
-  const int n = el->n;
-  if (n < 8 || !(load > 0.0)) return INFINITY;
-  const double K =
-      (rs_elastic2d_norm(el, n / 4) - rs_elastic2d_norm(el, n / 2)) / (el->dx * log(2.0));
-  return K > 0.0 ? sqrt(2.0 * load * radius * K) : INFINITY;
+  for (int i = 0; i < n; i++) h[i] = x[i] * x[i] / (2.0 * radius);
 }
 
-double rs_normal2d_profile(const double *x, int n, double radius, double *h)
+int rs_normal2d_solve_direct(const rs_elastic2d *el, rs_elastic2d_work *w, const double *h,
+                             double load, double *pn, double *delta_out, int *iterations,
+                             rs_msg *msg)
 {
-  double hmax = 0.0;
-  for (int i = 0; i < n; i++) {
-    h[i] = x[i] * x[i] / (2.0 * radius);
-    hmax = fmax(hmax, h[i]);
-  }
-  return hmax;
-}
-
-int rs_normal2d_solve_direct(const rs_elastic2d *el, const double *x, double radius, double load,
-                             double *pn, double *delta_out, int *iterations, rs_msg *msg)
-{
+  (void)w; /* dense sums */
   const int n = el->n;
   const double dx = el->dx;
   int *active = malloc((size_t)n * sizeof *active);
@@ -58,20 +37,20 @@ int rs_normal2d_solve_direct(const rs_elastic2d *el, const double *x, double rad
   int *ipiv = malloc((size_t)(n + 1) * sizeof *ipiv);
   double *mat = malloc((size_t)(n + 1) * (size_t)(n + 1) * sizeof *mat);
   double *rhs = malloc((size_t)(n + 1) * sizeof *rhs);
-  double *h = malloc((size_t)n * sizeof *h);
   int status = RS_OK;
-  if (!active || !index || !ipiv || !mat || !rhs || !h) {
+  if (!active || !index || !ipiv || !mat || !rhs) {
     status = rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory in the normal problem (%d cells)", n);
     goto done;
   }
   /* First active set: the Hertz contact |x| < a, so that the loop below usually ends
    * after one or two solves instead of shrinking the contact from the whole grid.
    * Any start gives the same solution. */
-  const double a_start = rs_normal2d_start_width(el, radius, load);
-  const double hmax = rs_normal2d_profile(x, n, radius, h);
+  const double h_start = rs_normal2d_start_gap(el, load);
+  double hmax = 0.0;
   int nstart = 0;
   for (int i = 0; i < n; i++) {
-    active[i] = fabs(x[i]) < a_start;
+    hmax = fmax(hmax, h[i]);
+    active[i] = h[i] < h_start;
     nstart += active[i];
     pn[i] = 0.0;
   }
@@ -148,24 +127,28 @@ done:
   free(ipiv);
   free(mat);
   free(rhs);
-  free(h);
   return status;
 }
 
-int rs_normal2d_solve_with(const rs_elastic2d *el, const double *x, double radius, double load,
-                           rs_normal2d_method method, double *pn, double *delta, int *iterations,
-                           rs_msg *msg)
+int rs_normal2d_solve_with(const rs_elastic2d *el, rs_elastic2d_work *w, const double *h,
+                           double load, rs_normal2d_method method, double *pn, double *delta,
+                           int *iterations, rs_msg *msg)
 {
   if (method == RS_NORMAL2D_AUTO)
     method = el->n >= RS_NORMAL2D_CG_FROM && load > 0.0 ? RS_NORMAL2D_CG : RS_NORMAL2D_DIRECT;
   if (method == RS_NORMAL2D_CG)
-    return rs_normal2d_solve_cg(el, x, radius, load, pn, delta, iterations, msg);
-  return rs_normal2d_solve_direct(el, x, radius, load, pn, delta, iterations, msg);
+    return rs_normal2d_solve_cg(el, w, h, load, pn, delta, iterations, msg);
+  return rs_normal2d_solve_direct(el, w, h, load, pn, delta, iterations, msg);
 }
 
-int rs_normal2d_solve(const rs_elastic2d *el, const double *x, double radius, double load,
+int rs_normal2d_solve(const rs_elastic2d *el, rs_elastic2d_work *w, const double *h, double load,
                       double *pn, double *delta, int *iterations, rs_msg *msg)
 {
-  return rs_normal2d_solve_with(el, x, radius, load, RS_NORMAL2D_AUTO, pn, delta, iterations,
-                                msg);
+  return rs_normal2d_solve_with(el, w, h, load, RS_NORMAL2D_AUTO, pn, delta, iterations, msg);
+}
+
+int rs_normal_solve(const rs_elastic_op *op, rs_elastic_work *w, const double *h, double load,
+                    double *pn, double *delta, rs_msg *msg)
+{
+  return rs_normal2d_solve(&op->line, &w->line, h, load, pn, delta, NULL, msg);
 }

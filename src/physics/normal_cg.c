@@ -29,8 +29,9 @@
 /* The iteration's state on the grid of n cells. */
 typedef struct cg_state {
   const rs_elastic2d *el;
+  rs_elastic2d_work *w;
   int n;
-  const double *h; /* undeformed gap x^2/(2R) */
+  const double *h; /* undeformed gap */
   double *p;       /* pressure, > 0 exactly on C */
   double *u;       /* A p */
   double *res;     /* r = A p + h - delta on C, 0 outside */
@@ -45,7 +46,7 @@ static void recompute(cg_state *s, double target)
   double sum = 0.0;
   for (int i = 0; i < n; i++) sum += s->p[i];
   for (int i = 0; i < n; i++) s->p[i] *= target / sum;
-  rs_elastic2d_apply(s->el, s->el->norm, s->p, s->u, n);
+  rs_elastic2d_apply(s->el, s->w, s->el->norm, s->p, s->u, n);
   double sum_gap = 0.0;
   s->m = 0;
   for (int i = 0; i < n; i++)
@@ -62,33 +63,32 @@ static void recompute(cg_state *s, double target)
 #define CG_TOL 1e-11
 #define CG_CONFIRM 1e-8
 
-int rs_normal2d_solve_cg(const rs_elastic2d *el, const double *x, double radius, double load,
-                         double *pn, double *delta_out, int *iterations, rs_msg *msg)
+int rs_normal2d_solve_cg(const rs_elastic2d *el, rs_elastic2d_work *w, const double *h,
+                         double load, double *pn, double *delta_out, int *iterations, rs_msg *msg)
 {
   const int n = el->n;
   if (!(load > 0.0))
     return rs_msg_set(msg, RS_ERR_INTERNAL,
                       "normal problem: the CG method needs a positive load (got %g N/mm)", load);
   const double target = load / el->dx;
-  double *h = malloc((size_t)n * sizeof *h);
   double *u = malloc((size_t)n * sizeof *u);
   double *res = malloc((size_t)n * sizeof *res);
   double *dir = malloc((size_t)n * sizeof *dir);   /* t */
   double *adir = malloc((size_t)n * sizeof *adir); /* A t */
   int status = RS_OK;
-  if (!h || !u || !res || !dir || !adir) {
+  if (!u || !res || !dir || !adir) {
     status = rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory in the normal problem (%d cells)", n);
     goto done;
   }
-  cg_state s = {.el = el, .n = n, .h = h, .p = pn, .u = u, .res = res};
+  cg_state s = {.el = el, .w = w, .n = n, .h = h, .p = pn, .u = u, .res = res};
   /* Start: the Hertz ellipse on the estimated half-width (uniform pressure when there
    * is no estimate). Any start gives the same solution. */
-  const double a_start = rs_normal2d_start_width(el, radius, load);
-  const double hmax = rs_normal2d_profile(x, n, radius, h);
+  const double h_start = rs_normal2d_start_gap(el, load);
+  double hmax = 0.0;
   int nstart = 0;
   for (int i = 0; i < n; i++) {
-    const double xi = x[i] / a_start;
-    pn[i] = fabs(xi) < 1.0 ? sqrt(1.0 - xi * xi) : 0.0;
+    hmax = fmax(hmax, h[i]);
+    pn[i] = h[i] < h_start ? sqrt(1.0 - h[i] / h_start) : 0.0;
     nstart += pn[i] > 0.0;
     dir[i] = 0.0;
   }
@@ -155,7 +155,7 @@ int rs_normal2d_solve_cg(const rs_elastic2d *el, const double *x, double radius,
     }
     for (int i = 0; i < n; i++)
       if (pn[i] > 0.0) dir[i] -= sum_dir / s.m;
-    rs_elastic2d_apply(el, el->norm, dir, adir, n);
+    rs_elastic2d_apply(el, w, el->norm, dir, adir, n);
     double rt = 0.0, tat = 0.0, sum_adir = 0.0;
     for (int i = 0; i < n; i++)
       if (pn[i] > 0.0) {
@@ -198,7 +198,6 @@ int rs_normal2d_solve_cg(const rs_elastic2d *el, const double *x, double radius,
   if (delta_out) *delta_out = s.delta;
   if (iterations) *iterations = steps;
 done:
-  free(h);
   free(u);
   free(res);
   free(dir);

@@ -5,21 +5,31 @@
 #ifndef ROLLSIM_NORMAL_INTERNAL_H
 #define ROLLSIM_NORMAL_INTERNAL_H
 
+#include <math.h>
+
 #include "rollsim/normal.h"
 
-/* Half-width of the Hertz contact estimated from the influence coefficients
- * themselves (their far field A(k) ~ -K dx ln|k dx| + const gives the compliance K),
- * a = sqrt(2 q R K); INFINITY when it cannot be estimated (tiny grid, load <= 0). */
-double rs_normal2d_start_width(const rs_elastic2d *el, double radius, double load);
-
-/* The gap of the undeformed profiles at the cell centres x (the parabola x^2 / 2R of
- * the Hertz contact) into h[n]; returns max h. */
-double rs_normal2d_profile(const double *x, int n, double radius, double *h);
+/* The start of both methods: the Hertz contact estimated from the influence
+ * coefficients themselves (their far field A(k) ~ -K dx ln|k dx| + const gives the
+ * compliance K): for a parabolic gap h = x^2/2R the Hertz half-width is
+ * a = sqrt(2 q R K), i.e. the contact is where h < q K, with the pressure shape
+ * sqrt(1 - h/(q K)). Returns q K, the gap at the estimated contact edge (INFINITY
+ * when it cannot be estimated: tiny grid, load <= 0). */
+static inline double rs_normal2d_start_gap(const rs_elastic2d *el, double load)
+{
+  /* K = 2(1-nu)/(pi G) read off the far field of the coefficients
+   * (A(k) ~ -K dx ln|k dx| + const). */
+  const int n = el->n;
+  if (n < 8 || !(load > 0.0)) return INFINITY;
+  const double K =
+      (rs_elastic2d_norm(el, n / 4) - rs_elastic2d_norm(el, n / 2)) / (el->dx * log(2.0));
+  return K > 0.0 ? load * K : INFINITY;
+}
 
 /* The two methods behind rs_normal2d_solve_with (same arguments and outputs). */
-int rs_normal2d_solve_direct(const rs_elastic2d *el, const double *x, double radius, double load,
-                             double *pn, double *delta, int *iterations, rs_msg *msg);
-int rs_normal2d_solve_cg(const rs_elastic2d *el, const double *x, double radius, double load,
-                         double *pn, double *delta, int *iterations, rs_msg *msg);
+int rs_normal2d_solve_direct(const rs_elastic2d *el, rs_elastic2d_work *w, const double *h,
+                             double load, double *pn, double *delta, int *iterations, rs_msg *msg);
+int rs_normal2d_solve_cg(const rs_elastic2d *el, rs_elastic2d_work *w, const double *h,
+                         double load, double *pn, double *delta, int *iterations, rs_msg *msg);
 
 #endif

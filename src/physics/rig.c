@@ -5,18 +5,18 @@
 #include <stdlib.h>
 #include <string.h>
 
-int rs_rig_memory_create(rs_rig_memory *mem, double delay_1, double delay_2, double recovery,
-                         rs_msg *msg)
+int rs_rig_memory_create(rs_rig_memory *mem, int width, double delay_1, double delay_2,
+                         double recovery, rs_msg *msg)
 {
   memset(mem, 0, sizeof *mem);
+  mem->width = width;
   mem->delay[0] = delay_1;
   mem->delay[1] = delay_2;
   mem->recovery = recovery;
   mem->cap = 1024;
   mem->t = malloc(mem->cap * sizeof *mem->t);
-  mem->upl = malloc(mem->cap * sizeof *mem->upl);
-  mem->ustar = malloc(mem->cap * sizeof *mem->ustar);
-  if (!mem->t || !mem->upl || !mem->ustar) {
+  mem->value = malloc(mem->cap * (size_t)width * sizeof *mem->value);
+  if (width < 1 || !mem->t || !mem->value) {
     rs_rig_memory_free(mem);
     return rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory for the twin-disc memory");
   }
@@ -26,13 +26,13 @@ int rs_rig_memory_create(rs_rig_memory *mem, double delay_1, double delay_2, dou
 void rs_rig_memory_free(rs_rig_memory *mem)
 {
   free(mem->t);
-  free(mem->upl);
-  free(mem->ustar);
+  free(mem->value);
   memset(mem, 0, sizeof *mem);
 }
 
-int rs_rig_memory_record(rs_rig_memory *mem, double t, double upl, double ustar, rs_msg *msg)
+int rs_rig_memory_record(rs_rig_memory *mem, double t, const double *state, rs_msg *msg)
 {
+  const size_t w = (size_t)mem->width;
   if (mem->n > mem->start && t <= mem->t[mem->n - 1]) {
     /* the same time again (a restart at a breakpoint) or an earlier one: replace */
     while (mem->n > mem->start && t < mem->t[mem->n - 1]) mem->n--;
@@ -45,44 +45,38 @@ int rs_rig_memory_record(rs_rig_memory *mem, double t, double upl, double ustar,
     if (mem->start > mem->cap / 2) { /* compact */
       const size_t live = mem->n - mem->start;
       memmove(mem->t, mem->t + mem->start, live * sizeof *mem->t);
-      memmove(mem->upl, mem->upl + mem->start, live * sizeof *mem->upl);
-      memmove(mem->ustar, mem->ustar + mem->start, live * sizeof *mem->ustar);
+      memmove(mem->value, mem->value + mem->start * w, live * w * sizeof *mem->value);
       mem->start = 0;
       mem->n = live;
     } else {
       const size_t cap = 2 * mem->cap;
       double *a = realloc(mem->t, cap * sizeof *a);
       if (a) mem->t = a;
-      double *b = a ? realloc(mem->upl, cap * sizeof *b) : NULL;
-      if (b) mem->upl = b;
-      double *c = b ? realloc(mem->ustar, cap * sizeof *c) : NULL;
-      if (!c)
-        return rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory for the twin-disc memory");
-      mem->ustar = c;
+      double *b = a ? realloc(mem->value, cap * w * sizeof *b) : NULL;
+      if (!b) return rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory for the twin-disc memory");
+      mem->value = b;
       mem->cap = cap;
     }
   }
   mem->t[mem->n] = t;
-  mem->upl[mem->n] = upl;
-  mem->ustar[mem->n] = ustar;
+  memcpy(mem->value + mem->n * w, state, w * sizeof *state);
   mem->n++;
   return RS_OK;
 }
 
-/* Recorded exit state at time s, linear between samples; fresh (0) before the first
- * sample, the last sample after it. */
-static void exit_state(const rs_rig_memory *mem, double s, double *upl, double *ustar)
+/* Where the exit state at time s lies among the samples: fresh (no sample at or before
+ * s: 0), one sample (at or after the last), or linear between samples lo and lo + 1. */
+typedef struct bracket {
+  int fresh;
+  size_t lo;
+  double f; /* weight of sample lo + 1 (0: sample lo alone) */
+} bracket;
+
+static bracket find(const rs_rig_memory *mem, double s)
 {
   size_t lo = mem->start, hi = mem->n;
-  if (hi == lo || s < mem->t[lo]) {
-    *upl = *ustar = 0.0;
-    return;
-  }
-  if (s >= mem->t[hi - 1]) {
-    *upl = mem->upl[hi - 1];
-    *ustar = mem->ustar[hi - 1];
-    return;
-  }
+  if (hi == lo || s < mem->t[lo]) return (bracket){.fresh = 1};
+  if (s >= mem->t[hi - 1]) return (bracket){.lo = hi - 1};
   hi--; /* invariant: t[lo] <= s < t[hi] */
   while (hi - lo > 1) {
     const size_t mid = lo + (hi - lo) / 2;
@@ -91,17 +85,23 @@ static void exit_state(const rs_rig_memory *mem, double s, double *upl, double *
     else
       hi = mid;
   }
-  const double w = (s - mem->t[lo]) / (mem->t[hi] - mem->t[lo]);
-  *upl = mem->upl[lo] + w * (mem->upl[hi] - mem->upl[lo]);
-  *ustar = mem->ustar[lo] + w * (mem->ustar[hi] - mem->ustar[lo]);
+  return (bracket){.lo = lo, .f = (s - mem->t[lo]) / (mem->t[hi] - mem->t[lo])};
 }
 
-void rs_rig_memory_inflow(const rs_rig_memory *mem, double t, double *upl, double *ustar)
+/* Component k of the exit state in bracket b (linear between samples). */
+static double exit_value(const rs_rig_memory *mem, bracket b, int k)
 {
-  double u[2], s[2];
-  for (int d = 0; d < 2; d++) exit_state(mem, t - mem->delay[d], &u[d], &s[d]);
-  *upl = mem->recovery * 0.5 * (u[0] + u[1]);
-  *ustar = mem->recovery * 0.5 * (s[0] + s[1]);
+  if (b.fresh) return 0.0;
+  const double *a = mem->value + b.lo * (size_t)mem->width;
+  if (b.f == 0.0) return a[k];
+  return a[k] + b.f * (a[mem->width + k] - a[k]);
+}
+
+void rs_rig_memory_inflow(const rs_rig_memory *mem, double t, double *state)
+{
+  const bracket b0 = find(mem, t - mem->delay[0]), b1 = find(mem, t - mem->delay[1]);
+  for (int k = 0; k < mem->width; k++)
+    state[k] = mem->recovery * 0.5 * (exit_value(mem, b0, k) + exit_value(mem, b1, k));
 }
 
 double rs_rig_memory_max_step(const rs_rig_memory *mem)

@@ -10,10 +10,11 @@
 int rs_linsys_create(rs_linsys *ls, const rs_model *m, N_Vector tmpl, SUNContext ctx)
 {
   memset(ls, 0, sizeof *ls);
-  ls->J = SUNSparseMatrix(m->neq, m->neq, rs_model_jac_capacity(m), CSR_MAT, ctx);
+  const int neq = m->lay.neq;
+  ls->J = SUNSparseMatrix(neq, neq, rs_model_jac_capacity(m, 0), CSR_MAT, ctx);
   if (!ls->J) return RS_ERR_INTERNAL;
   ls->LS = SUNLinSol_KLU(tmpl, ls->J, ctx);
-  ls->branch_at_analysis = calloc((size_t)m->n, 1);
+  ls->branch_at_analysis = calloc((size_t)m->grid.n, 1);
   if (!ls->LS || !ls->branch_at_analysis) {
     rs_linsys_free(ls);
     return RS_ERR_INTERNAL;
@@ -21,11 +22,12 @@ int rs_linsys_create(rs_linsys *ls, const rs_model *m, N_Vector tmpl, SUNContext
   return RS_OK;
 }
 
-int rs_linsys_use_reduced(rs_linsys *ls, const rs_model *m, SUNContext ctx)
+int rs_linsys_use_reduced(rs_linsys *ls, const rs_model *m, const rs_work *w, SUNContext ctx)
 {
-  if (m->neq != 3 * m->n || ls->reduced) return RS_ERR_INTERNAL;
-  ls->placeholder = SUNSparseMatrix(m->neq, m->neq, 1, CSR_MAT, ctx);
-  ls->reduced = rs_lsreduced_create(m->n, m->neq, ls->J, ls->LS, ctx);
+  const int neq = m->lay.neq, ntraction = m->lay.ncomp * m->lay.n;
+  if (m->lay.nextra != 0 || ls->reduced) return RS_ERR_INTERNAL;
+  ls->placeholder = SUNSparseMatrix(neq, neq, 1, CSR_MAT, ctx);
+  ls->reduced = rs_lsreduced_create(ntraction, neq, w->dense, w->pivot, ls->J, ls->LS, ctx);
   return ls->placeholder && ls->reduced ? RS_OK : RS_ERR_INTERNAL;
 }
 
@@ -59,25 +61,25 @@ void rs_linsys_free(rs_linsys *ls)
   memset(ls, 0, sizeof *ls);
 }
 
-int rs_linsys_assemble(rs_linsys *ls, const rs_model *m, rs_work *w, double t, const double *y,
-                       const double *yp, double cj)
+int rs_linsys_assemble(rs_linsys *ls, const rs_model *m, rs_work *w, const rs_inputs *in,
+                       const double *y, const double *yp, double cj)
 {
   rs_csr csr = {.nrows = 0,
                 .cap = SM_NNZ_S(ls->J),
                 .rowptr = SM_INDEXPTRS_S(ls->J),
                 .col = SM_INDEXVALS_S(ls->J),
                 .val = SM_DATA_S(ls->J)};
-  const int status = rs_model_eval(m, w, t, y, yp, cj, NULL, &csr);
+  const int status = rs_model_jacobian(m, w, in, y, yp, cj, 0, &csr);
   if (status != RS_OK) return status;
   ls->jac_evals++;
   if (ls->reduced) return RS_OK;
-  if (ls->analysed && memcmp(ls->branch_at_analysis, w->branch, (size_t)m->n) != 0) {
+  if (ls->analysed && memcmp(ls->branch_at_analysis, w->branch, (size_t)m->grid.n) != 0) {
     if (SUNLinSol_KLUReInit(ls->LS, ls->J, SM_NNZ_S(ls->J), SUNKLU_REINIT_PARTIAL) != 0)
       return RS_ERR_INTERNAL;
     ls->analysed = 0;
   }
   if (!ls->analysed) {
-    memcpy(ls->branch_at_analysis, w->branch, (size_t)m->n);
+    memcpy(ls->branch_at_analysis, w->branch, (size_t)m->grid.n);
     ls->analysed = 1;
     ls->analyses++;
   }

@@ -30,18 +30,19 @@ typedef struct rs_linsys {
 
 int rs_linsys_create(rs_linsys *ls, const rs_model *m, N_Vector tmpl, SUNContext ctx);
 /* Solve with the Schur-complement solver (linsys_reduced.h) instead of KLU on the
- * whole matrix; only for models with the 3 n per-cell unknowns (neq = 3 n). */
-int rs_linsys_use_reduced(rs_linsys *ls, const rs_model *m, SUNContext ctx);
+ * whole matrix, reading the row structure from w (the work the Jacobian is assembled
+ * with); only for models without extra unknowns. */
+int rs_linsys_use_reduced(rs_linsys *ls, const rs_model *m, const rs_work *w, SUNContext ctx);
 void rs_linsys_free(rs_linsys *ls);
 /* The linear solver and matrix to give KINSOL (KINSetLinearSolver): KLU and J, or
  * the reduced solver and the placeholder. */
 SUNLinearSolver rs_linsys_solver(const rs_linsys *ls);
 SUNMatrix rs_linsys_matrix(const rs_linsys *ls);
-/* Assemble the Jacobian at (t, y, yp, cj) into ls->J; with KLU on the whole matrix
- * redo its symbolic analysis at the next setup if the branches changed (the
- * reduced solver tracks the pattern itself). */
-int rs_linsys_assemble(rs_linsys *ls, const rs_model *m, rs_work *w, double t, const double *y,
-                       const double *yp, double cj);
+/* Assemble the Jacobian at (inputs, y, yp, cj) into ls->J; with KLU on the whole matrix
+ * redo its symbolic analysis at the next setup if the branches changed (the reduced
+ * solver tracks the pattern itself). */
+int rs_linsys_assemble(rs_linsys *ls, const rs_model *m, rs_work *w, const rs_inputs *in,
+                       const double *y, const double *yp, double cj);
 /* Factorisations so far: KLU setups, or the reduced solver's setups that did not
  * keep the last factorisation (matrix unchanged); and KLU symbolic analyses. */
 long rs_linsys_factorizations(const rs_linsys *ls);
@@ -50,5 +51,15 @@ long rs_linsys_analyses(const rs_linsys *ls);
 /* Silences SUNDIALS' own error printing; failures are reported through rs_msg. */
 void rs_sundials_silent(int error_code, const char *module, const char *function, char *msg,
                         void *user_data);
+
+/* A SUNDIALS set-up call, checked on its own: on failure `msg` names the call and the
+ * enclosing function jumps to its `fail` label. */
+#define RS_SUN_CHECK(call, msg, what)                                                          \
+  do {                                                                                        \
+    if ((call) != 0) {                                                                        \
+      rs_msg_set(msg, RS_ERR_INTERNAL, "could not set up the %s: %s failed", what, #call);    \
+      goto fail;                                                                              \
+    }                                                                                         \
+  } while (0)
 
 #endif

@@ -13,6 +13,8 @@
 
 typedef struct red_content {
   int n, neq;
+  const unsigned char *dense; /* [n]: traction row i is dense (from the model, per setup) */
+  const int *pivot;           /* [n]: the unknown eliminated on dense row i */
   SUNLinearSolver fallback;
   SUNMatrix J;
   int use_fallback; /* the last setup fell back to the full KLU factorisation */
@@ -118,24 +120,19 @@ static int red_setup(SUNLinearSolver LS, SUNMatrix placeholder) {
   }
   c->have_prev = 0;
 
-  /* Dense rows and their dense unknowns. */
+  /* Dense rows and their dense unknowns, as the model says (rs_work dense/pivot): the
+   * traction p_i, or u_pl,i when the cell's yield row fixes p_i (yield without hardening)
+   * and the traction row then determines the plastic flow; with hardening the yield row
+   * ties p_i to u*_i and p_i stays the dense unknown (then only the two u_pl entries of a
+   * dense row meet X, not every plastic p, which keeps the Schur update O(h n) instead of
+   * O(h^3)). */
   int h = 0;
   for (int k = 0; k < neq; k++)
     c->dpos[k] = -1;
   for (int i = 0; i < n; i++) {
-    if (rowptr[i + 1] - rowptr[i] <= 1) continue;
-    /* Row n + i is a yield row when it has an entry in column i. Without hardening
-     * (zero entry in column 2n + i) it fixes p_i, and the traction row determines the
-     * plastic flow u_pl,i instead; with hardening it ties p_i to u*_i and p_i stays the
-     * dense unknown (then only the two u_pl entries of a dense row meet X, not every
-     * plastic p, which keeps the Schur update O(h n) instead of O(h^3)). */
-    int pinned = 0;
-    for (int64_t k = rowptr[n + i]; k < rowptr[n + i + 1]; k++)
-      if (col[k] == i) pinned = 1;
-    for (int64_t k = rowptr[n + i]; pinned && k < rowptr[n + i + 1]; k++)
-      if (col[k] == 2 * n + i && val[k] != 0.0) pinned = 0;
+    if (!c->dense[i]) continue;
     c->drow[h] = i;
-    c->dcol[h] = pinned ? n + i : i;
+    c->dcol[h] = c->pivot[i];
     c->dpos[c->dcol[h]] = h;
     h++;
   }
@@ -158,7 +155,7 @@ static int red_setup(SUNLinearSolver LS, SUNMatrix placeholder) {
     c->cpl[i] = 0; /* scratch marks, h <= n */
   c->sp[0] = 0;
   for (int r = 0; r < neq; r++) {
-    if (r < n && rowptr[r + 1] - rowptr[r] > 1) continue;
+    if (r < n && c->dense[r]) continue;
     c->srow[s] = r;
     const int64_t need = nnz + (rowptr[r + 1] - rowptr[r]);
     if (need > c->scap) {
@@ -373,8 +370,8 @@ static int red_free(SUNLinearSolver LS) {
   return SUNLS_SUCCESS;
 }
 
-SUNLinearSolver rs_lsreduced_create(int n, int neq, SUNMatrix J, SUNLinearSolver fallback,
-                                    SUNContext ctx) {
+SUNLinearSolver rs_lsreduced_create(int n, int neq, const unsigned char *dense, const int *pivot,
+                                    SUNMatrix J, SUNLinearSolver fallback, SUNContext ctx) {
   SUNLinearSolver LS = SUNLinSolNewEmpty(ctx);
   if (!LS) return NULL;
   LS->ops->gettype = red_gettype;
@@ -389,6 +386,8 @@ SUNLinearSolver rs_lsreduced_create(int n, int neq, SUNMatrix J, SUNLinearSolver
   if (!c) goto fail;
   c->n = n;
   c->neq = neq;
+  c->dense = dense;
+  c->pivot = pivot;
   c->fallback = fallback;
   c->J = J;
   const size_t un = (size_t)n, ue = (size_t)neq;

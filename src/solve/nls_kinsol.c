@@ -14,6 +14,7 @@ typedef struct nls_content {
   const rs_model *m;
   rs_work *w;
   rs_linsys *ls;
+  struct rs_transient *tr;
   double *cj_slot;
   int max_iters;
   SUNNonlinSolSysFn sysfn;
@@ -47,11 +48,14 @@ static int kin_jacobian(N_Vector ycor, N_Vector f, SUNMatrix J, void *data, N_Ve
   IDAGetNonlinearSystemData(c->ida_mem, &tcur, &ypred, &yppred, &yn, &ypn, &res, &cj, &udata);
   const double *dc = N_VGetArrayPointer(ycor), *yv = N_VGetArrayPointer(ypred),
                *ypv = N_VGetArrayPointer(yppred);
-  for (int i = 0; i < c->m->neq; i++) {
+  for (int i = 0; i < c->m->lay.neq; i++) {
     c->ybuf[i] = yv[i] + dc[i];
     c->ypbuf[i] = ypv[i] + cj * dc[i];
   }
-  return rs_linsys_assemble(c->ls, c->m, c->w, tcur, c->ybuf, c->ypbuf, cj) == RS_OK ? 0 : -1;
+  return rs_linsys_assemble(c->ls, c->m, c->w, rs_transient_inputs(c->tr, tcur), c->ybuf,
+                            c->ypbuf, cj) == RS_OK
+             ? 0
+             : -1;
 }
 
 static SUNNonlinearSolver_Type nls_gettype(SUNNonlinearSolver nls)
@@ -76,17 +80,19 @@ static int nls_solve(SUNNonlinearSolver nls, N_Vector y0, N_Vector ycor, N_Vecto
   /* Scales: each residual row divided by its diagonal of the iteration matrix
    * (1 for traction rows by the choice of r; r (cj + V/dx) for the transport rows). */
   const rs_model *m = c->m;
-  const int n = m->n;
-  const double r = rs_model_scaling(m, tcur, cj);
-  const double diag_transport = r * (cj + rs_history_eval(&m->velocity, tcur) / m->dx);
+  const rs_layout *L = &m->lay;
+  const rs_inputs *in = rs_transient_inputs(c->tr, tcur);
+  const double r = rs_model_scaling(m, in, cj);
+  const double diag_transport = r * (cj + in->velocity / m->grid.dx);
   const double *wv = N_VGetArrayPointer(w);
   double *us = N_VGetArrayPointer(c->uscale), *fs = N_VGetArrayPointer(c->fscale);
+  const int ntraction = rs_at_upl(L, 0, 0), ncell = rs_at_extra(L, 0);
   double wmax = 0.0;
-  for (int i = 0; i < n; i++) wmax = fmax(wmax, wv[i]);
-  for (int i = 0; i < m->neq; i++) {
+  for (int i = 0; i < ntraction; i++) wmax = fmax(wmax, wv[i]);
+  for (int i = 0; i < L->neq; i++) {
     us[i] = wv[i];
     /* the force row (force control) is a mean traction: the strictest traction weight */
-    fs[i] = i < n ? wv[i] : i < 3 * n ? wv[i] / diag_transport : wmax;
+    fs[i] = i < ntraction ? wv[i] : i < ncell ? wv[i] / diag_transport : wmax;
   }
   KINSetFuncNormTol(c->kmem, 0.01 * tol);
   KINSetScaledStepTol(c->kmem, 0.01 * tol);
@@ -171,7 +177,7 @@ static int nls_getnumconvfails(SUNNonlinearSolver nls, long *fails)
 }
 
 SUNNonlinearSolver rs_nls_kinsol_create(const rs_model *m, rs_work *w, rs_linsys *ls,
-                                        double *cj_slot, int max_iters, N_Vector tmpl,
+                                        struct rs_transient *tr, int max_iters, N_Vector tmpl,
                                         SUNContext ctx)
 {
   SUNNonlinearSolver nls = SUNNonlinSolNewEmpty(ctx);
@@ -191,23 +197,22 @@ SUNNonlinearSolver rs_nls_kinsol_create(const rs_model *m, rs_work *w, rs_linsys
   c->m = m;
   c->w = w;
   c->ls = ls;
-  c->cj_slot = cj_slot;
+  c->tr = tr;
+  c->cj_slot = rs_transient_cj_slot(tr);
   c->max_iters = max_iters > 0 ? max_iters : 10;
   c->uscale = N_VClone(tmpl);
   c->fscale = N_VClone(tmpl);
-  c->ybuf = malloc((size_t)m->neq * sizeof *c->ybuf);
-  c->ypbuf = malloc((size_t)m->neq * sizeof *c->ypbuf);
+  c->ybuf = malloc((size_t)m->lay.neq * sizeof *c->ybuf);
+  c->ypbuf = malloc((size_t)m->lay.neq * sizeof *c->ypbuf);
   c->kmem = KINCreate(ctx);
   if (!c->uscale || !c->fscale || !c->ybuf || !c->ypbuf || !c->kmem) goto fail;
-  int flag = KINInit(c->kmem, kin_residual, tmpl);
-  flag |= KINSetUserData(c->kmem, c);
-  flag |= KINSetLinearSolver(c->kmem, rs_linsys_solver(ls), rs_linsys_matrix(ls));
-  flag |= KINSetJacFn(c->kmem, kin_jacobian);
-  flag |= KINSetMaxSetupCalls(c->kmem, 1);
-  flag |= KINSetMaxNewtonStep(c->kmem, 1e12);
-  flag |= KINSetNumMaxIters(c->kmem, c->max_iters);
-  flag |= KINSetErrHandlerFn(c->kmem, rs_sundials_silent, NULL);
-  if (flag != 0) goto fail;
+  /* each set-up call on its own (the caller reports a NULL solver) */
+  if (KINInit(c->kmem, kin_residual, tmpl) != 0 || KINSetUserData(c->kmem, c) != 0 ||
+      KINSetLinearSolver(c->kmem, rs_linsys_solver(ls), rs_linsys_matrix(ls)) != 0 ||
+      KINSetJacFn(c->kmem, kin_jacobian) != 0 || KINSetMaxSetupCalls(c->kmem, 1) != 0 ||
+      KINSetMaxNewtonStep(c->kmem, 1e12) != 0 || KINSetNumMaxIters(c->kmem, c->max_iters) != 0 ||
+      KINSetErrHandlerFn(c->kmem, rs_sundials_silent, NULL) != 0)
+    goto fail;
   return nls;
 fail:
   nls_free(nls);

@@ -10,10 +10,16 @@
 
 #include "solve/linsys.h"
 
-/* cj_slot: where the DAE residual reads the current cj (it sets the scaling r).
- * max_iters: Newton iterations per step before the step is declared failed. */
+/* The transient integrator the solver serves: the DAE residual reads the current cj
+ * from it (it sets the scaling r), and the inputs at a time come from it (held ones
+ * when frozen). */
+struct rs_transient;
+double *rs_transient_cj_slot(struct rs_transient *tr);
+const rs_inputs *rs_transient_inputs(struct rs_transient *tr, double t);
+
+/* max_iters: Newton iterations per step before the step is declared failed. */
 SUNNonlinearSolver rs_nls_kinsol_create(const rs_model *m, rs_work *w, rs_linsys *ls,
-                                        double *cj_slot, int max_iters, N_Vector tmpl,
+                                        struct rs_transient *tr, int max_iters, N_Vector tmpl,
                                         SUNContext ctx);
 
 #endif

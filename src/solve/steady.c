@@ -18,26 +18,38 @@
 
 struct rs_steady {
   const rs_model *m;
-  SUNContext ctx;
+  SUNContext ctx;         /* the run's (not owned unless own_ctx) */
+  SUNContext own_ctx;     /* created here when the caller gave none */
   void *kmem;
   N_Vector u, uscale, fscale;
   rs_linsys ls;
   rs_linear linear;       /* resolved choice (never AUTO); DENSE: ls.reduced */
   SUNLinearSolver gmres;  /* KRYLOV: SPGMR with the products and preconditioner of kry */
   rs_krylov kry;
-  rs_csr full;            /* KRYLOV: the assembled Jacobian (in ls.J's arrays) */
   rs_work work;
   double *yp;     /* y' seen by the residual: 0, or cj (y - y_prev) in pseudo-time steps */
   double *y_prev; /* start of the current pseudo-time step */
   double cj;      /* 0: steady; 1/dtau: a backward-Euler step of the rolling transient */
-  double t;
+  rs_inputs in;   /* the inputs of the time being solved */
+  rs_msg fail;    /* why the model refused an evaluation (then Newton stops at once) */
+  int failed;
   long coarse_jac_evals; /* Jacobian evaluations on coarse grids (grid sequencing) */
 };
+
+/* A model evaluation that failed stops KINSOL at once (-1: unrecoverable) and keeps the
+ * reason for the user. */
+static int refused(rs_steady *s, const char *why)
+{
+  s->failed = 1;
+  rs_msg_set(&s->fail, RS_ERR_SOLVER, "%s", why);
+  return -1;
+}
 
 /* y' = cj (y - y_prev) (backward Euler) or 0 (steady). */
 static double *rates(rs_steady *s, const double *u)
 {
-  for (int i = 0; i < s->m->neq; i++) s->yp[i] = s->cj > 0.0 ? s->cj * (u[i] - s->y_prev[i]) : 0.0;
+  for (int i = 0; i < s->m->lay.neq; i++)
+    s->yp[i] = s->cj > 0.0 ? s->cj * (u[i] - s->y_prev[i]) : 0.0;
   return s->yp;
 }
 
@@ -45,7 +57,10 @@ static int steady_residual(N_Vector u, N_Vector f, void *data)
 {
   rs_steady *s = data;
   const double *y = N_VGetArrayPointer(u);
-  return rs_model_eval(s->m, &s->work, s->t, y, rates(s, y), s->cj, N_VGetArrayPointer(f), NULL);
+  if (rs_model_residual(s->m, &s->work, &s->in, y, rates(s, y), s->cj, N_VGetArrayPointer(f)) !=
+      RS_OK)
+    return refused(s, s->work.msg.text);
+  return 0;
 }
 
 static int steady_jacobian(N_Vector u, N_Vector f, SUNMatrix J, void *data, N_Vector t1,
@@ -57,7 +72,9 @@ static int steady_jacobian(N_Vector u, N_Vector f, SUNMatrix J, void *data, N_Ve
   (void)t2;
   rs_steady *s = data;
   const double *y = N_VGetArrayPointer(u);
-  return rs_linsys_assemble(&s->ls, s->m, &s->work, s->t, y, rates(s, y), s->cj);
+  if (rs_linsys_assemble(&s->ls, s->m, &s->work, &s->in, y, rates(s, y), s->cj) != RS_OK)
+    return refused(s, s->work.msg.text);
+  return 0;
 }
 
 /* KRYLOV: the Jacobian is assembled where the preconditioner is set up. */
@@ -68,15 +85,10 @@ static int krylov_psetup(N_Vector u, N_Vector uscale, N_Vector fval, N_Vector fs
   (void)fscale;
   rs_steady *s = data;
   const double *y = N_VGetArrayPointer(u);
-  s->full = (rs_csr){.nrows = 0,
-                     .cap = SM_NNZ_S(s->ls.J),
-                     .rowptr = SM_INDEXPTRS_S(s->ls.J),
-                     .col = SM_INDEXVALS_S(s->ls.J),
-                     .val = SM_DATA_S(s->ls.J),
-                     .band = s->kry.band};
   s->ls.jac_evals++;
-  if (rs_model_eval(s->m, &s->work, s->t, y, rates(s, y), s->cj, NULL, &s->full) != RS_OK) return -1;
-  return rs_krylov_setup(&s->kry, &s->full, s->t, s->cj) == RS_OK ? 0 : 1;
+  const int status = rs_krylov_setup(&s->kry, &s->in, y, rates(s, y), s->cj);
+  if (status == RS_ERR_SOLVER && !rs_krylov_error(&s->kry)[0]) return 1; /* KLU: recoverable */
+  return status == RS_OK ? 0 : refused(s, rs_krylov_error(&s->kry));
 }
 
 static int krylov_psolve(N_Vector u, N_Vector uscale, N_Vector fval, N_Vector fscale, N_Vector v,
@@ -95,9 +107,7 @@ static int krylov_times(N_Vector v, N_Vector Jv, N_Vector u, sunbooleantype *new
   (void)u;
   (void)new_u;
   rs_steady *s = data;
-  return rs_krylov_times(&s->kry, &s->full, N_VGetArrayPointer(v), N_VGetArrayPointer(Jv)) == RS_OK
-             ? 0
-             : -1;
+  return rs_krylov_times(&s->kry, N_VGetArrayPointer(v), N_VGetArrayPointer(Jv)) == RS_OK ? 0 : -1;
 }
 
 void rs_steady_free(rs_steady *s)
@@ -113,7 +123,7 @@ void rs_steady_free(rs_steady *s)
   rs_work_free(&s->work);
   free(s->yp);
   free(s->y_prev);
-  if (s->ctx) SUNContext_Free(&s->ctx);
+  if (s->own_ctx) SUNContext_Free(&s->own_ctx);
   free(s);
 }
 
@@ -133,43 +143,53 @@ enum { KRYLOV_BAND = 16, KRYLOV_MAXL = 60 };
 #define KRYLOV_ETA_PLASTIC 1e-6
 #define KRYLOV_ETA 1e-3
 
-int rs_steady_create(rs_steady **out, const rs_model *m, rs_msg *msg)
+int rs_steady_create(rs_steady **out, const rs_model *m, SUNContext ctx, rs_msg *msg)
 {
-  return rs_steady_create_with(out, m, RS_LINEAR_AUTO, msg);
+  return rs_steady_create_with(out, m, ctx, RS_LINEAR_AUTO, msg);
 }
 
-int rs_steady_create_with(rs_steady **out, const rs_model *m, rs_linear linear, rs_msg *msg)
+int rs_steady_create_with(rs_steady **out, const rs_model *m, SUNContext ctx, rs_linear linear,
+                          rs_msg *msg)
 {
   *out = NULL;
   rs_steady *s = calloc(1, sizeof *s);
   if (!s) return rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory (steady solver)");
+  static const char what[] = "steady solver";
   s->m = m;
-  const int n = m->n;
-  if (SUNContext_Create(NULL, &s->ctx) != 0) goto fail;
-  s->u = N_VNew_Serial(m->neq, s->ctx);
-  s->uscale = N_VNew_Serial(m->neq, s->ctx);
-  s->fscale = N_VNew_Serial(m->neq, s->ctx);
-  s->yp = calloc((size_t)m->neq, sizeof *s->yp);
-  s->y_prev = calloc((size_t)m->neq, sizeof *s->y_prev);
-  if (!s->u || !s->uscale || !s->fscale || !s->yp || !s->y_prev) goto fail;
-  /* KINSOL's work vectors and the Krylov basis are clones of u: optimised kernels. */
-  if (rs_nvector_fast_ops(s->u) != RS_OK || rs_nvector_fast_ops(s->uscale) != RS_OK ||
-      rs_nvector_fast_ops(s->fscale) != RS_OK)
+  if (!ctx && SUNContext_Create(NULL, &s->own_ctx) != 0) {
+    free(s);
+    return rs_msg_set(msg, RS_ERR_INTERNAL, "could not create the SUNDIALS context");
+  }
+  s->ctx = ctx = ctx ? ctx : s->own_ctx;
+  const rs_layout *L = &m->lay;
+  const int n = L->n, neq = L->neq;
+  s->u = N_VNew_Serial(neq, ctx);
+  s->uscale = N_VNew_Serial(neq, ctx);
+  s->fscale = N_VNew_Serial(neq, ctx);
+  s->yp = calloc((size_t)neq, sizeof *s->yp);
+  s->y_prev = calloc((size_t)neq, sizeof *s->y_prev);
+  if (!s->u || !s->uscale || !s->fscale || !s->yp || !s->y_prev ||
+      rs_work_create(&s->work, m) != RS_OK || rs_linsys_create(&s->ls, m, s->u, ctx) != RS_OK) {
+    rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory (steady solver, %d unknowns)", neq);
     goto fail;
-  if (rs_work_create(&s->work, n) != RS_OK) goto fail;
-  if (rs_linsys_create(&s->ls, m, s->u, s->ctx) != RS_OK) goto fail;
-  /* The fast paths know the 3 n per-cell unknowns only. */
-  if (m->neq != 3 * n) linear = RS_LINEAR_KLU;
+  }
+  /* KINSOL's work vectors and the Krylov basis are clones of u: optimised kernels. */
+  RS_SUN_CHECK(rs_nvector_fast_ops(s->u), msg, what);
+  RS_SUN_CHECK(rs_nvector_fast_ops(s->uscale), msg, what);
+  RS_SUN_CHECK(rs_nvector_fast_ops(s->fscale), msg, what);
+  /* The fast paths know the per-cell unknowns only. */
+  if (L->nextra != 0) linear = RS_LINEAR_KLU;
   if (linear == RS_LINEAR_AUTO)
     linear = n >= KRYLOV_FROM_CELLS ? RS_LINEAR_KRYLOV : RS_LINEAR_DENSE;
   s->linear = linear;
-  if (linear == RS_LINEAR_DENSE && rs_linsys_use_reduced(&s->ls, m, s->ctx) != RS_OK) goto fail;
+  if (linear == RS_LINEAR_DENSE)
+    RS_SUN_CHECK(rs_linsys_use_reduced(&s->ls, m, &s->work, ctx), msg, what);
   if (linear == RS_LINEAR_KRYLOV) {
-    s->gmres = SUNLinSol_SPGMR(s->u, SUN_PREC_RIGHT, KRYLOV_MAXL, s->ctx);
-    if (!s->gmres || SUNLinSol_SPGMRSetMaxRestarts(s->gmres, 4) != 0 ||
-        SUNLinSol_SPGMRSetGSType(s->gmres, SUN_CLASSICAL_GS) != 0)
-      goto fail;
-    if (rs_krylov_create(&s->kry, m, KRYLOV_BAND) != RS_OK) goto fail;
+    s->gmres = SUNLinSol_SPGMR(s->u, SUN_PREC_RIGHT, KRYLOV_MAXL, ctx);
+    RS_SUN_CHECK(s->gmres == NULL, msg, what);
+    RS_SUN_CHECK(SUNLinSol_SPGMRSetMaxRestarts(s->gmres, 4), msg, what);
+    RS_SUN_CHECK(SUNLinSol_SPGMRSetGSType(s->gmres, SUN_CLASSICAL_GS), msg, what);
+    RS_SUN_CHECK(rs_krylov_create(&s->kry, m, KRYLOV_BAND), msg, what);
   }
 
   /* Scales: tractions by the largest bound, displacements by the displacement that
@@ -177,43 +197,44 @@ int rs_steady_create_with(rs_steady **out, const rs_model *m, rs_linear linear, 
   double pref = 0.0;
   for (int i = 0; i < n; i++) pref = fmax(pref, m->bound[i]);
   if (!(pref > 0.0)) pref = 1.0;
-  const double uref = pref * (rs_elastic2d_tang(&m->el, 0) + m->layer_flex);
+  const double uref = pref * (rs_elastic_op_coef(&m->el, 0, 0, 0, 0) + m->layer_flex);
   double *us = N_VGetArrayPointer(s->uscale), *fs = N_VGetArrayPointer(s->fscale);
-  for (int i = 0; i < n; i++) {
-    us[i] = 1.0 / pref;
-    us[n + i] = us[2 * n + i] = 1.0 / uref;
-  }
-  for (int i = 0; i < m->neq; i++) fs[i] = 1.0 / pref;
-  if (m->force_control) /* creepage: its saturation value mu a/R sets the scale */
-    us[3 * n] = m->radius / (m->mu * m->hertz_a);
+  for (int k = 0; k < rs_at_upl(L, 0, 0); k++) us[k] = 1.0 / pref;
+  for (int k = rs_at_upl(L, 0, 0); k < rs_at_extra(L, 0); k++) us[k] = 1.0 / uref;
+  for (int i = 0; i < neq; i++) fs[i] = 1.0 / pref;
+  for (int k = 0; k < L->nextra; k++) /* creepage: its saturation value mu a/R sets the scale */
+    us[rs_at_extra(L, k)] = m->par.radius / (rs_friction_mu(&m->par.friction, 0.0) * m->hertz_a);
 
-  s->kmem = KINCreate(s->ctx);
-  if (!s->kmem) goto fail;
-  int flag = KINInit(s->kmem, steady_residual, s->u);
-  flag |= KINSetUserData(s->kmem, s);
+  s->kmem = KINCreate(ctx);
+  RS_SUN_CHECK(s->kmem == NULL, msg, what);
+  RS_SUN_CHECK(KINInit(s->kmem, steady_residual, s->u), msg, what);
+  RS_SUN_CHECK(KINSetUserData(s->kmem, s), msg, what);
   if (s->gmres) {
-    flag |= KINSetLinearSolver(s->kmem, s->gmres, NULL);
-    flag |= KINSetJacTimesVecFn(s->kmem, krylov_times);
-    flag |= KINSetPreconditioner(s->kmem, krylov_psetup, krylov_psolve);
+    RS_SUN_CHECK(KINSetLinearSolver(s->kmem, s->gmres, NULL), msg, what);
+    RS_SUN_CHECK(KINSetJacTimesVecFn(s->kmem, krylov_times), msg, what);
+    RS_SUN_CHECK(KINSetPreconditioner(s->kmem, krylov_psetup, krylov_psolve), msg, what);
     /* The residual is piecewise linear: once the active set is right, an accurate
      * linear solve ends the iteration (a loose forcing term would add iterations). */
-    flag |= KINSetEtaForm(s->kmem, KIN_ETACONSTANT);
-    flag |= KINSetEtaConstValue(s->kmem, m->has_plasticity ? KRYLOV_ETA_PLASTIC : KRYLOV_ETA);
+    RS_SUN_CHECK(KINSetEtaForm(s->kmem, KIN_ETACONSTANT), msg, what);
+    RS_SUN_CHECK(KINSetEtaConstValue(s->kmem, m->par.plasticity.on ? KRYLOV_ETA_PLASTIC
+                                                                  : KRYLOV_ETA),
+                 msg, what);
   } else {
-    flag |= KINSetLinearSolver(s->kmem, rs_linsys_solver(&s->ls), rs_linsys_matrix(&s->ls));
-    flag |= KINSetJacFn(s->kmem, steady_jacobian);
+    RS_SUN_CHECK(KINSetLinearSolver(s->kmem, rs_linsys_solver(&s->ls), rs_linsys_matrix(&s->ls)),
+                 msg, what);
+    RS_SUN_CHECK(KINSetJacFn(s->kmem, steady_jacobian), msg, what);
   }
-  flag |= KINSetMaxSetupCalls(s->kmem, 1);       /* exact Newton */
-  flag |= KINSetMaxNewtonStep(s->kmem, 1e12);    /* steps from p = 0 are large */
-  flag |= KINSetFuncNormTol(s->kmem, 1e-10); /* relative to the largest bound; roundoff is ~1e-12 */
-  flag |= KINSetScaledStepTol(s->kmem, 1e-13);
-  flag |= KINSetErrHandlerFn(s->kmem, rs_sundials_silent, NULL);
-  if (flag != 0) goto fail;
+  RS_SUN_CHECK(KINSetMaxSetupCalls(s->kmem, 1), msg, what);    /* exact Newton */
+  RS_SUN_CHECK(KINSetMaxNewtonStep(s->kmem, 1e12), msg, what); /* steps from p = 0 are large */
+  /* relative to the largest bound; roundoff is ~1e-12 */
+  RS_SUN_CHECK(KINSetFuncNormTol(s->kmem, 1e-10), msg, what);
+  RS_SUN_CHECK(KINSetScaledStepTol(s->kmem, 1e-13), msg, what);
+  RS_SUN_CHECK(KINSetErrHandlerFn(s->kmem, rs_sundials_silent, NULL), msg, what);
   *out = s;
   return RS_OK;
 fail:
   rs_steady_free(s);
-  return rs_msg_set(msg, RS_ERR_INTERNAL, "could not set up the steady solver (SUNDIALS/KLU)");
+  return RS_ERR_INTERNAL;
 }
 
 /* Newton from y: plain with at most plain_iters iterations, then (if that fails)
@@ -223,13 +244,14 @@ static int newton(rs_steady *s, double *y, int plain_iters, int search_iters, rs
                   int *kin_flag)
 {
   const rs_model *m = s->m;
+  const int neq = m->lay.neq;
   double *u = N_VGetArrayPointer(s->u);
   int flag = KIN_MAXITER_REACHED;
   const int strategies[2] = {KIN_NONE, KIN_LINESEARCH}, caps[2] = {plain_iters, search_iters};
   for (int k = 0; k < 2; k++) {
     if (caps[k] <= 0) continue;
     KINSetNumMaxIters(s->kmem, caps[k]);
-    memcpy(u, y, (size_t)m->neq * sizeof *u);
+    memcpy(u, y, (size_t)neq * sizeof *u);
     flag = KINSol(s->kmem, s->u, strategies[k], s->uscale, s->fscale);
     long iters = 0, fevals = 0, lin_iters = 0;
     KINGetNumNonlinSolvIters(s->kmem, &iters);
@@ -246,11 +268,11 @@ static int newton(rs_steady *s, double *y, int plain_iters, int search_iters, rs
       KINGetFuncNorm(s->kmem, &fnorm);
       if (fnorm > 1e-9) flag = KIN_LINESEARCH_NONCONV;
     }
-    if (flag >= 0) break;
+    if (flag >= 0 || s->failed) break;
   }
   *kin_flag = flag;
   if (flag < 0) return RS_ERR_SOLVER;
-  memcpy(y, u, (size_t)m->neq * sizeof *u);
+  memcpy(y, u, (size_t)neq * sizeof *u);
   return RS_OK;
 }
 
@@ -268,32 +290,33 @@ enum { STEP_ITERS = 12, STEADY_TRY_ITERS = 15, MAX_PSEUDO_STEPS = 400 };
 static int pseudo_time_steps(rs_steady *s, double *y, rs_stats *stats)
 {
   const rs_model *m = s->m;
-  const double V = rs_history_eval(&m->velocity, s->t), cell_time = m->dx / V;
+  const int neq = m->lay.neq;
+  const double V = s->in.velocity, cell_time = m->grid.dx / V;
   const double dtau_max = fmax(cell_time, m->hertz_a / V);
   double dtau = cell_time;
   int status = RS_ERR_SOLVER, kin_flag = 0;
-  double *z = malloc((size_t)m->neq * sizeof *z);
+  double *z = malloc((size_t)neq * sizeof *z);
   if (!z) return RS_ERR_INTERNAL;
-  memcpy(z, y, (size_t)m->neq * sizeof *z);
-  for (int step = 0; step < MAX_PSEUDO_STEPS && status != RS_OK; step++) {
-    memcpy(s->y_prev, z, (size_t)m->neq * sizeof *z);
+  memcpy(z, y, (size_t)neq * sizeof *z);
+  for (int step = 0; step < MAX_PSEUDO_STEPS && status != RS_OK && !s->failed; step++) {
+    memcpy(s->y_prev, z, (size_t)neq * sizeof *z);
     s->cj = 1.0 / dtau;
     const long before = stats ? stats->nonlin_iters : 0;
     if (newton(s, z, STEP_ITERS, 0, stats, &kin_flag) != RS_OK) { /* too ambitious: shorter */
-      memcpy(z, s->y_prev, (size_t)m->neq * sizeof *z);
+      memcpy(z, s->y_prev, (size_t)neq * sizeof *z);
       dtau *= 0.5;
       if (dtau < 1e-3 * cell_time) break;
       continue;
     }
     const long used = stats ? stats->nonlin_iters - before : 0;
     double change = 0.0, size = 0.0;
-    for (int i = 0; i < m->n; i++) {
-      change = fmax(change, fabs(z[i] - s->y_prev[i]));
-      size = fmax(size, fabs(z[i]));
+    for (int k = 0; k < m->lay.ncomp * m->lay.n; k++) { /* the tractions */
+      change = fmax(change, fabs(z[k] - s->y_prev[k]));
+      size = fmax(size, fabs(z[k]));
     }
     if (change <= 1e-3 * size) { /* close to steady: try steady Newton from here */
       s->cj = 0.0;
-      memcpy(y, z, (size_t)m->neq * sizeof *y);
+      memcpy(y, z, (size_t)neq * sizeof *y);
       status = newton(s, y, STEADY_TRY_ITERS, 0, stats, &kin_flag);
       if (status == RS_OK) break;
     }
@@ -306,26 +329,27 @@ static int pseudo_time_steps(rs_steady *s, double *y, rs_stats *stats)
 
 /* Last fallback when Newton cycles between active sets (seen with moderate hardening,
  * model.md §9): pseudo-transient continuation, i.e. roll the material through the
- * contact at the inputs of time t (the physical transient, which settles on the
- * steady state), trying Newton from the rolled state after every few contact
- * lengths. */
-static int pseudo_transient(rs_steady *s, double t, double *y, rs_stats *stats, rs_msg *msg)
+ * contact at the inputs of the time being solved (all of them held: velocity, creepage,
+ * shift, load, prescribed force and the rig memory's inflow), which is the physical
+ * transient and settles on the steady state, trying Newton from the rolled state after
+ * every few contact lengths. */
+static int pseudo_transient(rs_steady *s, double *y, rs_stats *stats, rs_msg *msg)
 {
-  rs_model frozen = *s->m; /* shallow copy with the inputs held at their values at t */
   const rs_model *m = s->m;
-  frozen.velocity = (rs_history){.kind = RS_HISTORY_CONSTANT, .value = rs_history_eval(&m->velocity, t)};
-  frozen.creepage = (rs_history){.kind = RS_HISTORY_CONSTANT, .value = rs_history_eval(&m->creepage, t)};
-  frozen.shift = (rs_history){.kind = RS_HISTORY_CONSTANT, .value = rs_history_eval(&m->shift, t)};
-  const double V = frozen.velocity.value, contact_length = 2.0 * m->hertz_a;
+  const int neq = m->lay.neq;
+  rs_inputs frozen = s->in;
+  rs_inputs_freeze(&frozen);
+  const double V = frozen.velocity, contact_length = 2.0 * m->hertz_a;
   const double chunk = 4.0 * contact_length / V, max_time = 400.0 * contact_length / V;
-  double *z = calloc((size_t)m->neq, sizeof *z), *zp = calloc((size_t)m->neq, sizeof *zp);
+  double *z = calloc((size_t)neq, sizeof *z), *zp = calloc((size_t)neq, sizeof *zp);
   rs_work w = {0};
-  int status = (z && zp && rs_work_create(&w, m->n) == RS_OK) ? RS_OK : RS_ERR_INTERNAL;
+  int status = (z && zp && rs_work_create(&w, m) == RS_OK) ? RS_OK : RS_ERR_INTERNAL;
+  if (status != RS_OK) rs_msg_set(msg, status, "out of memory (pseudo-transient)");
   rs_transient *tr = NULL;
   rs_transient_opts o = {.rtol = 1e-6, .atol = 1e-6, .max_order = 5, .max_steps = 1000000,
-                         .max_newton = 10, .t_stop = INFINITY};
-  if (status == RS_OK) status = rs_model_consistent_rates(&frozen, &w, 0.0, z, zp, msg);
-  if (status == RS_OK) status = rs_transient_create(&tr, &frozen, 0.0, z, zp, &o, msg);
+                         .max_newton = 10, .t_stop = INFINITY, .frozen = &frozen};
+  if (status == RS_OK) status = rs_model_consistent_rates(m, &w, &frozen, z, zp, msg);
+  if (status == RS_OK) status = rs_transient_create(&tr, m, s->ctx, 0.0, z, zp, &o, msg);
   int kin_flag = 0;
   double tau = 0.0;
   while (status == RS_OK) {
@@ -334,13 +358,14 @@ static int pseudo_transient(rs_steady *s, double t, double *y, rs_stats *stats, 
       status = rs_msg_set(msg, RS_ERR_SOLVER,
                           "steady solver: Newton cycles between contact regimes and the material "
                           "rolled %.0f contact lengths without settling (t = %g s)",
-                          max_time * V / contact_length, t);
+                          max_time * V / contact_length, s->in.t);
       break;
     }
     status = rs_transient_advance(tr, tau, z, zp, msg);
     if (status != RS_OK) break;
-    memcpy(y, z, (size_t)m->neq * sizeof *y);
+    memcpy(y, z, (size_t)neq * sizeof *y);
     if (newton(s, y, 50, 50, stats, &kin_flag) == RS_OK) break;
+    if (s->failed) status = rs_msg_set(msg, RS_ERR_SOLVER, "%s", s->fail.text);
   }
   if (tr && stats) {
     rs_stats st;
@@ -366,21 +391,23 @@ enum { COARSE_MIN_CELLS = 40 };
 /* grid_sequencing: the coarse solution was found but Newton did not converge from
  * its interpolation, which is left in y as the start of the next fallback. */
 enum { RS_START_ONLY = -1 };
-static int grid_sequencing(rs_steady *s, double t, double *y, rs_stats *stats)
+static int grid_sequencing(rs_steady *s, double *y, rs_stats *stats)
 {
   const rs_model *m = s->m;
-  if (m->n < 2 * COARSE_MIN_CELLS) return RS_ERR_SOLVER;
+  const int nx = m->grid.nx;
+  if (nx < 2 * COARSE_MIN_CELLS) return RS_ERR_SOLVER;
   rs_model coarse;
   rs_msg cmsg = {{0}};
-  if (rs_model_regrid(m, (m->n + 1) / 2, &coarse, &cmsg) != RS_OK) return RS_ERR_SOLVER;
+  if (rs_model_regrid(m, (nx + 1) / 2, &coarse, &cmsg) != RS_OK) return RS_ERR_SOLVER;
   rs_steady *cs = NULL;
   rs_work cw = {0};
-  double *yc = calloc((size_t)coarse.neq, sizeof *yc);
-  int status = yc && rs_work_create(&cw, coarse.n) == RS_OK ? RS_OK : RS_ERR_INTERNAL;
-  if (status == RS_OK) status = rs_steady_create(&cs, &coarse, &cmsg);
-  if (status == RS_OK) status = rs_model_interpolate_state(m, y, &coarse, &cw, t, yc, &cmsg);
+  double *yc = calloc((size_t)coarse.lay.neq, sizeof *yc);
+  int status = yc && rs_work_create(&cw, &coarse) == RS_OK ? RS_OK : RS_ERR_INTERNAL;
+  if (status == RS_OK) status = rs_steady_create(&cs, &coarse, s->ctx, &cmsg);
+  if (status == RS_OK)
+    status = rs_model_interpolate_state(m, y, &coarse, &cw, &s->in, yc, &cmsg);
   rs_stats cst = {0};
-  if (status == RS_OK) status = rs_steady_solve(cs, t, yc, &cst, &cmsg);
+  if (status == RS_OK) status = rs_steady_solve(cs, s->in.t, yc, &cst, &cmsg);
   if (stats) { /* the coarse grids' work counts too */
     stats->steps += cst.steps;
     stats->nonlin_iters += cst.nonlin_iters;
@@ -388,13 +415,14 @@ static int grid_sequencing(rs_steady *s, double t, double *y, rs_stats *stats)
     stats->lin_solves += cst.lin_solves;
   }
   s->coarse_jac_evals += cst.jac_evals;
-  double *z = status == RS_OK ? malloc((size_t)m->neq * sizeof *z) : NULL;
+  double *z = status == RS_OK ? malloc((size_t)m->lay.neq * sizeof *z) : NULL;
   if (status == RS_OK && !z) status = RS_ERR_INTERNAL;
-  if (status == RS_OK) status = rs_model_interpolate_state(&coarse, yc, m, &s->work, t, z, &cmsg);
+  if (status == RS_OK)
+    status = rs_model_interpolate_state(&coarse, yc, m, &s->work, &s->in, z, &cmsg);
   if (status == RS_OK) {
     s->cj = 0.0;
     /* the solution or, when Newton fails (y unchanged), a close start */
-    memcpy(y, z, (size_t)m->neq * sizeof *y);
+    memcpy(y, z, (size_t)m->lay.neq * sizeof *y);
     if (newton(s, y, 10, 40, stats, &(int){0}) != RS_OK) status = RS_START_ONLY;
   }
   free(z);
@@ -408,48 +436,53 @@ static int grid_sequencing(rs_steady *s, double t, double *y, rs_stats *stats)
 int rs_steady_solve(rs_steady *s, double t, double *y, rs_stats *stats, rs_msg *msg)
 {
   const rs_model *m = s->m;
-  const double V = rs_history_eval(&m->velocity, t);
-  if (!(V > 0.0))
-    return rs_msg_set(msg, RS_ERR_INPUT, "steady rolling needs a rolling velocity > 0 (got %g mm/s at t = %g s)", V, t);
-  s->t = t;
+  const int neq = m->lay.neq;
+  rs_model_inputs_at(m, t, &s->in);
+  if (!(s->in.velocity > 0.0))
+    return rs_msg_set(msg, RS_ERR_INPUT,
+                      "steady rolling needs a rolling velocity > 0 (got %g mm/s at t = %g s)",
+                      s->in.velocity, t);
+  s->failed = 0;
   int kin_flag = 0;
   s->cj = 0.0;
-  double *start = malloc((size_t)m->neq * sizeof *start);
+  double *start = malloc((size_t)neq * sizeof *start);
   if (!start) return rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory");
-  memcpy(start, y, (size_t)m->neq * sizeof *start);
+  memcpy(start, y, (size_t)neq * sizeof *start);
   /* From rest, a plastic model goes to the coarse grid at once (Newton from p = 0
    * cycles at the trailing end of the plastic zone on fine grids); otherwise Newton
    * first, from the caller's start (continuation). */
   int cold = 1;
-  for (int i = 0; i < m->n && cold; i++) cold = y[i] == 0.0;
-  const int sequence_first = m->has_plasticity && cold && m->n >= 2 * COARSE_MIN_CELLS;
-  int status = sequence_first ? grid_sequencing(s, t, y, stats) : RS_ERR_SOLVER;
-  if (status == RS_ERR_SOLVER)
+  for (int k = 0; k < m->lay.ncomp * m->lay.n && cold; k++) cold = y[k] == 0.0;
+  const int plastic = m->par.plasticity.on;
+  const int sequence_first = plastic && cold && m->grid.nx >= 2 * COARSE_MIN_CELLS;
+  int status = sequence_first ? grid_sequencing(s, y, stats) : RS_ERR_SOLVER;
+  if (status == RS_ERR_SOLVER && !s->failed)
     /* Plastic models from a continuation start: plain Newton briefly, then the line
      * search, which converged in 6-9 iterations where plain Newton cycled
      * (creep curve, tau_c0 = 200 N/mm^2, k_rel = 0.03, 300 cells). */
-    status = newton(s, y, m->has_plasticity && !cold ? 8 : 50, m->has_plasticity ? 40 : 50, stats,
-                    &kin_flag);
-  if (status == RS_ERR_SOLVER && !sequence_first) status = grid_sequencing(s, t, y, stats);
+    status = newton(s, y, plastic && !cold ? 8 : 50, plastic ? 40 : 50, stats, &kin_flag);
+  if (status == RS_ERR_SOLVER && !sequence_first && !s->failed)
+    status = grid_sequencing(s, y, stats);
   /* Pseudo-time from the interpolated coarse solution when there is one (a few steps
    * settle the trailing end of the plastic zone), else from the caller's start. */
-  if (status != RS_OK) status = pseudo_time_steps(s, y, stats);
+  if (status != RS_OK && !s->failed) status = pseudo_time_steps(s, y, stats);
   int rolled = 0; /* the result comes from rolling the material (the physical path) */
-  if (status == RS_ERR_SOLVER) {
-    memcpy(y, start, (size_t)m->neq * sizeof *y);
-    status = pseudo_transient(s, t, y, stats, msg);
+  if (status == RS_ERR_SOLVER && !s->failed) {
+    memcpy(y, start, (size_t)neq * sizeof *y);
+    status = pseudo_transient(s, y, stats, msg);
     rolled = 1;
   }
+  if (s->failed) status = rs_msg_set(msg, RS_ERR_SOLVER, "%s", s->fail.text);
   /* Every result is checked (rs_model_check_steady): a zero of the residual that is not
    * a physical steady state is refused; the transient path from the caller's start
    * then decides, and its result must pass the same check. */
   rs_msg why = {{0}};
-  if (status == RS_OK && (status = rs_model_check_steady(m, &s->work, t, y, &why)) != RS_OK) {
+  if (status == RS_OK && (status = rs_model_check_steady(m, &s->work, &s->in, y, &why)) != RS_OK) {
     if (stats) stats->refused++;
     if (!rolled && status == RS_ERR_SOLVER) {
-      memcpy(y, start, (size_t)m->neq * sizeof *y);
-      status = pseudo_transient(s, t, y, stats, msg);
-      if (status == RS_OK) status = rs_model_check_steady(m, &s->work, t, y, &why);
+      memcpy(y, start, (size_t)neq * sizeof *y);
+      status = pseudo_transient(s, y, stats, msg);
+      if (status == RS_OK) status = rs_model_check_steady(m, &s->work, &s->in, y, &why);
       else why.text[0] = '\0'; /* msg says why the transient path failed */
     }
     if (status != RS_OK && why.text[0]) rs_msg_set(msg, status, "%s", why.text);

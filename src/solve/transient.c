@@ -15,7 +15,7 @@
 
 struct rs_transient {
   const rs_model *m;
-  SUNContext ctx;
+  SUNContext own_ctx; /* created here when the caller gave none */
   void *ida;
   N_Vector y, yp, atol;
   SUNNonlinearSolver nls;
@@ -23,6 +23,8 @@ struct rs_transient {
   rs_work work;
   double cj; /* of the step being solved: sets the residual scaling r */
   double t;
+  const rs_inputs *frozen; /* NULL, or the inputs held whatever the time */
+  rs_inputs in;            /* the inputs of the last evaluation */
   volatile sig_atomic_t *interrupt;
   int (*step_hook)(void *ctx, double t, const double *y);
   void *hook_ctx;
@@ -40,12 +42,28 @@ static void ida_counters(const rs_transient *tr, rs_stats *st)
   IDAGetNumResEvals(tr->ida, &st->res_evals);
 }
 
+double *rs_transient_cj_slot(rs_transient *tr) { return &tr->cj; }
+
+/* The inputs at time t (held ones when frozen). */
+const rs_inputs *rs_transient_inputs(rs_transient *tr, double t)
+{
+  if (tr->frozen)
+    tr->in = *tr->frozen;
+  else
+    rs_model_inputs_at(tr->m, t, &tr->in);
+  return &tr->in;
+}
+
 static int dae_residual(sunrealtype t, N_Vector y, N_Vector yp, N_Vector rr, void *data)
 {
   rs_transient *tr = data;
   if (tr->interrupt && *tr->interrupt) return -1; /* unrecoverable: IDA stops at once */
-  return rs_model_eval(tr->m, &tr->work, t, N_VGetArrayPointer(y), N_VGetArrayPointer(yp), tr->cj,
-                       N_VGetArrayPointer(rr), NULL);
+  /* a model that cannot be evaluated (the normal problem failed) is not cured by a
+   * smaller step: unrecoverable, the reason stays in tr->work.msg */
+  return rs_model_residual(tr->m, &tr->work, rs_transient_inputs(tr, t), N_VGetArrayPointer(y),
+                           N_VGetArrayPointer(yp), tr->cj, N_VGetArrayPointer(rr)) == RS_OK
+             ? 0
+             : -1;
 }
 
 void rs_transient_free(rs_transient *tr)
@@ -58,83 +76,95 @@ void rs_transient_free(rs_transient *tr)
   if (tr->yp) N_VDestroy(tr->yp);
   if (tr->atol) N_VDestroy(tr->atol);
   rs_work_free(&tr->work);
-  if (tr->ctx) SUNContext_Free(&tr->ctx);
+  if (tr->own_ctx) SUNContext_Free(&tr->own_ctx);
   free(tr);
 }
 
-int rs_transient_create(rs_transient **out, const rs_model *m, double t0, const double *y0,
-                        const double *yp0, const rs_transient_opts *o, rs_msg *msg)
+int rs_transient_create(rs_transient **out, const rs_model *m, SUNContext ctx, double t0,
+                        const double *y0, const double *yp0, const rs_transient_opts *o,
+                        rs_msg *msg)
 {
   *out = NULL;
   rs_transient *tr = calloc(1, sizeof *tr);
   if (!tr) return rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory (transient solver)");
+  static const char what[] = "transient solver";
   tr->m = m;
+  if (!ctx && SUNContext_Create(NULL, &tr->own_ctx) != 0) {
+    free(tr);
+    return rs_msg_set(msg, RS_ERR_INTERNAL, "could not create the SUNDIALS context");
+  }
+  ctx = ctx ? ctx : tr->own_ctx;
   tr->t = t0;
   tr->interrupt = o->interrupt;
   tr->step_hook = o->step_hook;
   tr->hook_ctx = o->hook_ctx;
-  const int n = m->n;
+  tr->frozen = o->frozen;
+  const rs_layout *L = &m->lay;
+  const int neq = L->neq;
   N_Vector id = NULL; /* differential/algebraic components (force control) */
-  if (SUNContext_Create(NULL, &tr->ctx) != 0) goto fail;
-  tr->y = N_VNew_Serial(m->neq, tr->ctx);
-  tr->yp = N_VNew_Serial(m->neq, tr->ctx);
-  tr->atol = N_VNew_Serial(m->neq, tr->ctx);
-  if (!tr->y || !tr->yp || !tr->atol) goto fail;
-  /* IDA's work vectors are clones of y: they inherit the optimised kernels. */
-  if (rs_nvector_fast_ops(tr->y) != RS_OK || rs_nvector_fast_ops(tr->yp) != RS_OK ||
-      rs_nvector_fast_ops(tr->atol) != RS_OK)
+  tr->y = N_VNew_Serial(neq, ctx);
+  tr->yp = N_VNew_Serial(neq, ctx);
+  tr->atol = N_VNew_Serial(neq, ctx);
+  if (!tr->y || !tr->yp || !tr->atol || rs_work_create(&tr->work, m) != RS_OK ||
+      rs_linsys_create(&tr->ls, m, tr->y, ctx) != RS_OK) {
+    rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory (transient solver, %d unknowns)", neq);
     goto fail;
-  memcpy(N_VGetArrayPointer(tr->y), y0, (size_t)m->neq * sizeof *y0);
-  memcpy(N_VGetArrayPointer(tr->yp), yp0, (size_t)m->neq * sizeof *yp0);
+  }
+  /* IDA's work vectors are clones of y: they inherit the optimised kernels. */
+  RS_SUN_CHECK(rs_nvector_fast_ops(tr->y), msg, what);
+  RS_SUN_CHECK(rs_nvector_fast_ops(tr->yp), msg, what);
+  RS_SUN_CHECK(rs_nvector_fast_ops(tr->atol), msg, what);
+  memcpy(N_VGetArrayPointer(tr->y), y0, (size_t)neq * sizeof *y0);
+  memcpy(N_VGetArrayPointer(tr->yp), yp0, (size_t)neq * sizeof *yp0);
   /* Absolute tolerances: tractions in N/mm^2 as given; plastic displacements in mm,
    * scaled to the contact size (model.md §9: about 1e-4 rtol a). */
   double *at = N_VGetArrayPointer(tr->atol);
-  for (int i = 0; i < n; i++) {
-    at[i] = o->atol;
-    at[n + i] = at[2 * n + i] = 1e-4 * o->rtol * m->hertz_a;
-  }
+  for (int k = 0; k < rs_at_upl(L, 0, 0); k++) at[k] = o->atol;
+  for (int k = rs_at_upl(L, 0, 0); k < rs_at_extra(L, 0); k++) at[k] = 1e-4 * o->rtol * m->hertz_a;
   /* With force control the creepage is an algebraic unknown fixed by a constraint on
-   * differential ones (sum p dx = F_x): left out of the error test, as IDA allows. */
-  if (m->force_control) {
-    at[3 * n] = 1e-4 * o->rtol;
-    if (!(id = N_VNew_Serial(m->neq, tr->ctx)) || rs_nvector_fast_ops(id) != RS_OK) goto fail;
+   * differential ones (sum p dA = F_x): left out of the error test, as IDA allows. */
+  if (L->nextra > 0) {
+    id = N_VNew_Serial(neq, ctx);
+    RS_SUN_CHECK(id == NULL, msg, what);
+    RS_SUN_CHECK(rs_nvector_fast_ops(id), msg, what);
     N_VConst(1.0, id);
-    N_VGetArrayPointer(id)[3 * n] = 0.0;
+    for (int k = 0; k < L->nextra; k++) {
+      at[rs_at_extra(L, k)] = 1e-4 * o->rtol;
+      N_VGetArrayPointer(id)[rs_at_extra(L, k)] = 0.0;
+    }
   }
-  if (rs_work_create(&tr->work, n) != RS_OK) goto fail;
-  if (rs_linsys_create(&tr->ls, m, tr->y, tr->ctx) != RS_OK) goto fail;
   /* Linear algebra: the Schur-complement solver (linsys_reduced.h) whenever the model
-   * has the 3 n per-cell unknowns only, KLU on the whole matrix otherwise (as the
-   * steady solver does). */
-  const rs_linear linear = m->neq != 3 * n ? RS_LINEAR_KLU : o->linear;
-  if (linear != RS_LINEAR_KLU && rs_linsys_use_reduced(&tr->ls, m, tr->ctx) != RS_OK) goto fail;
+   * has the per-cell unknowns only, KLU on the whole matrix otherwise (as the steady
+   * solver does). */
+  const rs_linear linear = L->nextra > 0 ? RS_LINEAR_KLU : o->linear;
+  if (linear != RS_LINEAR_KLU)
+    RS_SUN_CHECK(rs_linsys_use_reduced(&tr->ls, m, &tr->work, ctx), msg, what);
   tr->cj = 0.0;
-  tr->nls = rs_nls_kinsol_create(m, &tr->work, &tr->ls, &tr->cj, o->max_newton, tr->y, tr->ctx);
-  if (!tr->nls) goto fail;
-  tr->ida = IDACreate(tr->ctx);
-  if (!tr->ida) goto fail;
-  int flag = IDAInit(tr->ida, dae_residual, t0, tr->y, tr->yp);
-  flag |= IDASVtolerances(tr->ida, o->rtol, tr->atol);
-  flag |= IDASetUserData(tr->ida, tr);
-  flag |= IDASetNonlinearSolver(tr->ida, tr->nls);
-  flag |= IDASetMaxOrd(tr->ida, o->max_order);
-  flag |= IDASetMaxNumSteps(tr->ida, o->max_steps > 0 ? o->max_steps : 1000000);
-  flag |= IDASetErrHandlerFn(tr->ida, rs_sundials_silent, NULL);
-  if (isfinite(o->t_stop)) flag |= IDASetStopTime(tr->ida, o->t_stop);
-  if (o->max_step > 0.0) flag |= IDASetMaxStep(tr->ida, o->max_step);
+  tr->nls = rs_nls_kinsol_create(m, &tr->work, &tr->ls, tr, o->max_newton, tr->y, ctx);
+  RS_SUN_CHECK(tr->nls == NULL, msg, what);
+  tr->ida = IDACreate(ctx);
+  RS_SUN_CHECK(tr->ida == NULL, msg, what);
+  RS_SUN_CHECK(IDAInit(tr->ida, dae_residual, t0, tr->y, tr->yp), msg, what);
+  RS_SUN_CHECK(IDASVtolerances(tr->ida, o->rtol, tr->atol), msg, what);
+  RS_SUN_CHECK(IDASetUserData(tr->ida, tr), msg, what);
+  RS_SUN_CHECK(IDASetNonlinearSolver(tr->ida, tr->nls), msg, what);
+  RS_SUN_CHECK(IDASetMaxOrd(tr->ida, o->max_order), msg, what);
+  RS_SUN_CHECK(IDASetMaxNumSteps(tr->ida, o->max_steps > 0 ? o->max_steps : 1000000), msg, what);
+  RS_SUN_CHECK(IDASetErrHandlerFn(tr->ida, rs_sundials_silent, NULL), msg, what);
+  if (isfinite(o->t_stop)) RS_SUN_CHECK(IDASetStopTime(tr->ida, o->t_stop), msg, what);
+  if (o->max_step > 0.0) RS_SUN_CHECK(IDASetMaxStep(tr->ida, o->max_step), msg, what);
   if (id) {
-    flag |= IDASetId(tr->ida, id);
-    flag |= IDASetSuppressAlg(tr->ida, SUNTRUE);
+    RS_SUN_CHECK(IDASetId(tr->ida, id), msg, what);
+    RS_SUN_CHECK(IDASetSuppressAlg(tr->ida, SUNTRUE), msg, what);
     N_VDestroy(id);
     id = NULL;
   }
-  if (flag != 0) goto fail;
   *out = tr;
   return RS_OK;
 fail:
   if (id) N_VDestroy(id);
   rs_transient_free(tr);
-  return rs_msg_set(msg, RS_ERR_INTERNAL, "could not set up the transient solver (SUNDIALS/KLU)");
+  return RS_ERR_INTERNAL;
 }
 
 /* With a step hook: one IDA step at a time, the hook after each, then the solution
@@ -175,6 +205,10 @@ int rs_transient_advance(rs_transient *tr, double tout, double *y, double *yp, r
     IDAGetCurrentTime(tr->ida, &tret);
     return rs_msg_set(msg, RS_ERR_INTERRUPTED, "interrupted at t = %.6g s", tret);
   }
+  if (flag < 0 && tr->work.msg.text[0]) { /* the model could not be evaluated */
+    IDAGetCurrentTime(tr->ida, &tret);
+    return rs_msg_set(msg, RS_ERR_SOLVER, "at t = %.9g s: %s", tret, tr->work.msg.text);
+  }
   if (flag < 0) {
     char *name = IDAGetReturnFlagName(flag);
     sunrealtype h = 0.0;
@@ -191,8 +225,8 @@ int rs_transient_advance(rs_transient *tr, double tout, double *y, double *yp, r
     return RS_ERR_SOLVER;
   }
   tr->t = tret;
-  memcpy(y, N_VGetArrayPointer(tr->y), (size_t)tr->m->neq * sizeof *y);
-  memcpy(yp, N_VGetArrayPointer(tr->yp), (size_t)tr->m->neq * sizeof *yp);
+  memcpy(y, N_VGetArrayPointer(tr->y), (size_t)tr->m->lay.neq * sizeof *y);
+  memcpy(yp, N_VGetArrayPointer(tr->yp), (size_t)tr->m->lay.neq * sizeof *yp);
   return RS_OK;
 }
 
@@ -206,8 +240,8 @@ int rs_transient_restart(rs_transient *tr, double t, const double *y, const doub
   tr->before_restart.nonlin_fails += seg.nonlin_fails;
   tr->before_restart.err_test_fails += seg.err_test_fails;
   tr->before_restart.res_evals += seg.res_evals;
-  memcpy(N_VGetArrayPointer(tr->y), y, (size_t)tr->m->neq * sizeof *y);
-  memcpy(N_VGetArrayPointer(tr->yp), yp, (size_t)tr->m->neq * sizeof *yp);
+  memcpy(N_VGetArrayPointer(tr->y), y, (size_t)tr->m->lay.neq * sizeof *y);
+  memcpy(N_VGetArrayPointer(tr->yp), yp, (size_t)tr->m->lay.neq * sizeof *yp);
   int flag = IDAReInit(tr->ida, t, tr->y, tr->yp);
   if (flag == 0 && isfinite(t_stop)) flag = IDASetStopTime(tr->ida, t_stop);
   if (flag != 0)

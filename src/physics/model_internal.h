@@ -1,0 +1,40 @@
+/* Internal to the model (rollsim/model.h), split by concept:
+ *   model.c           creation, inputs, normal pressure, kinematics, residual
+ *   model_jacobian.c  Jacobian assembly (whole or near field), J v, row structure
+ *   model_state.c     consistent rates, projection and interpolation of states
+ *   model_check.c     reported quantities and the check of steady states */
+#ifndef ROLLSIM_MODEL_INTERNAL_H
+#define ROLLSIM_MODEL_INTERNAL_H
+
+#include "rollsim/model.h"
+
+/* Transport terms shared by residual, Jacobian, rates and diagnostics: u_el on the
+ * padded grid, its rate, and the material derivatives of u_el, u_pl, u*:
+ *   (D f/Dt)_I = f'_I - V (f_up(I) - f_I)/dx   (first-order upwind, model.md §5)
+ *   v_s = V w + v_shift + Du_el/Dt + Du_pl/Dt,  u_el = A p + (h3/G3) p.
+ * With in->linear the rigid slip and the inflow state are left out (the linear part,
+ * for J v). */
+void rs_model_kinematics(const rs_model *m, rs_work *w, const rs_inputs *in, const double *y,
+                         const double *yp);
+
+/* State (u_pl, u*) of the material entering at the leading edge: fresh (0), or the
+ * twin-disc memory at in->t; none in the linear part. */
+void rs_model_inflow(const rs_model *m, const rs_inputs *in, double *upl, double *ustar);
+
+/* Pressure for a load: the discrete normal solution or the Hertz pressure, as the
+ * parameters say (approach may be NULL). */
+int rs_model_pressure(const rs_model *m, rs_elastic_work *ew, double load, double *pn,
+                      double *approach, rs_msg *msg);
+
+/* Kinematics and the local laws of every cell into w (jac: with their local Jacobians),
+ * and the residual into F when F is not NULL. */
+int rs_model_evaluate(const rs_model *m, rs_work *w, const rs_inputs *in, const double *y,
+                      const double *yp, double cj, double *F, int jac);
+
+/* The local law of cell I from the kinematics in w (jac: also its local Jacobian). */
+void rs_model_cell_law(const rs_model *m, const rs_work *w, const double *y, int I, int jac,
+                       rs_law_out *out);
+
+static inline double rs_sign_of(double v) { return v > 0.0 ? 1.0 : (v < 0.0 ? -1.0 : 0.0); }
+
+#endif

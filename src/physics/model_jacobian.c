@@ -1,0 +1,216 @@
+/* The generalized Jacobian of the model (rollsim/model.h): each row is the contact law's
+ * local row (rollsim/contact_law.h) chained with the derivatives of the local variables:
+ *   p_c(I)         -> 1 on p_c(I)
+ *   v_s,c(I)       -> cj A_cb(I-J) - a (A_cb(up-J) - A_cb(I-J)) on p_b(J) (+ the layer
+ *                     (cj + a) c3 on p_c(I), -a c3 on p_c(up)), cj + a on u_pl,c(I),
+ *                     -a on u_pl,c(up), V on the creepage (force control)
+ *   Du_pl,c/Dt(I)  -> cj + a on u_pl,c(I), -a on u_pl,c(up)
+ *   Dustar/Dt(I)   -> cj + a on u*(I), -a on u*(up)
+ *   u*(I)          -> 1 on u*(I)
+ * with a = V/dx and up the upstream neighbour (model.md §5). The same chain gives exact
+ * J v products: the local rows applied to the kinematics of v. */
+#include <math.h>
+#include <string.h>
+
+#include "physics/model_internal.h"
+
+/* Append an entry to the current row of a CSR matrix. */
+static void csr_put(rs_csr *J, int64_t col, double val)
+{
+  const int64_t k = J->rowptr[J->nrows + 1]++; /* rowptr[nrows + 1]: end of the open row */
+  J->col[k] = col;
+  J->val[k] = val;
+}
+
+static void csr_next_row(rs_csr *J)
+{
+  J->nrows++;
+  if (J->nrows < J->cap_rows) J->rowptr[J->nrows + 1] = J->rowptr[J->nrows];
+}
+
+int64_t rs_model_jac_capacity(const rs_model *m, int band)
+{
+  const rs_layout *L = &m->lay;
+  const int64_t n = L->n, nc = L->ncomp;
+  int64_t near = nc * n;
+  if (band > 0) {
+    const int64_t bx = 2 * (int64_t)band + 1 < m->grid.nx ? 2 * (int64_t)band + 1 : m->grid.nx;
+    const int64_t by = 2 * (int64_t)band + 1 < m->grid.ny ? 2 * (int64_t)band + 1 : m->grid.ny;
+    near = nc * bx * by;
+  }
+  /* traction rows: near field, own plastic displacements, extras; plasticity rows: at
+   * most the traction, u* and two plastic displacements; u* rows: four entries; force
+   * rows: every traction and the extras */
+  return nc * n * (near + 2 * nc + L->nextra) + nc * n * (2 + 2 * nc) + n * (2 * nc + 2) +
+         L->nextra * (nc * n + L->nextra);
+}
+
+/* The sparse columns of a local row (everything but the tractions), in column order:
+ * u_pl,c(I), u_pl,c(up) per component, u*(I), u*(up), the extras. */
+typedef struct sparse_cols {
+  double upl[RS_MAX_COMP][2], us[2], extra[RS_MAX_COMP];
+  unsigned char has_upl[RS_MAX_COMP][2], has_us[2], has_extra[RS_MAX_COMP];
+} sparse_cols;
+
+static void add(double *v, unsigned char *has, double x)
+{
+  *v = *has ? *v + x : x;
+  *has = 1;
+}
+
+/* Traction row of cell I, local row lr: its entries in the columns of the tractions. */
+static void put_traction_columns(const rs_model *m, const rs_law_out *o, int lr, int I, double cj,
+                                 double a, int band, rs_csr *J)
+{
+  const rs_layout *L = &m->lay;
+  const int nc = L->ncomp, nx = m->grid.nx;
+  int any_vs = 0;
+  for (int c = 0; c < nc; c++) any_vs |= o->present[lr][rs_law_var_vs(nc, c)];
+  const int ix = I % nx, iy = I / nx, up = rs_grid_upstream(&m->grid, I);
+  const double c3 = m->layer_flex;
+  for (int b = 0; b < nc; b++) {
+    const double cp = o->jac[lr][rs_law_var_p(b)];
+    const int has_p = o->present[lr][rs_law_var_p(b)];
+    if (!any_vs && band == 0) { /* sparse: the traction of the cell itself */
+      if (has_p) csr_put(J, rs_at_p(L, b, I), cp);
+      continue;
+    }
+    const int jx0 = band > 0 && ix > band ? ix - band : 0;
+    const int jx1 = band > 0 && ix + band < nx ? ix + band + 1 : nx;
+    const int jy0 = band > 0 && iy > band ? iy - band : 0;
+    const int jy1 = band > 0 && iy + band < m->grid.ny ? iy + band + 1 : m->grid.ny;
+    for (int jy = jy0; jy < jy1; jy++)
+      for (int jx = jx0; jx < jx1; jx++) {
+        const int Jc = jy * nx + jx, kx = ix - jx, ky = iy - jy;
+        double v = 0.0;
+        for (int c = 0; c < nc && any_vs; c++) {
+          if (!o->present[lr][rs_law_var_vs(nc, c)]) continue;
+          /* r dv_s/dp_j = r [cj A(i-j) - a (A(i+1-j) - A(i-j))] (+ layer on the diagonal) */
+          const double A0 = rs_elastic_op_coef(&m->el, c, b, kx, ky);
+          double d = cj * A0 - a * (rs_elastic_op_coef(&m->el, c, b, kx + 1, ky) - A0);
+          if (b == c && Jc == I) d += (cj + a) * c3;
+          if (b == c && Jc == up) d -= a * c3;
+          v += o->jac[lr][rs_law_var_vs(nc, c)] * d;
+        }
+        if (has_p && Jc == I) v += cp;
+        csr_put(J, rs_at_p(L, b, Jc), v);
+      }
+  }
+}
+
+/* One residual row of cell I (local row lr), all columns, sorted. */
+static void put_row(const rs_model *m, const rs_law_out *o, int lr, int I, const rs_inputs *in,
+                    double cj, int band, int traction_row, rs_csr *J)
+{
+  const rs_layout *L = &m->lay;
+  const int nc = L->ncomp;
+  const double a = in->velocity / m->grid.dx, V = in->velocity;
+  put_traction_columns(m, o, lr, I, cj, a, traction_row ? band : 0, J);
+  sparse_cols s;
+  memset(&s, 0, sizeof s);
+  for (int c = 0; c < nc; c++) {
+    const int vs = rs_law_var_vs(nc, c), fl = rs_law_var_flow(nc, c);
+    if (o->present[lr][vs]) {
+      add(&s.upl[c][0], &s.has_upl[c][0], o->jac[lr][vs] * (cj + a));
+      add(&s.upl[c][1], &s.has_upl[c][1], o->jac[lr][vs] * -a);
+      if (c < L->nextra) add(&s.extra[c], &s.has_extra[c], o->jac[lr][vs] * V);
+    }
+    if (o->present[lr][fl]) {
+      add(&s.upl[c][0], &s.has_upl[c][0], o->jac[lr][fl] * (cj + a));
+      add(&s.upl[c][1], &s.has_upl[c][1], o->jac[lr][fl] * -a);
+    }
+  }
+  const int dus = rs_law_var_dustar(nc), us = rs_law_var_ustar(nc);
+  if (o->present[lr][dus]) {
+    add(&s.us[0], &s.has_us[0], o->jac[lr][dus] * (cj + a));
+    add(&s.us[1], &s.has_us[1], o->jac[lr][dus] * -a);
+  }
+  if (o->present[lr][us]) add(&s.us[0], &s.has_us[0], o->jac[lr][us]);
+  /* Near field: a traction row keeps its own plastic displacements (and the extras),
+   * zeros included, so that the pattern does not depend on the branches. */
+  const int fixed = traction_row && band > 0;
+  const int up = rs_grid_upstream(&m->grid, I);
+  for (int c = 0; c < nc; c++) {
+    if (s.has_upl[c][0] || fixed) csr_put(J, rs_at_upl(L, c, I), s.upl[c][0]);
+    if (up >= 0 && (s.has_upl[c][1] || fixed)) csr_put(J, rs_at_upl(L, c, up), s.upl[c][1]);
+  }
+  if (s.has_us[0]) csr_put(J, rs_at_ustar(L, I), s.us[0]);
+  if (up >= 0 && s.has_us[1]) csr_put(J, rs_at_ustar(L, up), s.us[1]);
+  for (int k = 0; k < L->nextra; k++)
+    if (s.has_extra[k] || fixed) csr_put(J, rs_at_extra(L, k), s.extra[k]);
+  csr_next_row(J);
+}
+
+int rs_model_jacobian(const rs_model *m, rs_work *w, const rs_inputs *in, const double *y,
+                      const double *yp, double cj, int band, rs_csr *J)
+{
+  const rs_layout *L = &m->lay;
+  const int n = L->n, nc = L->ncomp;
+  const int status = rs_model_evaluate(m, w, in, y, yp, cj, NULL, 1);
+  if (status != RS_OK) return status;
+  for (int i = 0; i < n; i++) {
+    for (int c = 0; c < nc; c++) {
+      const int row = rs_law_row_f(c), k = rs_at_p(L, c, i);
+      w->dense[k] = 0;
+      for (int b = 0; b < nc; b++) w->dense[k] |= w->law[i].present[row][rs_law_var_vs(nc, b)];
+      w->pivot[k] = w->law[i].pins_p ? rs_at_upl(L, c, i) : k;
+    }
+  }
+  /* Rows in the order of the unknowns (rollsim/layout.h). */
+  J->nrows = 0;
+  J->cap_rows = L->neq;
+  J->rowptr[0] = J->rowptr[1] = 0;
+  for (int c = 0; c < nc; c++)
+    for (int i = 0; i < n; i++) put_row(m, &w->law[i], rs_law_row_f(c), i, in, cj, band, 1, J);
+  for (int c = 0; c < nc; c++)
+    for (int i = 0; i < n; i++)
+      put_row(m, &w->law[i], rs_law_row_pl(nc, c), i, in, cj, band, 0, J);
+  for (int i = 0; i < n; i++) put_row(m, &w->law[i], rs_law_row_star(nc), i, in, cj, band, 0, J);
+  /* Force rows: (dA sum p_k - F_k)/(2a). */
+  const double force_row = m->grid.area / (2.0 * m->hertz_a);
+  for (int k = 0; k < L->nextra; k++) {
+    for (int j = 0; j < n; j++) csr_put(J, rs_at_p(L, k, j), force_row);
+    csr_put(J, rs_at_extra(L, k), 0.0); /* structural: the pattern of the bordered system */
+    csr_next_row(J);
+  }
+  return RS_OK;
+}
+
+int rs_model_jv(const rs_model *m, const rs_work *w, rs_work *wlin, const rs_inputs *in,
+                double cj, const double *v, double *Jv)
+{
+  const rs_layout *L = &m->lay;
+  const int n = L->n, nc = L->ncomp;
+  /* Kinematics of v: the linear part (no rigid slip, no inflow), with v' = cj v. */
+  rs_inputs lin = *in;
+  lin.linear = 1;
+  for (int k = 0; k < L->neq; k++) Jv[k] = cj * v[k]; /* Jv holds v' until the rows are set */
+  rs_model_kinematics(m, wlin, &lin, v, Jv);
+  for (int i = 0; i < n; i++) {
+    const rs_law_out *o = &w->law[i];
+    double d[RS_LAW_NVAR];
+    for (int c = 0; c < nc; c++) {
+      d[rs_law_var_p(c)] = v[rs_at_p(L, c, i)];
+      d[rs_law_var_vs(nc, c)] = wlin->vslip[c * n + i];
+      d[rs_law_var_flow(nc, c)] = wlin->dupl[c * n + i];
+    }
+    d[rs_law_var_dustar(nc)] = wlin->dustar[i];
+    d[rs_law_var_ustar(nc)] = v[rs_at_ustar(L, i)];
+    for (int lr = 0; lr < 2 * nc + 1; lr++) {
+      double sum = 0.0;
+      for (int q = 0; q < 3 * nc + 2; q++)
+        if (o->present[lr][q]) sum += o->jac[lr][q] * d[q];
+      const int row = lr < nc ? rs_at_p(L, lr, i)
+                      : lr < 2 * nc ? rs_at_upl(L, lr - nc, i)
+                                    : rs_at_ustar(L, i);
+      Jv[row] = sum;
+    }
+  }
+  const double force_row = m->grid.area / (2.0 * m->hertz_a);
+  for (int k = 0; k < L->nextra; k++) {
+    double sum = 0.0;
+    for (int j = 0; j < n; j++) sum += v[rs_at_p(L, k, j)];
+    Jv[rs_at_extra(L, k)] = force_row * sum;
+  }
+  return RS_OK;
+}
