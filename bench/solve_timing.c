@@ -13,7 +13,7 @@
 
 #include "rollsim/model.h"
 #include "rollsim/run.h"
-#include "rollsim/solver.h"
+#include "rollsim/steady.h"
 #include "bench_util.h"
 #include "base/util.h" /* rs_wall_clock */
 

@@ -14,7 +14,7 @@
 #include <stdlib.h>
 
 #include "rollsim/model.h"
-#include "rollsim/solver.h"
+#include "rollsim/steady.h"
 #include "test_support.h"
 
 static double force_of(const rs_model *m, const double *y)

@@ -20,7 +20,7 @@
  * cannot make room for a broken path. Cases: Carter elastic start-up, and the
  * Figure 7 plastic case (k_rel = 0.6), 100 cells, 6 contact lengths rolled. */
 #include "rollsim/model.h"
-#include "rollsim/solver.h"
+#include "rollsim/steady.h"
 #include "test_support.h"
 
 #include <stdlib.h>

@@ -10,7 +10,7 @@
 #include <stdlib.h>
 
 #include "rollsim/model.h"
-#include "rollsim/solver.h"
+#include "rollsim/steady.h"
 #include "test_support.h"
 
 static double total_force(const rs_model *m, const double *y)

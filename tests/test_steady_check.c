@@ -12,7 +12,7 @@
 #include <stdlib.h>
 
 #include "rollsim/model.h"
-#include "rollsim/solver.h"
+#include "rollsim/steady.h"
 #include "test_support.h"
 
 static int read_state(const char *path, const rs_model *m, double *y)

@@ -7,7 +7,7 @@
 #include <stdlib.h>
 
 #include "rollsim/model.h"
-#include "rollsim/solver.h"
+#include "rollsim/steady.h"
 #include "test_support.h"
 
 /* Returns the rolled distance (mm) after which the force stays within tol of the

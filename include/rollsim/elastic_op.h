@@ -8,7 +8,7 @@
 #ifndef ROLLSIM_ELASTIC_OP_H
 #define ROLLSIM_ELASTIC_OP_H
 
-#include "rollsim/elastic.h"
+#include "rollsim/elastic2d.h"
 #include "rollsim/grid.h"
 #include "rollsim/status.h"
 

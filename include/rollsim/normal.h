@@ -8,7 +8,7 @@
 
 #include <math.h>
 
-#include "rollsim/elastic.h"
+#include "rollsim/elastic2d.h"
 #include "rollsim/elastic_op.h"
 #include "rollsim/status.h"
 

@@ -7,7 +7,7 @@
 #include <stddef.h>
 #include "rollsim/case.h"
 #include "rollsim/model.h"
-#include "rollsim/solver.h"
+#include "rollsim/steady.h"
 #include "rollsim/status.h"
 
 typedef struct rs_run_opts {

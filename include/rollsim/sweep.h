@@ -8,25 +8,9 @@
 
 #include <stddef.h>
 #include "rollsim/case.h"
+#include "rollsim/case_sweep.h"
 #include "rollsim/run.h"
 #include "rollsim/status.h"
-
-typedef struct rs_sweep_axis {
-  char *key;      /* dotted case key, e.g. "rolling.creepage" */
-  int n;          /* number of values */
-  double *values; /* [n] */
-} rs_sweep_axis;
-
-typedef struct rs_sweep {
-  int naxes;
-  rs_sweep_axis *axes; /* in file order; the last varies fastest */
-  size_t npoints;      /* product of the axis lengths */
-} rs_sweep;
-
-/* Read the sweep block of a case file (after the --set assignments). Errors name
- * file:line and the key; every swept value is validated by loading the case with it. */
-int rs_sweep_load(rs_sweep *s, const char *path, const char *const *sets, int nsets, rs_msg *msg);
-void rs_sweep_free(rs_sweep *s);
 
 /* Point results (the scalars of the sweep file). */
 typedef struct rs_sweep_result {

@@ -11,7 +11,7 @@
 
 #include "rollsim/model.h"
 #include "rollsim/output.h"
-#include "rollsim/solver.h"
+#include "rollsim/steady.h"
 #include "rollsim/sweep.h"
 #include "base/util.h"
 

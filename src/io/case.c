@@ -4,7 +4,7 @@
  *   end_time = rolled_distance/V when the rolled distance is given. */
 #define _POSIX_C_SOURCE 200809L
 #include "io/case_internal.h"
-#include "rollsim/elastic.h" /* RS_PI */
+#include "rollsim/elastic2d.h" /* RS_PI */
 #include "rollsim/normal.h"  /* rs_hertz2d */
 
 #include <math.h>

@@ -8,7 +8,7 @@
 #include <string.h>
 
 #include "io/case_internal.h"
-#include "rollsim/sweep.h"
+#include "rollsim/case_sweep.h"
 
 void rs_sweep_free(rs_sweep *s)
 {

@@ -20,7 +20,7 @@
  * convolution from RS_ELASTIC_FFT_FROM cells). r and u = A p follow the recurrences
  * r -= tau P A t, u -= tau A t while C stays; they are recomputed from p after a
  * change of C and to confirm convergence. */
-#include "physics/normal_internal.h"
+#include "physics/normal_methods.h"
 
 #include <math.h>
 #include <stdlib.h>

@@ -14,7 +14,7 @@
 #include <sundials/sundials_nvector.h>
 
 #include "rollsim/model.h"
-#include "rollsim/solver.h"
+#include "rollsim/steady.h"
 
 typedef struct rs_linsys {
   SUNMatrix J;

@@ -14,8 +14,7 @@ typedef struct nls_content {
   const rs_model *m;
   rs_work *w;
   rs_linsys *ls;
-  struct rs_transient *tr;
-  double *cj_slot;
+  rs_nls_host host;
   int max_iters;
   SUNNonlinSolSysFn sysfn;
   void *ida_mem;
@@ -52,7 +51,7 @@ static int kin_jacobian(N_Vector ycor, N_Vector f, SUNMatrix J, void *data, N_Ve
     c->ybuf[i] = yv[i] + dc[i];
     c->ypbuf[i] = ypv[i] + cj * dc[i];
   }
-  return rs_linsys_assemble(c->ls, c->m, c->w, rs_transient_inputs(c->tr, tcur), c->ybuf,
+  return rs_linsys_assemble(c->ls, c->m, c->w, c->host.inputs_at(c->host.ctx, tcur), c->ybuf,
                             c->ypbuf, cj) == RS_OK
              ? 0
              : -1;
@@ -75,13 +74,13 @@ static int nls_solve(SUNNonlinearSolver nls, N_Vector y0, N_Vector ycor, N_Vecto
   N_Vector ypred, yppred, yn, ypn, res;
   void *udata;
   IDAGetNonlinearSystemData(mem, &tcur, &ypred, &yppred, &yn, &ypn, &res, &cj, &udata);
-  *c->cj_slot = cj;
+  *c->host.cj_slot = cj;
 
   /* Scales: each residual row divided by its diagonal of the iteration matrix
    * (1 for traction rows by the choice of r; r (cj + V/dx) for the transport rows). */
   const rs_model *m = c->m;
   const rs_layout *L = &m->lay;
-  const rs_inputs *in = rs_transient_inputs(c->tr, tcur);
+  const rs_inputs *in = c->host.inputs_at(c->host.ctx, tcur);
   const double r = rs_model_scaling(m, in, cj);
   const double diag_transport = r * (cj + in->velocity / m->grid.dx);
   const double *wv = N_VGetArrayPointer(w);
@@ -177,7 +176,7 @@ static int nls_getnumconvfails(SUNNonlinearSolver nls, long *fails)
 }
 
 SUNNonlinearSolver rs_nls_kinsol_create(const rs_model *m, rs_work *w, rs_linsys *ls,
-                                        struct rs_transient *tr, int max_iters, N_Vector tmpl,
+                                        rs_nls_host host, int max_iters, N_Vector tmpl,
                                         SUNContext ctx)
 {
   SUNNonlinearSolver nls = SUNNonlinSolNewEmpty(ctx);
@@ -197,8 +196,7 @@ SUNNonlinearSolver rs_nls_kinsol_create(const rs_model *m, rs_work *w, rs_linsys
   c->m = m;
   c->w = w;
   c->ls = ls;
-  c->tr = tr;
-  c->cj_slot = rs_transient_cj_slot(tr);
+  c->host = host;
   c->max_iters = max_iters > 0 ? max_iters : 10;
   c->uscale = N_VClone(tmpl);
   c->fscale = N_VClone(tmpl);

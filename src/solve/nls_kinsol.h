@@ -10,16 +10,18 @@
 
 #include "solve/linsys.h"
 
-/* The transient integrator the solver serves: the DAE residual reads the current cj
- * from it (it sets the scaling r), and the inputs at a time come from it (held ones
- * when frozen). */
-struct rs_transient;
-double *rs_transient_cj_slot(struct rs_transient *tr);
-const rs_inputs *rs_transient_inputs(struct rs_transient *tr, double t);
+/* What the solver needs from the integrator it serves: where the DAE residual reads
+ * the current cj (it sets the scaling r), and the model's inputs at a time (held ones
+ * when the integrator freezes them). */
+typedef struct rs_nls_host {
+  double *cj_slot;
+  const rs_inputs *(*inputs_at)(void *ctx, double t);
+  void *ctx;
+} rs_nls_host;
 
 /* max_iters: Newton iterations per step before the step is declared failed. */
 SUNNonlinearSolver rs_nls_kinsol_create(const rs_model *m, rs_work *w, rs_linsys *ls,
-                                        struct rs_transient *tr, int max_iters, N_Vector tmpl,
+                                        rs_nls_host host, int max_iters, N_Vector tmpl,
                                         SUNContext ctx);
 
 #endif

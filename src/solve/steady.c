@@ -14,7 +14,7 @@
 #include "solve/linsys.h"
 #include "solve/linsys_krylov.h"
 #include "solve/nvector_fast.h"
-#include "rollsim/solver.h"
+#include "rollsim/steady.h"
 
 struct rs_steady {
   const rs_model *m;

@@ -11,7 +11,7 @@
 #include "solve/linsys.h"
 #include "solve/nvector_fast.h"
 #include "solve/nls_kinsol.h"
-#include "rollsim/solver.h"
+#include "rollsim/transient.h"
 
 struct rs_transient {
   const rs_model *m;
@@ -42,10 +42,8 @@ static void ida_counters(const rs_transient *tr, rs_stats *st)
   IDAGetNumResEvals(tr->ida, &st->res_evals);
 }
 
-double *rs_transient_cj_slot(rs_transient *tr) { return &tr->cj; }
-
 /* The inputs at time t (held ones when frozen). */
-const rs_inputs *rs_transient_inputs(rs_transient *tr, double t)
+static const rs_inputs *inputs_at(rs_transient *tr, double t)
 {
   if (tr->frozen)
     tr->in = *tr->frozen;
@@ -54,13 +52,15 @@ const rs_inputs *rs_transient_inputs(rs_transient *tr, double t)
   return &tr->in;
 }
 
+static const rs_inputs *host_inputs(void *tr, double t) { return inputs_at(tr, t); }
+
 static int dae_residual(sunrealtype t, N_Vector y, N_Vector yp, N_Vector rr, void *data)
 {
   rs_transient *tr = data;
   if (tr->interrupt && *tr->interrupt) return -1; /* unrecoverable: IDA stops at once */
   /* a model that cannot be evaluated (the normal problem failed) is not cured by a
    * smaller step: unrecoverable, the reason stays in tr->work.msg */
-  return rs_model_residual(tr->m, &tr->work, rs_transient_inputs(tr, t), N_VGetArrayPointer(y),
+  return rs_model_residual(tr->m, &tr->work, inputs_at(tr, t), N_VGetArrayPointer(y),
                            N_VGetArrayPointer(yp), tr->cj, N_VGetArrayPointer(rr)) == RS_OK
              ? 0
              : -1;
@@ -140,7 +140,8 @@ int rs_transient_create(rs_transient **out, const rs_model *m, SUNContext ctx, d
   if (linear != RS_LINEAR_KLU)
     RS_SUN_CHECK(rs_linsys_use_reduced(&tr->ls, m, &tr->work, ctx), msg, what);
   tr->cj = 0.0;
-  tr->nls = rs_nls_kinsol_create(m, &tr->work, &tr->ls, tr, o->max_newton, tr->y, ctx);
+  const rs_nls_host host = {.cj_slot = &tr->cj, .inputs_at = host_inputs, .ctx = tr};
+  tr->nls = rs_nls_kinsol_create(m, &tr->work, &tr->ls, host, o->max_newton, tr->y, ctx);
   RS_SUN_CHECK(tr->nls == NULL, msg, what);
   tr->ida = IDACreate(ctx);
   RS_SUN_CHECK(tr->ida == NULL, msg, what);

@@ -2,8 +2,8 @@
  *   normal.c     Hertz formulas, the start estimate, the dense active-set method and
  *                the choice between the methods (rs_normal2d_solve_with)
  *   normal_cg.c  the constrained conjugate-gradient method with FFT products */
-#ifndef ROLLSIM_NORMAL_INTERNAL_H
-#define ROLLSIM_NORMAL_INTERNAL_H
+#ifndef ROLLSIM_NORMAL_METHODS_H
+#define ROLLSIM_NORMAL_METHODS_H
 
 #include <math.h>
 

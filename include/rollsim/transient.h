@@ -1,18 +1,21 @@
-/* Solvers for the rolling-contact DAE (model.md §6):
- *  - steady rolling: KINSOL (exact semismooth Newton) on F(y, y' = 0) = 0;
- *  - transient: IDA (variable-order BDF) whose nonlinear systems are solved by
- *    KINSOL through a custom SUNNonlinearSolver;
- * both with the generalized Jacobian in a SUNSparseMatrix (CSR), factored by KLU,
- * or with its sparse rows eliminated and the Schur complement of the dense traction
- * rows factored by LAPACK (see rs_linear). */
-#ifndef ROLLSIM_SOLVER_H
-#define ROLLSIM_SOLVER_H
+/* Transient integration of the rolling-contact DAE (model.md §6): IDA (variable-order
+ * BDF) whose nonlinear systems are solved by KINSOL through a custom
+ * SUNNonlinearSolver, with the generalized Jacobian in a SUNSparseMatrix (CSR) factored
+ * by KLU, or with its sparse rows eliminated and the Schur complement of the dense
+ * traction rows factored by LAPACK (see rs_linear). Also the solver statistics and the
+ * choice of linear algebra shared with the steady solver (rollsim/steady.h). */
+#ifndef ROLLSIM_TRANSIENT_H
+#define ROLLSIM_TRANSIENT_H
 
 #include <signal.h>
 #include <sundials/sundials_context.h>
 
 #include "rollsim/model.h"
 #include "rollsim/status.h"
+
+/* One SUNDIALS context per run: the driver creates it and every solver of the run
+ * (steady, coarse grids, pseudo-transient, transient) uses it. A solver created with
+ * ctx = NULL makes a context of its own (for a single solve, e.g. in a test). */
 
 typedef struct rs_stats {
   long steps;            /* IDA steps (transient) */
@@ -28,27 +31,13 @@ typedef struct rs_stats {
                             by rolling the material, or the solve failed) */
 } rs_stats;
 
-/* One SUNDIALS context per run: the driver creates it and every solver of the run
- * (steady, coarse grids, pseudo-transient, transient) uses it. A solver created with
- * ctx = NULL makes a context of its own (for a single solve, e.g. in a test). */
-
-/* Steady rolling (V > 0): a reusable solver so that continuation (creep curves)
- * keeps its allocations. */
-typedef struct rs_steady rs_steady;
-int rs_steady_create(rs_steady **s, const rs_model *m, SUNContext ctx, rs_msg *msg);
 /* Linear algebra of the steady Newton iteration (all give the same solution to the
  * Newton tolerance): KLU on the whole sparse Jacobian; DENSE, the sparse rows
  * eliminated and the Schur complement on the dense traction rows factored by LAPACK;
  * KRYLOV, GMRES with FFT elastic products and a KLU-factored near-field
  * preconditioner; AUTO picks KRYLOV for elastic models from 300 cells, DENSE
- * otherwise (KLU when the model has unknowns beyond the 3 n per-cell ones). */
+ * otherwise (KLU when the model has unknowns beyond the per-cell ones). */
 typedef enum { RS_LINEAR_AUTO = 0, RS_LINEAR_KLU, RS_LINEAR_DENSE, RS_LINEAR_KRYLOV } rs_linear;
-int rs_steady_create_with(rs_steady **s, const rs_model *m, SUNContext ctx, rs_linear linear,
-                          rs_msg *msg);
-/* Solve F(y, 0) = 0 at time t (inputs evaluated at t); y holds the initial guess
- * on entry, the solution on return. */
-int rs_steady_solve(rs_steady *s, double t, double *y, rs_stats *stats, rs_msg *msg);
-void rs_steady_free(rs_steady *s);
 
 /* Transient integration. */
 typedef struct rs_transient rs_transient;

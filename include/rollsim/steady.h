@@ -1,0 +1,20 @@
+/* Steady rolling (model.md §6): KINSOL (exact semismooth Newton) on F(y, y' = 0) = 0,
+ * with grid sequencing, pseudo-time steps and a pseudo-transient as fallbacks, and a
+ * physical check of every result (rs_model_check_steady). */
+#ifndef ROLLSIM_STEADY_H
+#define ROLLSIM_STEADY_H
+
+#include "rollsim/transient.h"
+
+/* Steady rolling (V > 0): a reusable solver so that continuation (creep curves)
+ * keeps its allocations. */
+typedef struct rs_steady rs_steady;
+int rs_steady_create(rs_steady **s, const rs_model *m, SUNContext ctx, rs_msg *msg);
+int rs_steady_create_with(rs_steady **s, const rs_model *m, SUNContext ctx, rs_linear linear,
+                          rs_msg *msg);
+/* Solve F(y, 0) = 0 at time t (inputs evaluated at t); y holds the initial guess
+ * on entry, the solution on return. */
+int rs_steady_solve(rs_steady *s, double t, double *y, rs_stats *stats, rs_msg *msg);
+void rs_steady_free(rs_steady *s);
+
+#endif
