@@ -14,3 +14,7 @@ rs_unit_test(test_sine_creepage)
 # The optimised SUNDIALS vector kernels (a private header of src/).
 rs_unit_test(test_nvector_fast)
 target_include_directories(test_nvector_fast PRIVATE ${PROJECT_SOURCE_DIR}/src)
+# The model's J v products (Newton-Krylov) against differences of the residual.
+rs_unit_test(test_jacobian_products)
+# grid.x_range gives the same discrete problem as grid.extent with the same edges.
+rs_unit_test(test_grid_range)

@@ -174,6 +174,20 @@ static void test_histories(void)
     return;
   CHECK(c.velocity.value == 0.0 && c.shift_velocity.value == 10.0);
   rs_case_free(&c);
+
+  /* grid.x_range: stored as given, printed back, extent not used */
+  if (load(&c, "x_range.yaml", NULL, 0) != RS_OK)
+    return;
+  CHECK(c.grid_from_range == 1 && c.x_range[0] == -1.25 && c.x_range[1] == 1.15 && c.cells == 80);
+  char *text = NULL;
+  size_t len = 0;
+  FILE *mem = open_memstream(&text, &len);
+  rs_case_print(&c, mem);
+  fclose(mem);
+  CHECK(strstr(text, "grid.x_range: [-1.25, 1.15]  # mm") != NULL);
+  CHECK(strstr(text, "grid.extent: null") != NULL);
+  free(text);
+  rs_case_free(&c);
 }
 
 static void test_sets(void)
@@ -370,6 +384,7 @@ int main(int argc, char **argv)
                           "output.file=results/x.nc", "simulation.rolled_distance=3"};
   round_trip("minimal.yaml", create, 4);
   round_trip("minimal.yaml", NULL, 0);
+  round_trip("x_range.yaml", NULL, 0);
   if (failures) {
     printf("%d failure(s)\n", failures);
     return 1;

@@ -1,0 +1,147 @@
+/* The model's exact Jacobian-vector products (rs_model_jv, used by the Newton-Krylov
+ * solver) against central differences of the residual, and against the assembled
+ * Jacobian (rs_model_jacobian) applied to the same vectors, for an elastic, a plastic
+ * and a force-controlled model, with the steady scaling (c_j = 0) and a transient one
+ * (c_j = V/dx).
+ *
+ * The states are steady solutions perturbed by 1 % (random, deterministic), so that no
+ * cell sits on a switch of its branches; a direction is used only if the branches at
+ * y + h v and y - h v equal those at y. Within one set of branches the residual is
+ * linear in y (the projections are affine there, tau_c is linear in u*, |Du_pl/Dt| has
+ * one sign), so the central difference is exact up to roundoff: eps |F| / h with
+ * h = 1e-6 |y| / |v| gives ~1e-10 relative; the tolerance is 1e-6 relative to |J v|.
+ * The assembled Jacobian applied to v must agree to 1e-12 relative (the same products,
+ * summed in another order). */
+#include <stdlib.h>
+
+#include "rollsim/steady.h"
+#include "test_support.h"
+
+static double next_random(unsigned long *state) /* uniform in [-1, 1) */
+{
+  *state = *state * 6364136223846793005UL + 1442695040888963407UL;
+  return (double)(*state >> 11) / (double)(1UL << 52) - 1.0;
+}
+
+static double norm_inf(const double *v, int n)
+{
+  double m = 0.0;
+  for (int i = 0; i < n; i++) m = fmax(m, fabs(v[i]));
+  return m;
+}
+
+static void check_model(const char *name, rs_case *c)
+{
+  rs_model m;
+  rs_msg msg = {{0}};
+  if (rs_model_from_case(&m, c, &msg) != RS_OK) {
+    printf("FAIL %s: %s\n", name, msg.text);
+    ts_failures++;
+    return;
+  }
+  const int neq = m.lay.neq;
+  double *y = calloc((size_t)neq, sizeof *y), *yp = calloc((size_t)neq, sizeof *yp);
+  double *v = malloc((size_t)neq * sizeof *v), *jv = malloc((size_t)neq * sizeof *jv);
+  double *jm = malloc((size_t)neq * sizeof *jm), *fp = malloc((size_t)neq * sizeof *fp);
+  double *fm = malloc((size_t)neq * sizeof *fm), *z = malloc((size_t)neq * sizeof *z);
+  unsigned char *br = malloc((size_t)m.grid.n);
+  rs_work w, wlin, wfd;
+  rs_work_create(&w, &m);
+  rs_work_create(&wlin, &m);
+  rs_work_create(&wfd, &m);
+  rs_csr J = {.cap = rs_model_jac_capacity(&m, 0)};
+  J.rowptr = malloc(((size_t)neq + 1) * sizeof *J.rowptr);
+  J.col = malloc((size_t)J.cap * sizeof *J.col);
+  J.val = malloc((size_t)J.cap * sizeof *J.val);
+  rs_steady *s = NULL;
+  rs_stats st = {0};
+  if (rs_steady_create(&s, &m, NULL, &msg) != RS_OK ||
+      rs_steady_solve(s, 0.0, y, &st, &msg) != RS_OK) {
+    printf("FAIL %s steady: %s\n", name, msg.text);
+    ts_failures++;
+    goto done;
+  }
+  unsigned long seed = 12345;
+  const double ymax = norm_inf(y, neq);
+  for (int i = 0; i < neq; i++) y[i] += 0.01 * ymax * next_random(&seed) * (i < m.grid.n ? 1.0 : 1e-3);
+  const rs_inputs in = ts_inputs(&m, 0.0);
+  const double cjs[2] = {0.0, in.velocity / m.grid.dx};
+  for (int k = 0; k < 2; k++) {
+    const double cj = cjs[k];
+    /* yp consistent with a backward-Euler step from y - v0 / cj is not needed: any yp
+     * is a point of the residual; take yp = 0 (steady) or a random rate. */
+    for (int i = 0; i < neq; i++) yp[i] = cj > 0.0 ? 0.01 * ymax * cj * next_random(&seed) : 0.0;
+    rs_model_jacobian(&m, &w, &in, y, yp, cj, 0, &J);
+    memcpy(br, w.branch, (size_t)m.grid.n);
+    int used = 0;
+    double worst_fd = 0.0, worst_mat = 0.0;
+    for (int trial = 0; trial < 20 && used < 5; trial++) {
+      for (int i = 0; i < neq; i++) v[i] = next_random(&seed) * (i < m.grid.n ? ymax : 1e-3 * ymax);
+      const double h = 1e-6 * norm_inf(y, neq) / norm_inf(v, neq);
+      int same = 1;
+      for (int sgn = -1; sgn <= 1; sgn += 2) {
+        for (int i = 0; i < neq; i++) z[i] = y[i] + sgn * h * v[i];
+        double *zp = malloc((size_t)neq * sizeof *zp);
+        for (int i = 0; i < neq; i++) zp[i] = yp[i] + sgn * h * cj * v[i];
+        rs_model_residual(&m, &wfd, &in, z, zp, cj, sgn < 0 ? fm : fp);
+        free(zp);
+        same = same && !memcmp(wfd.branch, br, (size_t)m.grid.n);
+      }
+      if (!same) continue;
+      used++;
+      rs_model_jv(&m, &w, &wlin, &in, cj, v, jv);
+      for (int i = 0; i < neq; i++) { /* the assembled matrix on v */
+        double sum = 0.0;
+        for (int64_t q = J.rowptr[i]; q < J.rowptr[i + 1]; q++) sum += J.val[q] * v[J.col[q]];
+        jm[i] = sum;
+      }
+      const double scale = norm_inf(jv, neq);
+      for (int i = 0; i < neq; i++) {
+        worst_fd = fmax(worst_fd, fabs((fp[i] - fm[i]) / (2.0 * h) - jv[i]) / scale);
+        worst_mat = fmax(worst_mat, fabs(jm[i] - jv[i]) / scale);
+      }
+    }
+    char what[160];
+    snprintf(what, sizeof what, "%s, c_j = %g: directions without a branch switch", name, cj);
+    ts_check_true(what, used >= 3);
+    snprintf(what, sizeof what, "%s, c_j = %g: max |FD - J v| / |J v|", name, cj);
+    ts_check(what, worst_fd, 0.0, 1e-6);
+    snprintf(what, sizeof what, "%s, c_j = %g: max |J_assembled v - J v| / |J v|", name, cj);
+    ts_check(what, worst_mat, 0.0, 1e-12);
+  }
+done:
+  rs_steady_free(s);
+  rs_work_free(&w);
+  rs_work_free(&wlin);
+  rs_work_free(&wfd);
+  free(J.rowptr);
+  free(J.col);
+  free(J.val);
+  free(y);
+  free(yp);
+  free(v);
+  free(jv);
+  free(jm);
+  free(fp);
+  free(fm);
+  free(z);
+  free(br);
+  rs_model_free(&m);
+}
+
+int main(void)
+{
+  rs_case c;
+  ts_carter_case(&c, 100);
+  check_model("elastic Carter, 100 cells", &c);
+  ts_fig7_case(&c, 100, 0.6);
+  check_model("plastic Carter k_rel = 0.6, 100 cells", &c);
+  ts_table1_case(&c, 100, 200.0, 0.0387, -0.01);
+  check_model("plastic Table-1 contact, xi = -1 %, 100 cells", &c);
+  ts_carter_case(&c, 100);
+  c.force_control = 1;
+  c.tangential_force.kind = RS_HISTORY_CONSTANT;
+  c.tangential_force.value = 30.0; /* N/mm: 0.56 mu F_n */
+  check_model("elastic Carter, prescribed F_x = 30 N/mm, 100 cells", &c);
+  return ts_failures ? 1 : 0;
+}
