@@ -68,7 +68,8 @@ static int same_case(const rs_case *a, const rs_case *b)
   return !strcmp(a->title, b->title) && a->dimension == b->dimension &&
          same_history(&a->normal_load, &b->normal_load) && a->radius == b->radius &&
          a->normal_solution == b->normal_solution && a->reference_length == b->reference_length &&
-         a->cells == b->cells && a->extent == b->extent && a->shear_modulus == b->shear_modulus &&
+         a->cells == b->cells && a->extent == b->extent && a->grid_from_range == b->grid_from_range &&
+         a->x_range[0] == b->x_range[0] && a->x_range[1] == b->x_range[1] && a->shear_modulus == b->shear_modulus &&
          a->poisson_ratio == b->poisson_ratio && a->mu == b->mu &&
          a->layer_thickness == b->layer_thickness &&
          a->layer_shear_modulus == b->layer_shear_modulus &&
