@@ -8,16 +8,8 @@ set(PP_TESTS ${PP_DIR}/tests)
 set(PP_OUT ${CMAKE_CURRENT_BINARY_DIR}/postproc)
 file(MAKE_DIRECTORY ${PP_OUT})
 
-if(NOT SYSTEM_PYTHON3)
-  message(STATUS "postproc tests: no system python3, disabled")
-  return()
-endif()
-execute_process(COMMAND ${SYSTEM_PYTHON3} -c "import netCDF4, numpy, matplotlib"
-  RESULT_VARIABLE PP_PY_MISSING OUTPUT_QUIET ERROR_QUIET)
-if(PP_PY_MISSING)
-  message(STATUS "postproc tests: ${SYSTEM_PYTHON3} lacks netCDF4/numpy/matplotlib, disabled")
-  return()
-endif()
+# Python and its modules are required (tests/CMakeLists.txt): a missing module fails the
+# python_modules test and these, never hides them.
 
 # matplotlib writes a font cache; keep it in the build tree (HOME may be read-only in CI).
 set(PP_ENV "MPLCONFIGDIR=${PP_OUT}/mplconfig;MPLBACKEND=Agg")
@@ -33,9 +25,8 @@ add_test(NAME pp_run_default
 set_tests_properties(pp_run_default PROPERTIES FIXTURES_SETUP pp_default)
 
 # Plastic Carter case (tau_c0 = 35 N/mm2, hardening k_rel = 0.6, mu = 0.5, xi = -4e-4) rolled
-# from rest over 10 mm (5 contact lengths, 0.5 s). A steady plastic run would do, but
-# `rollsim run` in steady mode does not converge with plasticity yet (KIN_LSETUP_FAIL /
-# KIN_LINESEARCH_NONCONV), so the transient supplies the plastic fields.
+# from rest over 10 mm (5 contact lengths, 0.5 s): a transient, so that the plots have a
+# history of plastic fields to draw.
 set(PP_PLASTIC ${CMAKE_CURRENT_BINARY_DIR}/pp_plastic.nc)
 add_test(NAME pp_run_plastic
   COMMAND ${RS_BIN} run ${RS_CASES}/default.yaml -o ${PP_PLASTIC} --quiet

@@ -9,7 +9,17 @@ carter STEADY.nc MU XI
     Steady F_x/(mu F_n) against Carter's 1 - (1 - |xi| R/(mu a))^2 (R = 500 mm,
     a = 1.000 mm): the first-order scheme is within 1 % at dx = a/47.6
     (tests/test_carter_steady.c shows the linear convergence).
+sine RUN.nc MEAN AMPLITUDE FREQUENCY
+    A run with a sine creepage history (cases/sine_creepage.yaml, started from steady
+    rolling): the stored creepage is the prescribed sine at every record (to 1e-15); the
+    force stays below the friction limit mu F_n; after the first period (30 contact
+    lengths rolled, beyond the ~18 a start-up needs to come within 1e-4 of its end state)
+    the force is periodic: the last period repeats the one before to 1e-4 of its
+    peak-to-peak amplitude; and its strongest non-constant harmonic is the creepage's
+    frequency (the response is not linear in partial slip, so higher harmonics exist,
+    but weaker).
 """
+import math
 import sys
 
 import netCDF4
@@ -64,6 +74,39 @@ def final_matches(tpath, spath, tol):
           float(t["Fx"][-1]) / float(s["Fx"][-1]), 1.0, tol)
 
 
+def sine(path, mean, amplitude, frequency):
+    import numpy as np
+    import yaml
+
+    d = open_complete(path)
+    mu = float(yaml.safe_load(d.getncattr("case"))["friction"]["mu"])
+    t = np.asarray(d["time"][:], dtype=float)
+    fx = np.asarray(d["Fx"][:], dtype=float)
+    fn = np.asarray(d["Fn"][:], dtype=float)
+    xi = np.asarray(d["creepage"][:], dtype=float)
+    want = mean + amplitude * np.sin(2.0 * math.pi * frequency * t)
+    check("max |stored creepage - prescribed sine|", float(np.max(np.abs(xi - want))), 0.0, 1e-15)
+    ratio = float(np.max(np.abs(fx) / (mu * fn)))
+    print(("ok  " if ratio < 1.0 else "FAIL"), f"max |F_x| / (mu F_n) = {ratio:.6f} < 1 (friction limit)")
+    if not ratio < 1.0:
+        sys.exit(1)
+    period = 1.0 / frequency
+    dt = t[1] - t[0]
+    k = int(round(period / dt))
+    check("records per period (whole)", k * dt, period, 1e-9 * period)
+    if len(t) < 2 * k + 1:
+        fail("fewer than two periods stored")
+    last, before = fx[-k - 1:], fx[-2 * k - 1:-k]
+    span = float(np.ptp(fx[-2 * k - 1:]))
+    check("last period vs the one before, max |difference| / peak-to-peak",
+          float(np.max(np.abs(last - before))) / span, 0.0, 1e-4)
+    seg = fx[-2 * k:]
+    spectrum = np.abs(np.fft.rfft(seg - seg.mean()))
+    peak = int(np.argmax(spectrum))
+    check("strongest harmonic of F_x over the last two periods (Hz)", peak / (2 * period),
+          frequency, 0.0)
+
+
 if __name__ == "__main__":
     cmd = sys.argv[1]
     if cmd == "transient_vs_steady":
@@ -72,5 +115,7 @@ if __name__ == "__main__":
         final_matches(sys.argv[2], sys.argv[3], float(sys.argv[4]))
     elif cmd == "carter":
         carter(sys.argv[2], float(sys.argv[3]), float(sys.argv[4]))
+    elif cmd == "sine":
+        sine(sys.argv[2], float(sys.argv[3]), float(sys.argv[4]), float(sys.argv[5]))
     else:
         fail(f"unknown check {cmd}")

@@ -38,3 +38,7 @@ add_test(NAME cli_startup_reaches_steady COMMAND ${SYSTEM_PYTHON3} ${RS_TESTS}/c
                                                  ${RS_OUT}/startup.nc ${RS_OUT}/carter2d.nc 1e-4)
 set_tests_properties(cli_startup_reaches_steady PROPERTIES FIXTURES_REQUIRED "cli_startup;cli_carter")
 add_test(NAME cli_run_sine_creepage COMMAND ${RS_BIN} run ${RS_CASES}/sine_creepage.yaml -o ${RS_OUT}/sine.nc --quiet)
+set_tests_properties(cli_run_sine_creepage PROPERTIES FIXTURES_SETUP cli_sine)
+add_test(NAME cli_sine_creepage_response COMMAND ${SYSTEM_PYTHON3} ${RS_TESTS}/check_cli_runs.py sine
+                                                 ${RS_OUT}/sine.nc -2.4e-4 1.2e-4 500)
+set_tests_properties(cli_sine_creepage_response PROPERTIES FIXTURES_REQUIRED cli_sine)

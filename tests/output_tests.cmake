@@ -15,19 +15,15 @@ add_test(NAME test_output_check_write
   COMMAND test_output_crash_writer ${RS_OUTPUT_CHECK_FILE} 20 0 13)
 set_tests_properties(test_output_check_write PROPERTIES FIXTURES_SETUP rs_output_check_file)
 
-if(SYSTEM_PYTHON3)
-  add_test(NAME test_output_python
-    COMMAND ${SYSTEM_PYTHON3} ${RS_TESTS}/check_output.py ${RS_OUTPUT_CHECK_FILE} 20)
-  set_tests_properties(test_output_python PROPERTIES FIXTURES_REQUIRED rs_output_check_file)
+add_test(NAME test_output_python
+  COMMAND ${SYSTEM_PYTHON3} ${RS_TESTS}/check_output.py ${RS_OUTPUT_CHECK_FILE} 20)
+set_tests_properties(test_output_python PROPERTIES FIXTURES_REQUIRED rs_output_check_file)
 
-  # 24 writers killed with SIGKILL at random moments; a few seconds in all.
-  add_test(NAME test_output_crash
-    COMMAND ${SYSTEM_PYTHON3} ${RS_TESTS}/check_output_crash.py
-      $<TARGET_FILE:test_output_crash_writer> ${CMAKE_CURRENT_BINARY_DIR}/test_output_crash.d 24)
-  set_tests_properties(test_output_crash PROPERTIES TIMEOUT 60)
-else()
-  message(STATUS "output tests: no system python3, Python checks disabled")
-endif()
+# 24 writers killed with SIGKILL at random moments; a few seconds in all.
+add_test(NAME test_output_crash
+  COMMAND ${SYSTEM_PYTHON3} ${RS_TESTS}/check_output_crash.py
+    $<TARGET_FILE:test_output_crash_writer> ${CMAKE_CURRENT_BINARY_DIR}/test_output_crash.d 24)
+set_tests_properties(test_output_crash PROPERTIES TIMEOUT 60)
 
 find_program(RS_NCDUMP ncdump)
 if(RS_NCDUMP)

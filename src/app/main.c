@@ -67,6 +67,191 @@ static int exit_code(int status)
   }
 }
 
+/* The parsed command line. */
+typedef struct cli_args {
+  const char *cmd, *case_path, *out_path, *restart_path;
+  int quiet, nsets;
+  const char **sets; /* the --set KEY=VALUE strings [nsets] (owned array) */
+} cli_args;
+
+/* argv after the command: options and the case file. RS_OK or RS_ERR_INPUT (message
+ * printed). */
+static int parse_args(int argc, char **argv, cli_args *a)
+{
+  a->sets = calloc((size_t)argc, sizeof *a->sets);
+  if (!a->sets) return RS_ERR_INTERNAL;
+  for (int i = 2; i < argc; i++) {
+    const char *arg = argv[i];
+    if (!strcmp(arg, "-o") || !strcmp(arg, "--output")) {
+      if (++i >= argc) {
+        fprintf(stderr, "rollsim: %s needs a file name\n", arg);
+        return RS_ERR_INPUT;
+      }
+      a->out_path = argv[i];
+    } else if (!strcmp(arg, "--restart") || !strncmp(arg, "--restart=", 10)) {
+      if (strcmp(a->cmd, "run")) {
+        fprintf(stderr, "rollsim %s: --restart applies to 'rollsim run' only\n", a->cmd);
+        return RS_ERR_INPUT;
+      }
+      if (arg[9] == '=')
+        a->restart_path = arg + 10;
+      else if (++i < argc)
+        a->restart_path = argv[i];
+      if (!a->restart_path || !*a->restart_path) {
+        fprintf(stderr, "rollsim: --restart needs a file name\n");
+        return RS_ERR_INPUT;
+      }
+    } else if (!strcmp(arg, "--set")) {
+      if (++i >= argc) {
+        fprintf(stderr, "rollsim: --set needs KEY=VALUE\n");
+        return RS_ERR_INPUT;
+      }
+      a->sets[a->nsets++] = argv[i];
+    } else if (!strncmp(arg, "--set=", 6)) {
+      a->sets[a->nsets++] = arg + 6;
+    } else if (!strcmp(arg, "--quiet") || !strcmp(arg, "-q")) {
+      a->quiet = 1;
+    } else if (arg[0] == '-' && arg[1] != '\0') {
+      fprintf(stderr, "rollsim: unknown option '%s'\n", arg);
+      return RS_ERR_INPUT;
+    } else if (!a->case_path) {
+      a->case_path = arg;
+    } else {
+      fprintf(stderr, "rollsim: more than one case file ('%s' and '%s')\n", a->case_path, arg);
+      return RS_ERR_INPUT;
+    }
+  }
+  if (!a->case_path) {
+    fprintf(stderr, "rollsim %s: missing CASE.yaml\n", a->cmd);
+    return RS_ERR_INPUT;
+  }
+  for (int k = 0; k < a->nsets; k++)
+    if (!strchr(a->sets[k], '=')) {
+      fprintf(stderr, "rollsim: --set %s: expected KEY=VALUE\n", a->sets[k]);
+      return RS_ERR_INPUT;
+    }
+  return RS_OK;
+}
+
+/* rollsim check: the resolved case and the derived parameters. */
+static int cmd_check(const rs_case *c, const cli_args *a)
+{
+  rs_msg msg = {{0}};
+  rs_case_print(c, stdout);
+  const int status = rs_run_print_derived(c, stdout, &msg);
+  if (status != RS_OK) fprintf(stderr, "%s: %s\n", a->case_path, msg.text);
+  return status == RS_ERR_SOLVER ? RS_ERR_INPUT : status;
+}
+
+/* rollsim sweep: every point of the case's sweep: block into one file. */
+static int cmd_sweep(const cli_args *a, const rs_run_opts *o)
+{
+  rs_msg msg = {{0}};
+  rs_sweep sw;
+  int status = rs_sweep_load(&sw, a->case_path, a->sets, a->nsets, &msg);
+  if (status != RS_OK) {
+    fprintf(stderr, "%s\n", msg.text);
+    return status;
+  }
+  rs_sweep_result sres;
+  status = rs_sweep_run(&sw, a->case_path, a->sets, a->nsets, o, &sres, &msg);
+  if (status != RS_OK) fprintf(stderr, "rollsim: %s: %s\n", a->case_path, msg.text);
+  printf("sweep over");
+  for (int k = 0; k < sw.naxes; k++) printf(" %s (%d)", sw.axes[k].key, sw.axes[k].n);
+  printf(": %zu points solved, %zu failed, Newton iterations %ld, wall time %.3f s\n",
+         sres.points_done, sres.points_failed, sres.newton_iters, sres.wall_seconds);
+  printf("  steady points: linear solves %ld, Jacobian evaluations %ld, continuation steps "
+         "halved %ld\n",
+         sres.lin_solves, sres.jac_evals, sres.refined);
+  if (sres.refused > 0)
+    printf("  steady check: %ld Newton solutions refused as not physical (recomputed by "
+           "rolling the material)\n",
+           sres.refused);
+  printf("  output: %s\n", sres.file);
+  rs_sweep_free(&sw);
+  return status;
+}
+
+/* The summary of one run on stdout. */
+static void print_summary(const rs_case *c, const rs_run_result *res, int status)
+{
+  const rs_diag *d = &res->final;
+  const double ratio = d->Fn > 0 ? d->Fx / (res->mu * d->Fn) : 0.0;
+  printf("%s\n", c->title && *c->title ? c->title : c->source_path);
+  printf("  F_x/(mu F_n) = %.6f   (F_x = %.6g N/mm, F_n = %.6g N/mm, mu = %g) at t = %.6g s\n",
+         ratio, d->Fx, d->Fn, res->mu, res->time);
+  printf("  cells E/H/S/P = %d/%d/%d/%d\n", d->count[RS_EXTERIOR], d->count[RS_ADHESION],
+         d->count[RS_SLIP], d->count[RS_PLASTIC]);
+  const rs_stats *st = &res->stats;
+  if (c->mode == RS_MODE_TRANSIENT)
+    printf("  IDA steps %ld, Newton iterations %ld, failed solves %ld, error-test fails %ld\n"
+           "  linear solves %ld, Jacobian evaluations %ld, factorisations %ld\n",
+           st->steps, st->nonlin_iters, st->nonlin_fails, st->err_test_fails,
+           /* KLU inside IDA's Newton: one linear solve per Newton iteration */
+           st->lin_solves > 0 ? st->lin_solves : st->nonlin_iters, st->jac_evals,
+           st->factorizations);
+  else
+    printf("  Newton iterations %ld, linear solves %ld, Jacobian evaluations %ld\n",
+           st->nonlin_iters, st->lin_solves, st->jac_evals);
+  if (st->refused > 0)
+    printf("  steady check: %ld Newton solution(s) refused as not physical (recomputed by "
+           "rolling the material)\n",
+           st->refused);
+  if (c->rig.on) {
+    const double T = c->rig.revolution_time;
+    printf("  twin disc: %.6g revolutions of %.6g s, %.1f IDA steps per revolution "
+           "(a fixed shift of one cell per step would need %.0f)\n",
+           res->time / T, T, res->time > 0 ? st->steps * T / res->time : 0.0,
+           T * rs_history_eval(&c->velocity, 0.0) / res->dx);
+    printf("  protocol step   slip [%%]   traction coefficient (mean over the last %.0f %% of "
+           "the step)\n",
+           100.0 * c->rig.average_window);
+    for (size_t j = 0; j < res->rig_nsteps; j++)
+      printf("  %13zu %10.4f   %.6f\n", j + 1, 100.0 * res->rig_step_slip[j],
+             res->rig_step_mu[j]);
+  }
+  printf("  wall time %.3f s\n", res->wall_seconds);
+  printf("  output: %s (%zu records)%s\n", res->file, res->records,
+         status == RS_OK ? "" : " -- incomplete, see status attribute");
+}
+
+/* rollsim run: one case. */
+static int cmd_run(const rs_case *c, const cli_args *a, const rs_run_opts *o)
+{
+  rs_msg msg = {{0}};
+  rs_run_result res;
+  const int status = rs_run(c, o, &res, &msg);
+  if (status != RS_OK) fprintf(stderr, "rollsim: %s: %s\n", a->case_path, msg.text);
+  if (res.records > 0) print_summary(c, &res, status);
+  rs_run_result_free(&res);
+  return status;
+}
+
+/* SIGINT/SIGTERM set the flag read between output records. */
+static void install_signal_handlers(void)
+{
+  struct sigaction sa;
+  memset(&sa, 0, sizeof sa);
+  sa.sa_handler = on_signal;
+  /* The flag is read between output records, and one output interval can take minutes of
+   * solver work: a second SIGINT/SIGTERM then ends the process at once (default action; the
+   * file stays valid with the records written so far, status "running"). */
+  sa.sa_flags = SA_RESETHAND;
+  sigaction(SIGINT, &sa, NULL);
+  sigaction(SIGTERM, &sa, NULL);
+}
+
+/* The history attribute: date, version and the command line. */
+static void history_text(int argc, char **argv, char *history, size_t size)
+{
+  const time_t now = time(NULL);
+  char date[64];
+  strftime(date, sizeof date, "%Y-%m-%dT%H:%M:%SZ", gmtime(&now));
+  int len = snprintf(history, size, "%s: rollsim %s", date, RS_VERSION);
+  for (int i = 1; i < argc && len > 0 && (size_t)len < size; i++)
+    len += snprintf(history + len, size - (size_t)len, " %s", argv[i]);
+}
+
 int main(int argc, char **argv)
 {
   if (argc < 2) {
@@ -81,193 +266,35 @@ int main(int argc, char **argv)
     printf("rollsim %s\n", RS_VERSION);
     return 0;
   }
-  const char *cmd = argv[1];
-  if (strcmp(cmd, "run") && strcmp(cmd, "check") && strcmp(cmd, "sweep")) {
-    fprintf(stderr, "rollsim: unknown command '%s'\n", cmd);
+  cli_args a = {.cmd = argv[1]};
+  if (strcmp(a.cmd, "run") && strcmp(a.cmd, "check") && strcmp(a.cmd, "sweep")) {
+    fprintf(stderr, "rollsim: unknown command '%s'\n", a.cmd);
     usage(stderr);
     return 2;
   }
-  const char *case_path = NULL, *out_path = NULL, *restart_path = NULL;
-  int quiet = 0, nsets = 0;
-  const char **sets = calloc((size_t)argc, sizeof *sets);
-  if (!sets) return 1;
-  for (int i = 2; i < argc; i++) {
-    const char *a = argv[i];
-    if (!strcmp(a, "-o") || !strcmp(a, "--output")) {
-      if (++i >= argc) {
-        fprintf(stderr, "rollsim: %s needs a file name\n", a);
-        free(sets);
-        return 2;
-      }
-      out_path = argv[i];
-    } else if (!strcmp(a, "--restart") || !strncmp(a, "--restart=", 10)) {
-      if (strcmp(cmd, "run")) {
-        fprintf(stderr, "rollsim %s: --restart applies to 'rollsim run' only\n", cmd);
-        free(sets);
-        return 2;
-      }
-      if (a[9] == '=') {
-        restart_path = a + 10;
-      } else if (++i >= argc) {
-        fprintf(stderr, "rollsim: --restart needs a file name\n");
-        free(sets);
-        return 2;
-      } else {
-        restart_path = argv[i];
-      }
-      if (!*restart_path) {
-        fprintf(stderr, "rollsim: --restart needs a file name\n");
-        free(sets);
-        return 2;
-      }
-    } else if (!strcmp(a, "--set")) {
-      if (++i >= argc) {
-        fprintf(stderr, "rollsim: --set needs KEY=VALUE\n");
-        free(sets);
-        return 2;
-      }
-      sets[nsets++] = argv[i];
-    } else if (!strncmp(a, "--set=", 6)) {
-      sets[nsets++] = a + 6;
-    } else if (!strcmp(a, "--quiet") || !strcmp(a, "-q")) {
-      quiet = 1;
-    } else if (a[0] == '-' && a[1] != '\0') {
-      fprintf(stderr, "rollsim: unknown option '%s'\n", a);
-      free(sets);
-      return 2;
-    } else if (!case_path) {
-      case_path = a;
-    } else {
-      fprintf(stderr, "rollsim: more than one case file ('%s' and '%s')\n", case_path, a);
-      free(sets);
-      return 2;
-    }
-  }
-  if (!case_path) {
-    fprintf(stderr, "rollsim %s: missing CASE.yaml\n", cmd);
-    free(sets);
-    return 2;
-  }
-  for (int k = 0; k < nsets; k++) {
-    if (!strchr(sets[k], '=')) {
-      fprintf(stderr, "rollsim: --set %s: expected KEY=VALUE\n", sets[k]);
-      free(sets);
-      return 2;
-    }
-  }
-
+  int status = parse_args(argc, argv, &a);
   rs_case c;
   rs_msg msg = {{0}};
-  int status = rs_case_load(&c, case_path, sets, nsets, &msg);
-  if (status != RS_OK) {
+  if (status == RS_OK && (status = rs_case_load(&c, a.case_path, a.sets, a.nsets, &msg)) != RS_OK)
     fprintf(stderr, "%s\n", msg.text);
-    free(sets);
+  if (status != RS_OK) {
+    free(a.sets);
     return exit_code(status);
   }
-
-  if (!strcmp(cmd, "check")) {
-    free(sets);
-    rs_case_print(&c, stdout);
-    status = rs_run_print_derived(&c, stdout, &msg);
-    if (status != RS_OK) fprintf(stderr, "%s: %s\n", case_path, msg.text);
-    rs_case_free(&c);
-    return exit_code(status == RS_ERR_SOLVER ? RS_ERR_INPUT : status);
+  if (!strcmp(a.cmd, "check")) {
+    status = cmd_check(&c, &a);
+  } else {
+    install_signal_handlers();
+    char history[2048];
+    history_text(argc, argv, history, sizeof history);
+    const rs_run_opts o = {.output_path = a.out_path,
+                           .history = history,
+                           .restart_path = a.restart_path,
+                           .progress = !a.quiet && isatty(STDERR_FILENO),
+                           .interrupt_flag = &interrupted};
+    status = !strcmp(a.cmd, "sweep") ? cmd_sweep(&a, &o) : cmd_run(&c, &a, &o);
   }
-  struct sigaction sa;
-  memset(&sa, 0, sizeof sa);
-  sa.sa_handler = on_signal;
-  /* The flag is read between output records, and one output interval can take minutes of
-   * solver work: a second SIGINT/SIGTERM then ends the process at once (default action; the
-   * file stays valid with the records written so far, status "running"). */
-  sa.sa_flags = SA_RESETHAND;
-  sigaction(SIGINT, &sa, NULL);
-  sigaction(SIGTERM, &sa, NULL);
-
-  char history[2048];
-  const time_t now = time(NULL);
-  char date[64];
-  strftime(date, sizeof date, "%Y-%m-%dT%H:%M:%SZ", gmtime(&now));
-  int len = snprintf(history, sizeof history, "%s: rollsim %s", date, RS_VERSION);
-  for (int i = 1; i < argc && len > 0 && (size_t)len < sizeof history; i++)
-    len += snprintf(history + len, sizeof history - (size_t)len, " %s", argv[i]);
-
-  rs_run_opts o = {.output_path = out_path,
-                   .history = history,
-                   .restart_path = restart_path,
-                   .progress = !quiet && isatty(STDERR_FILENO),
-                   .interrupt_flag = &interrupted};
-  if (!strcmp(cmd, "sweep")) {
-    rs_case_free(&c);
-    rs_sweep sw;
-    status = rs_sweep_load(&sw, case_path, sets, nsets, &msg);
-    if (status != RS_OK) {
-      fprintf(stderr, "%s\n", msg.text);
-      free(sets);
-      return exit_code(status);
-    }
-    rs_sweep_result sres;
-    status = rs_sweep_run(&sw, case_path, sets, nsets, &o, &sres, &msg);
-    free(sets);
-    if (status != RS_OK) fprintf(stderr, "rollsim: %s: %s\n", case_path, msg.text);
-    printf("sweep over");
-    for (int a = 0; a < sw.naxes; a++) printf(" %s (%d)", sw.axes[a].key, sw.axes[a].n);
-    printf(": %zu points solved, %zu failed, Newton iterations %ld, wall time %.3f s\n",
-           sres.points_done, sres.points_failed, sres.newton_iters, sres.wall_seconds);
-    printf("  steady points: linear solves %ld, Jacobian evaluations %ld, continuation steps "
-           "halved %ld\n",
-           sres.lin_solves, sres.jac_evals, sres.refined);
-    if (sres.refused > 0)
-      printf("  steady check: %ld Newton solutions refused as not physical (recomputed by "
-             "rolling the material)\n",
-             sres.refused);
-    printf("  output: %s\n", sres.file);
-    rs_sweep_free(&sw);
-    return exit_code(status);
-  }
-  free(sets);
-  rs_run_result res;
-  status = rs_run(&c, &o, &res, &msg);
-  if (status != RS_OK) fprintf(stderr, "rollsim: %s: %s\n", case_path, msg.text);
-  if (res.records > 0) {
-    const rs_diag *d = &res.final;
-    const double ratio = d->Fn > 0 ? d->Fx / (res.mu * d->Fn) : 0.0;
-    printf("%s\n", c.title && *c.title ? c.title : case_path);
-    printf("  F_x/(mu F_n) = %.6f   (F_x = %.6g N/mm, F_n = %.6g N/mm, mu = %g) at t = %.6g s\n",
-           ratio, d->Fx, d->Fn, res.mu, res.time);
-    printf("  cells E/H/S/P = %d/%d/%d/%d\n", d->count[RS_EXTERIOR], d->count[RS_ADHESION],
-           d->count[RS_SLIP], d->count[RS_PLASTIC]);
-    if (c.mode == RS_MODE_TRANSIENT)
-      printf("  IDA steps %ld, Newton iterations %ld, failed solves %ld, error-test fails %ld\n"
-             "  linear solves %ld, Jacobian evaluations %ld, factorisations %ld\n",
-             res.stats.steps, res.stats.nonlin_iters, res.stats.nonlin_fails,
-             res.stats.err_test_fails,
-             /* KLU inside IDA's Newton: one linear solve per Newton iteration */
-             res.stats.lin_solves > 0 ? res.stats.lin_solves : res.stats.nonlin_iters,
-             res.stats.jac_evals, res.stats.factorizations);
-    else
-      printf("  Newton iterations %ld, linear solves %ld, Jacobian evaluations %ld\n",
-             res.stats.nonlin_iters, res.stats.lin_solves, res.stats.jac_evals);
-    if (res.stats.refused > 0)
-      printf("  steady check: %ld Newton solution(s) refused as not physical (recomputed by "
-             "rolling the material)\n",
-             res.stats.refused);
-    if (c.rig.on) {
-      const double T = c.rig.revolution_time;
-      printf("  twin disc: %.6g revolutions of %.6g s, %.1f IDA steps per revolution "
-             "(a fixed shift of one cell per step would need %.0f)\n",
-             res.time / T, T, res.time > 0 ? res.stats.steps * T / res.time : 0.0,
-             T * rs_history_eval(&c.velocity, 0.0) / res.dx);
-      printf("  protocol step   slip [%%]   traction coefficient (mean over the last %.0f %% of "
-             "the step)\n",
-             100.0 * c.rig.average_window);
-      for (size_t j = 0; j < res.rig_nsteps; j++)
-        printf("  %13zu %10.4f   %.6f\n", j + 1, 100.0 * res.rig_step_slip[j], res.rig_step_mu[j]);
-    }
-    printf("  wall time %.3f s\n", res.wall_seconds);
-    printf("  output: %s (%zu records)%s\n", res.file, res.records,
-           status == RS_OK ? "" : " -- incomplete, see status attribute");
-  }
-  rs_run_result_free(&res);
   rs_case_free(&c);
+  free(a.sets);
   return exit_code(status);
 }
