@@ -17,7 +17,8 @@
 #include "bench_util.h"
 #include "base/util.h" /* rs_wall_clock */
 
-int main(int argc, char **argv) {
+int main(int argc, char **argv)
+{
   const int reps = argc > 1 ? atoi(argv[1]) : 5;
   const int default_grids[] = {100, 200, 400, 800, 1600, 3200};
   const int ng = argc > 2 ? argc - 2 : 6;

@@ -17,7 +17,8 @@
 #include "bench_util.h"
 #include "base/util.h" /* rs_wall_clock */
 
-int main(int argc, char **argv) {
+int main(int argc, char **argv)
+{
   const int reps = argc > 1 ? atoi(argv[1]) : 5;
   const int maxcells = argc > 2 ? atoi(argv[2]) : 1600;
   const int grids[] = {50, 100, 200, 400, 800, 1600};
@@ -30,8 +31,7 @@ int main(int argc, char **argv) {
          "ms\n",
          reps);
   printf("%6s %9s", "cells", "setup");
-  for (int k = 0; k < NP; k++)
-    printf(" %9s %5s", names[k], "newt");
+  for (int k = 0; k < NP; k++) printf(" %9s %5s", names[k], "newt");
   printf("\n");
   double *t = malloc((size_t)reps * sizeof *t);
   for (int g = 0; g < NG && grids[g] <= maxcells; g++, ng++) {

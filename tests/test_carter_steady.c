@@ -61,7 +61,8 @@ int main(void)
            "Newton %ld\n",
            cells[k], dx, fxr[k], err[k], nadh, nadh * dx, st.nonlin_iters);
     char what[128];
-    snprintf(what, sizeof what, "adhesion zone length at %d cells, within 2 cells of 2a'", cells[k]);
+    snprintf(what, sizeof what, "adhesion zone length at %d cells, within 2 cells of 2a'",
+             cells[k]);
     ts_check(what, nadh * dx, adh_exact * 1.00001, 2.0 * dx);
   }
   ts_check("relative error at dx = a/25 below 1.5 %", err[0], 0.0, 0.015);

@@ -43,11 +43,9 @@ static int load(rs_case *c, const char *name, const char *const *sets, int nsets
 
 static int same_history(const rs_history *a, const rs_history *b)
 {
-  if (a->kind != b->kind || a->n != b->n)
-    return 0;
+  if (a->kind != b->kind || a->n != b->n) return 0;
   switch (a->kind) {
-  case RS_HISTORY_CONSTANT:
-    return a->value == b->value;
+  case RS_HISTORY_CONSTANT: return a->value == b->value;
   case RS_HISTORY_RAMP:
     return a->from == b->from && a->to == b->to && a->start == b->start &&
            a->duration == b->duration;
@@ -56,8 +54,7 @@ static int same_history(const rs_history *a, const rs_history *b)
            a->phase == b->phase;
   default:
     for (size_t i = 0; i < a->n; i++)
-      if (a->t[i] != b->t[i] || a->v[i] != b->v[i])
-        return 0;
+      if (a->t[i] != b->t[i] || a->v[i] != b->v[i]) return 0;
     return 1;
   }
 }
@@ -68,26 +65,27 @@ static int same_case(const rs_case *a, const rs_case *b)
   return !strcmp(a->title, b->title) && a->dimension == b->dimension &&
          same_history(&a->normal_load, &b->normal_load) && a->radius == b->radius &&
          a->normal_solution == b->normal_solution && a->reference_length == b->reference_length &&
-         a->cells == b->cells && a->extent == b->extent && a->grid_from_range == b->grid_from_range &&
-         a->x_range[0] == b->x_range[0] && a->x_range[1] == b->x_range[1] && a->shear_modulus == b->shear_modulus &&
+         a->cells == b->cells && a->extent == b->extent &&
+         a->grid_from_range == b->grid_from_range && a->x_range[0] == b->x_range[0] &&
+         a->x_range[1] == b->x_range[1] && a->shear_modulus == b->shear_modulus &&
          a->poisson_ratio == b->poisson_ratio && a->mu == b->mu &&
          a->layer_thickness == b->layer_thickness &&
          a->layer_shear_modulus == b->layer_shear_modulus &&
          a->has_plasticity == b->has_plasticity && a->tau_c0 == b->tau_c0 && a->k_tau == b->k_tau &&
          a->tau_c_min == b->tau_c_min && same_history(&a->velocity, &b->velocity) &&
-         same_history(&a->creepage, &b->creepage) && same_history(&a->shift_velocity, &b->shift_velocity) &&
-         a->mode == b->mode && a->end_time == b->end_time &&
-         a->rolled_distance == b->rolled_distance && a->output_interval == b->output_interval &&
-         a->initial_state == b->initial_state && a->rtol == b->rtol && a->atol == b->atol &&
-         a->max_order == b->max_order && a->scaling == b->scaling && a->max_steps == b->max_steps &&
+         same_history(&a->creepage, &b->creepage) &&
+         same_history(&a->shift_velocity, &b->shift_velocity) && a->mode == b->mode &&
+         a->end_time == b->end_time && a->rolled_distance == b->rolled_distance &&
+         a->output_interval == b->output_interval && a->initial_state == b->initial_state &&
+         a->rtol == b->rtol && a->atol == b->atol && a->max_order == b->max_order &&
+         a->scaling == b->scaling && a->max_steps == b->max_steps &&
          !strcmp(a->output_file, b->output_file) && a->fields == b->fields;
 }
 
 static void test_full(void)
 {
   rs_case c;
-  if (load(&c, "full.yaml", NULL, 0) != RS_OK)
-    return;
+  if (load(&c, "full.yaml", NULL, 0) != RS_OK) return;
   CHECK(!strcmp(c.title, "Carter 2D rolling with local plasticity, k_rel = 0.6"));
   CHECK(c.dimension == 2);
   CHECK(c.normal_load.kind == RS_HISTORY_CONSTANT && c.normal_load.value == 178.9);
@@ -118,8 +116,7 @@ static void test_full(void)
 static void test_minimal_defaults(void)
 {
   rs_case c;
-  if (load(&c, "minimal.yaml", NULL, 0) != RS_OK)
-    return;
+  if (load(&c, "minimal.yaml", NULL, 0) != RS_OK) return;
   CHECK(!strcmp(c.title, ""));
   CHECK(c.dimension == 2 && c.normal_load.kind == RS_HISTORY_CONSTANT &&
         c.normal_load.value == 178.9);
@@ -143,8 +140,7 @@ static void test_minimal_defaults(void)
 static void test_k_rel(void)
 {
   rs_case c;
-  if (load(&c, "k_rel.yaml", NULL, 0) != RS_OK)
-    return;
+  if (load(&c, "k_rel.yaml", NULL, 0) != RS_OK) return;
   /* k_tau = G*k_rel/(1 - k_rel) = 82000*0.6/0.4 = 123000, exact in binary */
   CHECK(c.has_plasticity == 1);
   CHECK(c.k_tau == 123000.0);
@@ -155,8 +151,7 @@ static void test_k_rel(void)
 static void test_histories(void)
 {
   rs_case c;
-  if (load(&c, "histories.yaml", NULL, 0) != RS_OK)
-    return;
+  if (load(&c, "histories.yaml", NULL, 0) != RS_OK) return;
   /* table: (0, 100), (0.0002, 200), (0.0004, 150) */
   CHECK(c.normal_load.kind == RS_HISTORY_TABLE && c.normal_load.n == 3);
   CHECK(fabs(rs_history_eval(&c.normal_load, 0.0001) - 150.0) < 1e-9);
@@ -166,19 +161,16 @@ static void test_histories(void)
   CHECK(fabs(rs_history_eval(&c.creepage, 0.005) - (-0.001)) < 1e-15); /* quarter period */
   rs_case_free(&c);
 
-  if (load(&c, "rolled.yaml", NULL, 0) != RS_OK)
-    return;
+  if (load(&c, "rolled.yaml", NULL, 0) != RS_OK) return;
   CHECK(c.rolled_distance == 9.0 && fabs(c.end_time - 0.0003) < 1e-18);
   rs_case_free(&c);
 
-  if (load(&c, "shift.yaml", NULL, 0) != RS_OK)
-    return;
+  if (load(&c, "shift.yaml", NULL, 0) != RS_OK) return;
   CHECK(c.velocity.value == 0.0 && c.shift_velocity.value == 10.0);
   rs_case_free(&c);
 
   /* grid.x_range: stored as given, printed back, extent not used */
-  if (load(&c, "x_range.yaml", NULL, 0) != RS_OK)
-    return;
+  if (load(&c, "x_range.yaml", NULL, 0) != RS_OK) return;
   CHECK(c.grid_from_range == 1 && c.x_range[0] == -1.25 && c.x_range[1] == 1.15 && c.cells == 80);
   char *text = NULL;
   size_t len = 0;
@@ -196,8 +188,7 @@ static void test_sets(void)
   rs_case c;
   const char *sets[] = {"grid.cells=200",     "rolling.creepage=-0.001", "output.fields=[px,pn]",
                         "plasticity.k_tau=0", "solver.scaling=self",     "title=changed"};
-  if (load(&c, "full.yaml", sets, 6) != RS_OK)
-    return;
+  if (load(&c, "full.yaml", sets, 6) != RS_OK) return;
   CHECK(c.cells == 200);
   CHECK(c.creepage.kind == RS_HISTORY_CONSTANT && c.creepage.value == -0.001);
   CHECK(c.fields == (RS_FIELD_PX | RS_FIELD_PN));
@@ -209,8 +200,7 @@ static void test_sets(void)
   const char *create[] = {"layer.thickness=0.2",
                           "rolling.creepage={ramp: {from: 0, to: -0.01, start: 0, duration: 0.05}}",
                           "plasticity.k_rel=0.6", "simulation.rolled_distance=9"};
-  if (load(&c, "minimal.yaml", create, 4) != RS_OK)
-    return;
+  if (load(&c, "minimal.yaml", create, 4) != RS_OK) return;
   CHECK(c.layer_thickness == 0.2);
   CHECK(c.creepage.kind == RS_HISTORY_RAMP && c.creepage.to == -0.01 &&
         c.creepage.duration == 0.05);
@@ -220,15 +210,13 @@ static void test_sets(void)
 
   /* null = not given: switch from end_time to rolled_distance (3 mm at 30000 mm/s) */
   const char *distance[] = {"simulation.end_time=null", "simulation.rolled_distance=3"};
-  if (load(&c, "full.yaml", distance, 2) != RS_OK)
-    return;
+  if (load(&c, "full.yaml", distance, 2) != RS_OK) return;
   CHECK(c.rolled_distance == 3.0 && fabs(c.end_time - 1e-4) < 1e-18);
   rs_case_free(&c);
 
   /* plasticity=null switches the block off */
   const char *off[] = {"plasticity=null"};
-  if (load(&c, "full.yaml", off, 1) != RS_OK)
-    return;
+  if (load(&c, "full.yaml", off, 1) != RS_OK) return;
   CHECK(c.has_plasticity == 0);
   rs_case_free(&c);
 }
@@ -274,8 +262,7 @@ static void test_file_errors(void)
 
   FILE *f = fopen(in_dir(work_dir, "case_empty.yaml", path, sizeof path), "w");
   CHECK(f != NULL);
-  if (f)
-    fclose(f); /* zero bytes */
+  if (f) fclose(f); /* zero bytes */
   status = rs_case_load(&c, path, NULL, 0, &msg);
   char where[1100];
   snprintf(where, sizeof where, "%s:1: ", path);
@@ -289,8 +276,7 @@ static void test_file_errors(void)
 static void test_print(void)
 {
   rs_case c;
-  if (load(&c, "k_rel.yaml", NULL, 0) != RS_OK)
-    return;
+  if (load(&c, "k_rel.yaml", NULL, 0) != RS_OK) return;
   char *text = NULL;
   size_t len = 0;
   FILE *out = open_memstream(&text, &len);
@@ -323,8 +309,7 @@ static void test_print(void)
 static void round_trip(const char *name, const char *const *sets, int nsets)
 {
   rs_case a, b;
-  if (load(&a, name, sets, nsets) != RS_OK)
-    return;
+  if (load(&a, name, sets, nsets) != RS_OK) return;
   char path[1024];
   snprintf(path, sizeof path, "%s/roundtrip_%s", work_dir, name);
   FILE *f = fopen(path, "w");

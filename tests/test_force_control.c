@@ -97,8 +97,8 @@ static void check_transient(void)
   if (steady(&cs, &fx_s, &xi_s)) return (void)ts_failures++;
 
   c.force_control = 1;
-  c.tangential_force = (rs_history){.kind = RS_HISTORY_RAMP, .from = 0.0, .to = target,
-                                    .start = 0.0, .duration = ramp};
+  c.tangential_force = (rs_history){
+      .kind = RS_HISTORY_RAMP, .from = 0.0, .to = target, .start = 0.0, .duration = ramp};
   rs_model m;
   rs_msg msg = {{0}};
   if (rs_model_from_case(&m, &c, &msg) != RS_OK) {
@@ -109,8 +109,12 @@ static void check_transient(void)
   rs_work w;
   rs_work_create(&w, &m);
   const double t_end = 15 * 2 * m.hertz_a / c.velocity.value;
-  rs_transient_opts o = {.rtol = 1e-6, .atol = 1e-6, .max_order = 5, .max_steps = 200000,
-                         .max_newton = 10, .t_stop = ramp};
+  rs_transient_opts o = {.rtol = 1e-6,
+                         .atol = 1e-6,
+                         .max_order = 5,
+                         .max_steps = 200000,
+                         .max_newton = 10,
+                         .t_stop = ramp};
   rs_transient *tr = NULL;
   double worst = 0.0;
   if (ts_consistent_rates(&m, &w, 0.0, y, yp, &msg) ||

@@ -22,7 +22,10 @@ typedef struct hou_law {
   double c, g, tau_c0, k, tau_min;
 } hou_law;
 
-static double hou_tauc(const hou_law *L, double ustar) { return fmax(L->tau_min, L->tau_c0 + L->k * ustar); }
+static double hou_tauc(const hou_law *L, double ustar)
+{
+  return fmax(L->tau_min, L->tau_c0 + L->k * ustar);
+}
 
 /* Exact update over a shift increment ds (one direction), by sub-segments. */
 static void hou_advance(const hou_law *L, hou_state *s, double ds)
@@ -88,8 +91,12 @@ static int run_variant(const char *name, double k, double layer_h3, double layer
                .k = k,
                .tau_min = c.tau_c_min};
   const double rtol = 1e-7;
-  rs_transient_opts o = {.rtol = rtol, .atol = 1e-9, .max_order = 5, .max_steps = 100000,
-                         .max_newton = 10, .t_stop = st[1]};
+  rs_transient_opts o = {.rtol = rtol,
+                         .atol = 1e-9,
+                         .max_order = 5,
+                         .max_steps = 100000,
+                         .max_newton = 10,
+                         .t_stop = st[1]};
   double y[3] = {0, 0, 0}, yp[3];
   rs_work w;
   rs_work_create(&w, &m);

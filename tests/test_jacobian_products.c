@@ -63,7 +63,8 @@ static void check_model(const char *name, rs_case *c)
   }
   unsigned long seed = 12345;
   const double ymax = norm_inf(y, neq);
-  for (int i = 0; i < neq; i++) y[i] += 0.01 * ymax * next_random(&seed) * (i < m.grid.n ? 1.0 : 1e-3);
+  for (int i = 0; i < neq; i++)
+    y[i] += 0.01 * ymax * next_random(&seed) * (i < m.grid.n ? 1.0 : 1e-3);
   const rs_inputs in = ts_inputs(&m, 0.0);
   const double cjs[2] = {0.0, in.velocity / m.grid.dx};
   for (int k = 0; k < 2; k++) {

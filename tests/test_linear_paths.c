@@ -25,7 +25,8 @@
 
 #include <stdlib.h>
 
-static int solve(const rs_model *m, rs_linear lin, double *y, rs_diag *d, rs_stats *st) {
+static int solve(const rs_model *m, rs_linear lin, double *y, rs_diag *d, rs_stats *st)
+{
   rs_msg msg = {{0}};
   rs_steady *s = NULL;
   memset(y, 0, (size_t)m->lay.neq * sizeof *y);
@@ -46,7 +47,8 @@ static int solve(const rs_model *m, rs_linear lin, double *y, rs_diag *d, rs_sta
   return 0;
 }
 
-static int compare(const char *name, rs_case *c) {
+static int compare(const char *name, rs_case *c)
+{
   rs_model m;
   rs_msg msg = {{0}};
   if (rs_model_from_case(&m, c, &msg) != RS_OK) {
@@ -63,48 +65,49 @@ static int compare(const char *name, rs_case *c) {
     rs_stats st;
     fail |= solve(&m, paths[k], y[k], &d[k], &st);
     printf("%s, %s: Fx/(mu Fn) = %.10f, E/H/S/P = %d/%d/%d/%d, Newton %ld, linear %ld\n", name,
-           pname[k], d[k].Fx / (m.par.friction.mu * d[k].Fn), d[k].count[0], d[k].count[1], d[k].count[2],
-           d[k].count[3], st.nonlin_iters, st.lin_solves);
+           pname[k], d[k].Fx / (m.par.friction.mu * d[k].Fn), d[k].count[0], d[k].count[1],
+           d[k].count[2], d[k].count[3], st.nonlin_iters, st.lin_solves);
   }
   if (!fail) {
     for (int k = 1; k < 3; k++) {
       double dp = 0.0;
-      for (int i = 0; i < m.grid.n; i++)
-        dp = fmax(dp, fabs(y[k][i] - y[0][i]));
+      for (int i = 0; i < m.grid.n; i++) dp = fmax(dp, fabs(y[k][i] - y[0][i]));
       char what[160];
       snprintf(what, sizeof what, "%s: max|p_%s - p_klu| / p0", name, pname[k]);
       ts_check(what, dp / m.hertz_p0, 0.0, 1e-8);
       int same = 1;
-      for (int r = 0; r < 4; r++)
-        same &= d[k].count[r] == d[0].count[r];
+      for (int r = 0; r < 4; r++) same &= d[k].count[r] == d[0].count[r];
       snprintf(what, sizeof what, "%s: regime counts of %s equal those of klu", name, pname[k]);
       ts_check_true(what, same);
     }
   }
-  for (int k = 0; k < 3; k++)
-    free(y[k]);
+  for (int k = 0; k < 3; k++) free(y[k]);
   rs_model_free(&m);
   return fail;
 }
 
-
 /* F_x at nout equally spaced times up to t_end, from rest (p = 0, consistent rates). */
 static int transient_fx(const rs_model *m, rs_linear lin, double rtol, double t_end, int nout,
-                        double *fx, rs_stats *st) {
+                        double *fx, rs_stats *st)
+{
   rs_msg msg = {{0}};
   double *y = calloc((size_t)m->lay.neq, sizeof *y), *yp = calloc((size_t)m->lay.neq, sizeof *yp);
   rs_work w;
   int status = y && yp ? rs_work_create(&w, m) : RS_ERR_INTERNAL;
   if (status == RS_OK) status = ts_consistent_rates(m, &w, 0.0, y, yp, &msg);
-  rs_transient_opts o = {.rtol = rtol, .atol = 1e-9, .max_order = 5, .max_steps = 10000000,
-                         .max_newton = 10, .t_stop = t_end, .linear = lin};
+  rs_transient_opts o = {.rtol = rtol,
+                         .atol = 1e-9,
+                         .max_order = 5,
+                         .max_steps = 10000000,
+                         .max_newton = 10,
+                         .t_stop = t_end,
+                         .linear = lin};
   rs_transient *tr = NULL;
   if (status == RS_OK) status = rs_transient_create(&tr, m, NULL, 0.0, y, yp, &o, &msg);
   for (int k = 1; status == RS_OK && k <= nout; k++) {
     status = rs_transient_advance(tr, t_end * k / nout, y, yp, &msg);
     fx[k - 1] = 0.0;
-    for (int i = 0; i < m->grid.n; i++)
-      fx[k - 1] += y[i] * m->grid.dx;
+    for (int i = 0; i < m->grid.n; i++) fx[k - 1] += y[i] * m->grid.dx;
   }
   if (tr) rs_transient_get_stats(tr, st);
   if (status != RS_OK) printf("FAIL transient, linear path %d: %s\n", (int)lin, msg.text);
@@ -115,7 +118,8 @@ static int transient_fx(const rs_model *m, rs_linear lin, double rtol, double t_
   return status != RS_OK;
 }
 
-static int compare_transient(const char *name, rs_case *c, double contact_lengths) {
+static int compare_transient(const char *name, rs_case *c, double contact_lengths)
+{
   rs_model m;
   rs_msg msg = {{0}};
   c->mode = RS_MODE_TRANSIENT;
@@ -146,8 +150,8 @@ static int compare_transient(const char *name, rs_case *c, double contact_length
       d_klu = fmax(d_klu, fabs(fx[0][j] - fx[2][j]));
     }
     char what[200];
-    snprintf(what, sizeof what, "%s: max|F_dense - F_klu| <= max|F_klu - F_ref| (%.3g N/mm)",
-             name, d_klu);
+    snprintf(what, sizeof what, "%s: max|F_dense - F_klu| <= max|F_klu - F_ref| (%.3g N/mm)", name,
+             d_klu);
     ts_check_true(what, d_paths <= d_klu);
     printf("     max|F_dense - F_klu| = %.3g N/mm = %.3g max|F_x|\n", d_paths, d_paths / fx_max);
     snprintf(what, sizeof what, "%s: max|F_klu - F_ref| / max|F_x|", name);
@@ -157,7 +161,8 @@ static int compare_transient(const char *name, rs_case *c, double contact_length
   return fail;
 }
 
-int main(void) {
+int main(void)
+{
   rs_case c;
   int fail = 0;
   ts_carter_case(&c, 100);

@@ -53,11 +53,11 @@ static void check_grid(int cells, double load_fraction)
   rs_elastic_work ew;
   rs_elastic_work_create(&ew, &m.el);
   printf("-- %d cells, load %g N/mm\n", cells, load);
-  int st = rs_normal2d_solve_with(&m.el.line, &ew.line, m.gap, load, RS_NORMAL2D_DIRECT, p_dir, &d_dir,
-                                  &it_dir, &msg);
+  int st = rs_normal2d_solve_with(&m.el.line, &ew.line, m.gap, load, RS_NORMAL2D_DIRECT, p_dir,
+                                  &d_dir, &it_dir, &msg);
   if (st == RS_OK)
-    st = rs_normal2d_solve_with(&m.el.line, &ew.line, m.gap, load, RS_NORMAL2D_CG, p_cg, &d_cg, &it_cg,
-                                &msg);
+    st = rs_normal2d_solve_with(&m.el.line, &ew.line, m.gap, load, RS_NORMAL2D_CG, p_cg, &d_cg,
+                                &it_cg, &msg);
   if (st == RS_OK)
     st = rs_normal2d_solve(&m.el.line, &ew.line, m.gap, load, p_auto, &d_auto, &it_auto, &msg);
   if (st != RS_OK) {

@@ -13,14 +13,14 @@
 #include "test_support.h"
 
 static int fails = 0;
-#define EXPECT(cond, ...)             \
-  do {                                \
-    if (!(cond)) {                    \
-      printf("FAIL n=%d: ", n);       \
-      printf(__VA_ARGS__);            \
-      printf("\n");                   \
-      fails++;                        \
-    }                                 \
+#define EXPECT(cond, ...)                                                                          \
+  do {                                                                                             \
+    if (!(cond)) {                                                                                 \
+      printf("FAIL n=%d: ", n);                                                                    \
+      printf(__VA_ARGS__);                                                                         \
+      printf("\n");                                                                                \
+      fails++;                                                                                     \
+    }                                                                                              \
   } while (0)
 
 static int close_ulp(double a, double b) { return fabs(a - b) <= 4.5e-16 * fabs(b); }

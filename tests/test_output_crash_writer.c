@@ -19,7 +19,7 @@
 #include "rollsim/case.h"
 #include "rollsim/output.h"
 
-#define MAX_NX 1000
+#define MAX_NX            1000
 #define CASE_FILLER_LINES 100
 
 int main(int argc, char **argv)
@@ -42,8 +42,7 @@ int main(int argc, char **argv)
 
   static double x[MAX_NX], fields[6][MAX_NX];
   static signed char regime[MAX_NX];
-  for (long i = 0; i < nx; i++)
-    x[i] = (double)i;
+  for (long i = 0; i < nx; i++) x[i] = (double)i;
   rs_output_spec spec = {.path = path,
                          .title = "crash test",
                          .case_text = case_text,
@@ -65,10 +64,8 @@ int main(int argc, char **argv)
   const struct timespec pause = {sleep_ms / 1000, (sleep_ms % 1000) * 1000000L};
   for (long rec = 0; rec < nrec; rec++) {
     for (int f = 0; f < 6; f++)
-      for (long i = 0; i < nx; i++)
-        fields[f][i] = 1e4 * (double)rec + 1e3 * f + (double)i;
-    for (long i = 0; i < nx; i++)
-      regime[i] = (signed char)((rec + i) % 4);
+      for (long i = 0; i < nx; i++) fields[f][i] = 1e4 * (double)rec + 1e3 * f + (double)i;
+    for (long i = 0; i < nx; i++) regime[i] = (signed char)((rec + i) % 4);
     const rs_record r = {.time = 1e-3 * (double)rec,
                          .Fx = (double)rec + 0.5,
                          .Fn = 2.0 * (double)rec + 1.0,
@@ -102,11 +99,9 @@ int main(int argc, char **argv)
         return 1;
       }
     }
-    if (sleep_ms > 0)
-      nanosleep(&pause, NULL);
+    if (sleep_ms > 0) nanosleep(&pause, NULL);
   }
-  if (rs_output_set_status(out, "complete", &msg) != RS_OK ||
-      rs_output_close(out, &msg) != RS_OK) {
+  if (rs_output_set_status(out, "complete", &msg) != RS_OK || rs_output_close(out, &msg) != RS_OK) {
     fprintf(stderr, "%s\n", msg.text);
     return 1;
   }

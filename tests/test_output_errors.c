@@ -15,7 +15,6 @@
 #include "rollsim/output.h"
 #include "test_support.h"
 
-
 #define NX 4
 static const double x[NX] = {-1.5, -0.5, 0.5, 1.5};
 
@@ -63,8 +62,7 @@ int main(int argc, char **argv)
   snprintf(plain, sizeof plain, "%s/plain_file", dir);
   FILE *f = fopen(plain, "w");
   TS_CHECK(f != NULL, "cannot create %s", plain);
-  if (f)
-    fclose(f);
+  if (f) fclose(f);
   snprintf(path, sizeof path, "%s/sub/x.nc", plain);
   expect_create_failure(path);
 
@@ -110,8 +108,8 @@ int main(int argc, char **argv)
       size_t nrec = 99;
       TS_CHECK(nc_open(path, NC_NOWRITE, &ncid) == NC_NOERR, "reopen %s", path);
       TS_CHECK(nc_inq_dimid(ncid, "time", &dimid) == NC_NOERR &&
-                nc_inq_dimlen(ncid, dimid, &nrec) == NC_NOERR && nrec == 0,
-            "%s holds %zu records after a refused one", path, nrec);
+                   nc_inq_dimlen(ncid, dimid, &nrec) == NC_NOERR && nrec == 0,
+               "%s holds %zu records after a refused one", path, nrec);
       TS_CHECK(nc_close(ncid) == NC_NOERR, "close %s", path);
       /* a complete record is accepted */
       status = rs_output_create(&out, &spec, &msg);

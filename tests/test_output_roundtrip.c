@@ -19,39 +19,31 @@
 #define RS_VERSION "unknown"
 #endif
 
-#define NX 7
+#define NX   7
 #define NREC 3
-#define ALL_FIELDS                                                                          \
-  (RS_FIELD_PX | RS_FIELD_PN | RS_FIELD_SLIP | RS_FIELD_UPL | RS_FIELD_USTAR |              \
-   RS_FIELD_TAUC | RS_FIELD_REGIME)
-
+#define ALL_FIELDS                                                                                 \
+  (RS_FIELD_PX | RS_FIELD_PN | RS_FIELD_SLIP | RS_FIELD_UPL | RS_FIELD_USTAR | RS_FIELD_TAUC |     \
+   RS_FIELD_REGIME)
 
 /* A netCDF call on the reading side that must succeed. */
-#define NC(call)                                                                            \
-  do {                                                                                      \
-    int nc_err_ = (call);                                                                   \
-    if (nc_err_ != NC_NOERR) {                                                              \
-      fprintf(stderr, "%s:%d: %s: %s\n", __FILE__, __LINE__, #call, nc_strerror(nc_err_));  \
-      exit(1);                                                                              \
-    }                                                                                       \
+#define NC(call)                                                                                   \
+  do {                                                                                             \
+    int nc_err_ = (call);                                                                          \
+    if (nc_err_ != NC_NOERR) {                                                                     \
+      fprintf(stderr, "%s:%d: %s: %s\n", __FILE__, __LINE__, #call, nc_strerror(nc_err_));         \
+      exit(1);                                                                                     \
+    }                                                                                              \
   } while (0)
 
-static const char *const case_yaml =
-    "title: round trip\n"
-    "contact:\n"
-    "  normal_load: 178.9        # N/mm\n"
-    "friction:\n"
-    "  mu: 0.3\n";
+static const char *const case_yaml = "title: round trip\n"
+                                     "contact:\n"
+                                     "  normal_load: 178.9        # N/mm\n"
+                                     "friction:\n"
+                                     "  mu: 0.3\n";
 
 /* Field f (0 px, 1 pn, 2 slip, 3 upl, 4 ustar, 5 tauc) of record rec at cell i. */
-static double field_value(int f, int rec, int i)
-{
-  return 10.0 * rec + i + 1000.0 * f;
-}
-static signed char regime_value(int rec, int i)
-{
-  return (signed char)((rec + i) % 4);
-}
+static double field_value(int f, int rec, int i) { return 10.0 * rec + i + 1000.0 * f; }
+static signed char regime_value(int rec, int i) { return (signed char)((rec + i) % 4); }
 
 typedef struct record_data {
   double fields[6][NX];
@@ -62,10 +54,8 @@ typedef struct record_data {
 static void make_record(record_data *d, int rec, unsigned mask)
 {
   for (int f = 0; f < 6; f++)
-    for (int i = 0; i < NX; i++)
-      d->fields[f][i] = field_value(f, rec, i);
-  for (int i = 0; i < NX; i++)
-    d->regime[i] = regime_value(rec, i);
+    for (int i = 0; i < NX; i++) d->fields[f][i] = field_value(f, rec, i);
+  for (int i = 0; i < NX; i++) d->regime[i] = regime_value(rec, i);
   rs_record *r = &d->rec;
   memset(r, 0, sizeof *r);
   r->time = 0.5 * rec;
@@ -89,18 +79,14 @@ static void make_record(record_data *d, int rec, unsigned mask)
   r->regime = mask & RS_FIELD_REGIME ? d->regime : NULL;
 }
 
-static double cell_x(int i)
-{
-  return -1.0 + 2.0 * (i + 0.5) / NX;
-}
+static double cell_x(int i) { return -1.0 + 2.0 * (i + 0.5) / NX; }
 
 /* Create PATH with the given fields and dimension, write nrec records, set status. */
 static void write_file(const char *path, unsigned mask, int dimension, int nrec,
                        const char *final_status)
 {
   double x[NX];
-  for (int i = 0; i < NX; i++)
-    x[i] = cell_x(i);
+  for (int i = 0; i < NX; i++) x[i] = cell_x(i);
   rs_output_spec spec = {.path = path,
                          .title = "output round trip",
                          .case_text = case_yaml,
@@ -140,14 +126,13 @@ static void check_text_att(int ncid, int varid, const char *name, const char *ex
   nc_type type;
   int err = nc_inq_att(ncid, varid, name, &type, &len);
   TS_CHECK(err == NC_NOERR, "attribute %s (varid %d): %s", name, varid, nc_strerror(err));
-  if (err != NC_NOERR)
-    return;
+  if (err != NC_NOERR) return;
   TS_CHECK(type == NC_CHAR, "attribute %s has type %d", name, (int)type);
   char *text = calloc(len + 1, 1);
   NC(nc_get_att_text(ncid, varid, name, text));
   /* text attributes may be NUL-padded (status): compare as C strings */
   TS_CHECK(strcmp(text, expected) == 0, "attribute %s = \"%s\", expected \"%s\"", name, text,
-        expected);
+           expected);
   free(text);
 }
 
@@ -223,8 +208,7 @@ static void check_full_file(const char *path)
   double x[NX];
   NC(nc_inq_varid(ncid, "x", &varid));
   NC(nc_get_var_double(ncid, varid, x));
-  for (int i = 0; i < NX; i++)
-    TS_CHECK(x[i] == cell_x(i), "x[%d] = %g", i, x[i]);
+  for (int i = 0; i < NX; i++) TS_CHECK(x[i] == cell_x(i), "x[%d] = %g", i, x[i]);
 
   /* units of the scalars (2D) and fields */
   check_var_text(ncid, "Fx", "units", "N/mm");
@@ -247,8 +231,7 @@ static void check_full_file(const char *path)
   TS_CHECK(type == NC_BYTE && len == 4, "flag_values type %d len %zu", (int)type, len);
   signed char flags[4] = {-1, -1, -1, -1};
   NC(nc_get_att_schar(ncid, varid, "flag_values", flags));
-  for (int k = 0; k < 4; k++)
-    TS_CHECK(flags[k] == k, "flag_values[%d] = %d", k, flags[k]);
+  for (int k = 0; k < 4; k++) TS_CHECK(flags[k] == k, "flag_values[%d] = %d", k, flags[k]);
   check_text_att(ncid, varid, "flag_meanings", "exterior adhesion slip plastic");
 
   /* every value of every record */
@@ -260,8 +243,7 @@ static void check_full_file(const char *path)
     TS_CHECK(get_scalar(ncid, "Fx", rec) == r->Fx, "Fx[%d]", rec);
     TS_CHECK(get_scalar(ncid, "Fn", rec) == r->Fn, "Fn[%d]", rec);
     const double mu = get_scalar(ncid, "traction_coefficient", rec);
-    TS_CHECK(mu == (r->Fn != 0.0 ? r->Fx / r->Fn : 0.0), "traction_coefficient[%d] = %g", rec,
-          mu);
+    TS_CHECK(mu == (r->Fn != 0.0 ? r->Fx / r->Fn : 0.0), "traction_coefficient[%d] = %g", rec, mu);
     TS_CHECK(get_scalar(ncid, "creepage", rec) == r->creepage, "creepage[%d]", rec);
     TS_CHECK(get_scalar(ncid, "velocity", rec) == r->velocity, "velocity[%d]", rec);
     TS_CHECK(get_scalar(ncid, "n_exterior", rec) == r->n_exterior, "n_exterior[%d]", rec);
@@ -278,8 +260,7 @@ static void check_full_file(const char *path)
       NC(nc_inq_varid(ncid, field_names[f], &varid));
       NC(nc_get_vara_double(ncid, varid, start, count, v));
       for (int i = 0; i < NX; i++)
-        TS_CHECK(v[i] == field_value(f, rec, i), "%s[%d][%d] = %g", field_names[f], rec, i,
-              v[i]);
+        TS_CHECK(v[i] == field_value(f, rec, i), "%s[%d][%d] = %g", field_names[f], rec, i, v[i]);
     }
     signed char regime[NX];
     NC(nc_inq_varid(ncid, "regime", &varid));
@@ -299,15 +280,13 @@ static void check_subset_file(const char *path)
   TS_CHECK(nc_inq_varid(ncid, "px", &varid) == NC_NOERR, "px present");
   TS_CHECK(nc_inq_varid(ncid, "regime", &varid) == NC_NOERR, "regime present");
   for (int f = 1; f < 6; f++)
-    TS_CHECK(nc_inq_varid(ncid, field_names[f], &varid) == NC_ENOTVAR, "%s absent",
-          field_names[f]);
+    TS_CHECK(nc_inq_varid(ncid, field_names[f], &varid) == NC_ENOTVAR, "%s absent", field_names[f]);
   TS_CHECK(nc_inq_varid(ncid, "Fx", &varid) == NC_NOERR, "scalars present");
   double px[NX];
   const size_t start[2] = {1, 0}, count[2] = {1, NX};
   NC(nc_inq_varid(ncid, "px", &varid));
   NC(nc_get_vara_double(ncid, varid, start, count, px));
-  for (int i = 0; i < NX; i++)
-    TS_CHECK(px[i] == field_value(0, 1, i), "px[1][%d] = %g", i, px[i]);
+  for (int i = 0; i < NX; i++) TS_CHECK(px[i] == field_value(0, 1, i), "px[1][%d] = %g", i, px[i]);
   /* a status longer than the attribute is truncated, not rejected */
   char status[RS_OUTPUT_STATUS_LEN + 1];
   size_t len;
@@ -316,7 +295,7 @@ static void check_subset_file(const char *path)
   memset(status, 0, sizeof status);
   NC(nc_get_att_text(ncid, NC_GLOBAL, "status", status));
   TS_CHECK(strlen(status) == RS_OUTPUT_STATUS_LEN - 1 && strncmp(status, "failed: ", 8) == 0,
-        "truncated status \"%.20s...\" (%zu chars)", status, strlen(status));
+           "truncated status \"%.20s...\" (%zu chars)", status, strlen(status));
   NC(nc_close(ncid));
 }
 

@@ -17,7 +17,6 @@
 #include "rollsim/steady.h"
 #include "test_support.h"
 
-
 static void check_solution(double k_rel, int cells)
 {
   rs_case c;
@@ -78,7 +77,8 @@ static void check_regrid(void)
   ts_fig7_case(&c, 120, 0.6);
   rs_model m, same, half;
   rs_msg msg = {{0}};
-  if (rs_model_from_case(&m, &c, &msg) != RS_OK || rs_model_regrid(&m, m.grid.n, &same, &msg) != RS_OK ||
+  if (rs_model_from_case(&m, &c, &msg) != RS_OK ||
+      rs_model_regrid(&m, m.grid.n, &same, &msg) != RS_OK ||
       rs_model_regrid(&m, m.grid.n / 2, &half, &msg) != RS_OK) {
     printf("FAIL regrid: %s\n", msg.text);
     ts_failures++;
@@ -87,18 +87,21 @@ static void check_regrid(void)
   double dp = 0.0, dcoef = 0.0;
   for (int i = 0; i < m.grid.n; i++) dp = fmax(dp, fabs(same.pn[i] - m.pn[i]));
   for (int k = -m.grid.n; k <= m.grid.n; k++)
-    dcoef = fmax(dcoef, fabs(rs_elastic2d_tang(&same.el.line, k) - rs_elastic2d_tang(&m.el.line, k)));
+    dcoef =
+        fmax(dcoef, fabs(rs_elastic2d_tang(&same.el.line, k) - rs_elastic2d_tang(&m.el.line, k)));
   ts_check("regrid to the same size: max |delta p_n| / p0", dp / m.hertz_p0, 0.0, 1e-14);
-  ts_check("regrid to the same size: max |delta A(k)| / A(0)", dcoef / rs_elastic2d_tang(&m.el.line, 0),
-           0.0, 1e-14);
+  ts_check("regrid to the same size: max |delta A(k)| / A(0)",
+           dcoef / rs_elastic2d_tang(&m.el.line, 0), 0.0, 1e-14);
   double load = 0.0;
   for (int i = 0; i < half.grid.n; i++) load += half.pn[i] * half.grid.dx;
   ts_check("regrid to half the cells: dx sum p_n / q", load / c.normal_load.value, 1.0, 1e-10);
-  ts_check("regrid to half the cells: same extent", half.grid.n * half.grid.dx, m.grid.n * m.grid.dx, 1e-12);
+  ts_check("regrid to half the cells: same extent", half.grid.n * half.grid.dx,
+           m.grid.n * m.grid.dx, 1e-12);
 
   /* Linear u_pl and u* from the coarse grid are reproduced on the fine one between
    * the outer coarse centres. */
-  double *yc = calloc((size_t)half.lay.neq, sizeof *yc), *yf = calloc((size_t)m.lay.neq, sizeof *yf);
+  double *yc = calloc((size_t)half.lay.neq, sizeof *yc),
+         *yf = calloc((size_t)m.lay.neq, sizeof *yf);
   for (int i = 0; i < half.grid.n; i++) {
     yc[half.grid.n + i] = 2.0 * half.grid.x[i] + 1.0;
     yc[2 * half.grid.n + i] = 3.0 - half.grid.x[i];

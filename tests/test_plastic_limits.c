@@ -101,8 +101,8 @@ int main(void)
     gap[k] = fabs(d->rigid_slip_power - diss) / d->rigid_slip_power;
     printf("cells %d: rigid-slip power %.6g, frictional %.6g, plastic %.6g N mm/s/mm, gap %.3e; "
            "E/H/S/P %d/%d/%d/%d\n",
-           cells[k], d->rigid_slip_power, d->frictional_power, d->plastic_power, gap[k], d->count[0],
-           d->count[1], d->count[2], d->count[3]);
+           cells[k], d->rigid_slip_power, d->frictional_power, d->plastic_power, gap[k],
+           d->count[0], d->count[1], d->count[2], d->count[3]);
     char what[96];
     snprintf(what, sizeof what, "cells %d: frictional power >= 0", cells[k]);
     ts_check_true(what, d->frictional_power >= 0);

@@ -25,7 +25,8 @@ int main(void)
     rs_model m;
     rs_msg msg = {{0}};
     if (rs_model_from_case(&m, &c, &msg) != RS_OK) return 1;
-    double *ys = calloc((size_t)m.lay.neq, sizeof(double)), *y = calloc((size_t)m.lay.neq, sizeof(double)),
+    double *ys = calloc((size_t)m.lay.neq, sizeof(double)),
+           *y = calloc((size_t)m.lay.neq, sizeof(double)),
            *yp = calloc((size_t)m.lay.neq, sizeof(double));
     rs_work w;
     rs_work_create(&w, &m);
@@ -39,8 +40,12 @@ int main(void)
     for (int i = 0; i < m.grid.n; i++) fx_steady += ys[i] * m.grid.dx;
     ts_consistent_rates(&m, &w, 0.0, y, yp, &msg);
     const double V = c.velocity.value, rolled = 70.0, t_end = rolled / V;
-    rs_transient_opts o = {.rtol = 1e-8, .atol = 1e-6, .max_order = 5, .max_steps = 1000000,
-                           .max_newton = 10, .t_stop = t_end};
+    rs_transient_opts o = {.rtol = 1e-8,
+                           .atol = 1e-6,
+                           .max_order = 5,
+                           .max_steps = 1000000,
+                           .max_newton = 10,
+                           .t_stop = t_end};
     rs_transient *tr = NULL;
     if (rs_transient_create(&tr, &m, NULL, 0.0, y, yp, &o, &msg)) return 1;
     double settled = -1, dev = 1;
@@ -64,8 +69,9 @@ int main(void)
     printf("k_rel = %6.3f: steady F_x/(mu F_n) = %.6f (E/H/S/P %d/%d/%d/%d); transient within 1e-4 "
            "after %.1f mm rolled (%.1f contact lengths); final deviation %.2e; IDA steps %ld, "
            "Newton %ld, failed solves %ld\n",
-           k_rels[k], fx_steady / (m.par.friction.mu * d.Fn), d.count[0], d.count[1], d.count[2], d.count[3],
-           settled, settled / (2 * m.hertz_a), dev, ts.steps, ts.nonlin_iters, ts.nonlin_fails);
+           k_rels[k], fx_steady / (m.par.friction.mu * d.Fn), d.count[0], d.count[1], d.count[2],
+           d.count[3], settled, settled / (2 * m.hertz_a), dev, ts.steps, ts.nonlin_iters,
+           ts.nonlin_fails);
     char what[96];
     snprintf(what, sizeof what, "k_rel = %g: transient F_x within 1e-4 of steady", k_rels[k]);
     ts_check(what, dev, 0.0, 1e-4);

@@ -72,8 +72,12 @@ int main(void)
     ts_consistent_rates(&m, &w, 0.0, y, yp, &msg);
     const int periods = 8, M = 200; /* fit over the last two periods */
     const double t_end = periods * period;
-    rs_transient_opts o = {.rtol = 1e-8, .atol = 1e-12, .max_order = 5, .max_steps = 10000000,
-                           .max_newton = 10, .t_stop = t_end};
+    rs_transient_opts o = {.rtol = 1e-8,
+                           .atol = 1e-12,
+                           .max_order = 5,
+                           .max_steps = 10000000,
+                           .max_newton = 10,
+                           .t_stop = t_end};
     rs_transient *tr = NULL;
     if (rs_transient_create(&tr, &m, NULL, 0.0, y, yp, &o, &msg)) return 1;
     double a = 0, b = 0, mean = 0;
@@ -121,9 +125,10 @@ int main(void)
     c.creepage.kind = RS_HISTORY_CONSTANT;
     rs_model_free(&m);
   }
-  ts_check_true("amplitude error falls with frequency", fabs(amp_err[0]) > fabs(amp_err[1]) &&
-                                                            fabs(amp_err[1]) > fabs(amp_err[2]));
-  ts_check_true("phase lag falls with frequency", fabs(phase[0]) > fabs(phase[1]) && fabs(phase[1]) > fabs(phase[2]));
+  ts_check_true("amplitude error falls with frequency",
+                fabs(amp_err[0]) > fabs(amp_err[1]) && fabs(amp_err[1]) > fabs(amp_err[2]));
+  ts_check_true("phase lag falls with frequency",
+                fabs(phase[0]) > fabs(phase[1]) && fabs(phase[1]) > fabs(phase[2]));
   ts_check("lowest frequency: amplitude / quasi-static", 1.0 + amp_err[2], 1.0, 1e-3);
   ts_check("lowest frequency: phase lag (rad)", phase[2], 0.0, 1e-3);
   return ts_failures ? 1 : 0;

@@ -50,7 +50,8 @@ int main(int argc, char **argv)
   rs_msg msg = {{0}};
   if (rs_model_from_case(&m, &c, &msg) != RS_OK) return 1;
   double *spurious = calloc((size_t)m.lay.neq, sizeof(double));
-  double *y = calloc((size_t)m.lay.neq, sizeof(double)), *ys = calloc((size_t)m.lay.neq, sizeof(double));
+  double *y = calloc((size_t)m.lay.neq, sizeof(double)),
+         *ys = calloc((size_t)m.lay.neq, sizeof(double));
   rs_work w;
   rs_work_create(&w, &m);
   rs_steady *s = NULL;
@@ -64,13 +65,15 @@ int main(int argc, char **argv)
   /* The stored wrong state is refused, naming cell 4 and the flow against p_x. */
   const int refused = rs_model_check_steady(&m, &w, &in0, spurious, &msg);
   printf("check of the stored state: %s\n", msg.text);
-  ts_check_true("stored wrong state refused (RS_ERR_SOLVER: exit code 3)", refused == RS_ERR_SOLVER);
+  ts_check_true("stored wrong state refused (RS_ERR_SOLVER: exit code 3)",
+                refused == RS_ERR_SOLVER);
   ts_check_true("message names cell 4", strstr(msg.text, "cell 4 ") != NULL);
   ts_check_true("message names the flow opposite to the traction",
                 strstr(msg.text, "plastic flow opposite to the traction") != NULL);
 
   /* Solution from rest: passes, no traction against the creepage (xi < 0: p_x >= 0). */
-  if (rs_steady_create(&s, &m, NULL, &msg) != RS_OK || rs_steady_solve(s, 0.0, ys, &st, &msg) != RS_OK) {
+  if (rs_steady_create(&s, &m, NULL, &msg) != RS_OK ||
+      rs_steady_solve(s, 0.0, ys, &st, &msg) != RS_OK) {
     printf("FAIL steady from rest: %s\n", msg.text);
     return 1;
   }
@@ -85,7 +88,8 @@ int main(int argc, char **argv)
   rs_stats st2 = {0};
   const int status = rs_steady_solve(s, 0.0, y, &st2, &msg);
   ts_check_true("steady solve from the wrong state succeeds", status == RS_OK);
-  ts_check_true("its result passes the check", rs_model_check_steady(&m, &w, &in0, y, &msg) == RS_OK);
+  ts_check_true("its result passes the check",
+                rs_model_check_steady(&m, &w, &in0, y, &msg) == RS_OK);
   const double fx_rest = fx_of(&m, ys), fx_spur = fx_of(&m, y);
   ts_check("F_x from the wrong start / F_x from rest", fx_spur / fx_rest, 1.0, 1e-9);
   printf("F_x/F_n: stored %.6f, corrected %.6f, from rest %.6f (Newton iterations %ld)\n",

@@ -104,14 +104,14 @@ static inline int ts_residual(const rs_model *m, rs_work *w, double t, const dou
 static int ts_failures = 0;
 
 /* Counts a failure and prints where and why (printf-style message) unless cond. */
-#define TS_CHECK(cond, ...)                                                                 \
-  do {                                                                                      \
-    if (!(cond)) {                                                                          \
-      ts_failures++;                                                                        \
-      fprintf(stderr, "%s:%d: check failed: %s: ", __FILE__, __LINE__, #cond);              \
-      fprintf(stderr, __VA_ARGS__);                                                         \
-      fputc('\n', stderr);                                                                  \
-    }                                                                                       \
+#define TS_CHECK(cond, ...)                                                                        \
+  do {                                                                                             \
+    if (!(cond)) {                                                                                 \
+      ts_failures++;                                                                               \
+      fprintf(stderr, "%s:%d: check failed: %s: ", __FILE__, __LINE__, #cond);                     \
+      fprintf(stderr, __VA_ARGS__);                                                                \
+      fputc('\n', stderr);                                                                         \
+    }                                                                                              \
   } while (0)
 
 /* Passes when |got - want| <= tol; prints either way. */

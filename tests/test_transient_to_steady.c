@@ -26,7 +26,8 @@ static double settle_distance(double L, double max_rolled, double tol, double *f
     printf("FAIL model: %s\n", msg.text);
     return -1;
   }
-  double *ys = calloc((size_t)m.lay.neq, sizeof(double)), *y = calloc((size_t)m.lay.neq, sizeof(double)),
+  double *ys = calloc((size_t)m.lay.neq, sizeof(double)),
+         *y = calloc((size_t)m.lay.neq, sizeof(double)),
          *yp = calloc((size_t)m.lay.neq, sizeof(double));
   rs_work w;
   rs_work_create(&w, &m);
@@ -45,8 +46,12 @@ static double settle_distance(double L, double max_rolled, double tol, double *f
     goto done;
   }
   const double V = c.velocity.value, t_end = max_rolled / V;
-  rs_transient_opts o = {.rtol = 1e-8, .atol = 1e-6, .max_order = 5, .max_steps = 200000,
-                         .max_newton = 10, .t_stop = t_end};
+  rs_transient_opts o = {.rtol = 1e-8,
+                         .atol = 1e-6,
+                         .max_order = 5,
+                         .max_steps = 200000,
+                         .max_newton = 10,
+                         .t_stop = t_end};
   rs_transient *tr = NULL;
   if (rs_transient_create(&tr, &m, NULL, 0.0, y, yp, &o, &msg)) {
     printf("FAIL create: %s\n", msg.text);
@@ -99,6 +104,7 @@ int main(void)
     snprintf(what, sizeof what, "L = %.0f mm: final deviation from steady below 1e-4", Ls[k]);
     ts_check(what, dev, 0.0, 1e-4);
   }
-  ts_check_true("settling distance grows with L", dist[0] > 0 && dist[0] < dist[1] && dist[1] < dist[2]);
+  ts_check_true("settling distance grows with L",
+                dist[0] > 0 && dist[0] < dist[1] && dist[1] < dist[2]);
   return ts_failures ? 1 : 0;
 }

@@ -32,17 +32,17 @@ typedef struct rs_rig_step {
  * contact.radius, rolling.velocity, rolling.creepage and simulation.end_time. */
 typedef struct rs_twin_disc {
   int on;
-  double radius_1, radius_2;   /* mm */
-  double width;                /* mm */
-  double normal_force;         /* N */
-  double rpm;                  /* rolling speed as revolutions per minute of disc 1 */
-  double rpm_1, rpm_2;         /* alternative: the disc speeds (constant slip) */
-  double revolutions;          /* with rpm_1/rpm_2: length of the run */
-  double recovery;             /* fraction of u_pl, u* kept per revolution, [0, 1] */
-  double average_window;       /* trailing fraction of each step averaged, (0, 1] */
+  double radius_1, radius_2; /* mm */
+  double width;              /* mm */
+  double normal_force;       /* N */
+  double rpm;                /* rolling speed as revolutions per minute of disc 1 */
+  double rpm_1, rpm_2;       /* alternative: the disc speeds (constant slip) */
+  double revolutions;        /* with rpm_1/rpm_2: length of the run */
+  double recovery;           /* fraction of u_pl, u* kept per revolution, [0, 1] */
+  double average_window;     /* trailing fraction of each step averaged, (0, 1] */
   size_t nsteps;
   rs_rig_step *steps;
-  double revolution_time;      /* s, 2 pi R1 / V (derived) */
+  double revolution_time; /* s, 2 pi R1 / V (derived) */
 } rs_twin_disc;
 
 typedef struct rs_case {
@@ -51,61 +51,61 @@ typedef struct rs_case {
   char *title;
 
   /* contact: */
-  int dimension;                      /* 2 (3 is rejected for now) */
-  rs_history normal_load;             /* N/mm (2D) */
-  double radius;                      /* mm, combined radius */
+  int dimension;          /* 2 (3 is rejected for now) */
+  rs_history normal_load; /* N/mm (2D) */
+  double radius;          /* mm, combined radius */
   rs_normal_solution normal_solution;
-  double reference_length;            /* mm, L of the 2D kernel */
+  double reference_length; /* mm, L of the 2D kernel */
 
   /* grid: */
   int cells;
-  double extent;                      /* half-length of the potential contact area, in Hertz a */
-  int grid_from_range;                /* 1: grid.x_range given (instead of grid.extent) */
-  double x_range[2];                  /* mm, outer edges of the potential contact area */
+  double extent;       /* half-length of the potential contact area, in Hertz a */
+  int grid_from_range; /* 1: grid.x_range given (instead of grid.extent) */
+  double x_range[2];   /* mm, outer edges of the potential contact area */
 
   /* material: */
-  double shear_modulus;               /* G, N/mm^2 */
-  double poisson_ratio;               /* nu */
+  double shear_modulus; /* G, N/mm^2 */
+  double poisson_ratio; /* nu */
 
   /* friction: (law: coulomb is the only law) */
   double mu;
 
   /* layer: */
-  double layer_thickness;             /* h3, mm */
-  double layer_shear_modulus;         /* G3, N/mm^2 */
+  double layer_thickness;     /* h3, mm */
+  double layer_shear_modulus; /* G3, N/mm^2 */
 
   /* plasticity: */
-  int has_plasticity;                 /* 0: the block is absent (purely elastic) */
-  double tau_c0;                      /* N/mm^2 */
-  double k_tau;                       /* N/mm^3 (k_rel converted: k_tau = G*k_rel/(1-k_rel)) */
-  double tau_c_min;                   /* N/mm^2, default 0.1*tau_c0 */
+  int has_plasticity; /* 0: the block is absent (purely elastic) */
+  double tau_c0;      /* N/mm^2 */
+  double k_tau;       /* N/mm^3 (k_rel converted: k_tau = G*k_rel/(1-k_rel)) */
+  double tau_c_min;   /* N/mm^2, default 0.1*tau_c0 */
 
   /* rolling: */
-  rs_history velocity;                /* V, mm/s */
-  rs_history creepage;                /* xi (unused when force_control) */
-  int force_control;                  /* 1: rolling.tangential_force given, xi is an unknown */
-  rs_history tangential_force;        /* F_x, N/mm (2D), when force_control */
-  rs_history shift_velocity;          /* mm/s, rigid tangential shift rate (a history too) */
+  rs_history velocity;         /* V, mm/s */
+  rs_history creepage;         /* xi (unused when force_control) */
+  int force_control;           /* 1: rolling.tangential_force given, xi is an unknown */
+  rs_history tangential_force; /* F_x, N/mm (2D), when force_control */
+  rs_history shift_velocity;   /* mm/s, rigid tangential shift rate (a history too) */
 
   /* simulation: */
   rs_mode mode;
-  double end_time;                    /* s (derived from rolled_distance when that was given) */
-  double rolled_distance;             /* mm, < 0 when not given */
-  double output_interval;             /* s */
+  double end_time;        /* s (derived from rolled_distance when that was given) */
+  double rolled_distance; /* mm, < 0 when not given */
+  double output_interval; /* s */
   rs_initial_state initial_state;
 
   /* solver: */
-  double rtol, atol;                  /* atol in N/mm^2 (tractions) */
+  double rtol, atol; /* atol in N/mm^2 (tractions) */
   int max_order;
-  rs_scaling scaling;                 /* solver.scaling: auto | difference | self */
-  long max_steps;                     /* solver.max_steps, default 1000000 */
+  rs_scaling scaling; /* solver.scaling: auto | difference | self */
+  long max_steps;     /* solver.max_steps, default 1000000 */
 
   /* twin_disc: */
   rs_twin_disc rig;
 
   /* output: */
   char *output_file;
-  unsigned fields;                    /* RS_FIELD_* mask */
+  unsigned fields; /* RS_FIELD_* mask */
 } rs_case;
 
 /* Load and validate a case file. `sets` are the --set KEY=VALUE strings, applied

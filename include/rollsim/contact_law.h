@@ -68,14 +68,14 @@ static inline int rs_law_row_star(int ncomp) { return 2 * ncomp; }
 /* A cell's local quantities. */
 typedef struct rs_law_in {
   int ncomp;
-  int in_contact;          /* p_n > 0 */
+  int in_contact;           /* p_n > 0 */
   double p[RS_MAX_COMP];    /* traction, N/mm^2 */
   double vs[RS_MAX_COMP];   /* slip velocity v_s, mm/s */
   double flow[RS_MAX_COMP]; /* Du_pl/Dt, mm/s */
-  double dustar;           /* Dustar/Dt, mm/s */
-  double ustar;            /* mm */
-  double g;                /* traction bound mu p_n */
-  double r;                /* semismooth scaling, traction per slip velocity */
+  double dustar;            /* Dustar/Dt, mm/s */
+  double ustar;             /* mm */
+  double g;                 /* traction bound mu p_n */
+  double r;                 /* semismooth scaling, traction per slip velocity */
 } rs_law_in;
 
 /* The residual rows of a cell, their active branches, and the local generalized

@@ -15,10 +15,10 @@
 #define RS_PI 3.14159265358979323846
 
 typedef struct rs_elastic2d {
-  int n;          /* cells of the contact grid */
-  double dx;      /* cell width, mm */
-  double *tang;   /* tangential coefficient for k = -n..n at tang[k + n], mm/(N/mm^2) */
-  double *norm;   /* normal coefficient, same layout */
+  int n;                      /* cells of the contact grid */
+  double dx;                  /* cell width, mm */
+  double *tang;               /* tangential coefficient for k = -n..n at tang[k + n], mm/(N/mm^2) */
+  double *norm;               /* normal coefficient, same layout */
   struct rs_elastic_fft *fft; /* FFT plans and transformed kernels on large grids (NULL:
                                  direct sums); read-only after creation */
 } rs_elastic2d;
@@ -26,8 +26,8 @@ typedef struct rs_elastic2d {
 /* Scratch of the FFT products (one per thread of evaluation): apply never writes
  * through a const rs_elastic2d. Empty (no allocation) for grids below the FFT size. */
 typedef struct rs_elastic2d_work {
-  double *in;  /* [M] */
-  void *out;   /* fftw_complex [M/2 + 1] */
+  double *in; /* [M] */
+  void *out;  /* fftw_complex [M/2 + 1] */
 } rs_elastic2d_work;
 int rs_elastic2d_work_create(rs_elastic2d_work *w, const rs_elastic2d *el);
 void rs_elastic2d_work_free(rs_elastic2d_work *w);
@@ -43,8 +43,14 @@ int rs_elastic2d_create(rs_elastic2d *el, int n, double dx, double shear_modulus
 void rs_elastic2d_free(rs_elastic2d *el);
 
 /* Coefficient for offset k = I - J, |k| <= n. */
-static inline double rs_elastic2d_tang(const rs_elastic2d *el, int k) { return el->tang[k + el->n]; }
-static inline double rs_elastic2d_norm(const rs_elastic2d *el, int k) { return el->norm[k + el->n]; }
+static inline double rs_elastic2d_tang(const rs_elastic2d *el, int k)
+{
+  return el->tang[k + el->n];
+}
+static inline double rs_elastic2d_norm(const rs_elastic2d *el, int k)
+{
+  return el->norm[k + el->n];
+}
 
 /* u[I] = sum_J coef(I - J) p[J] for I = 0..nout-1 (nout <= n + 1), p of length n.
  * With coef_table el->tang or el->norm on a grid of RS_ELASTIC_FFT_FROM cells or

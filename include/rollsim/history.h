@@ -15,11 +15,12 @@ typedef enum rs_history_kind {
 
 typedef struct rs_history {
   rs_history_kind kind;
-  double value;                           /* constant */
-  double from, to, start, duration;       /* ramp: from until start, linear, then to */
-  double mean, amplitude, frequency, phase; /* sine: mean + amplitude*sin(2 pi f t + phase), phase in rad */
-  size_t n;                               /* steps / table: number of points */
-  double *t, *v;                          /* steps / table: times (strictly increasing) and values */
+  double value;                     /* constant */
+  double from, to, start, duration; /* ramp: from until start, linear, then to */
+  double mean, amplitude, frequency,
+      phase;     /* sine: mean + amplitude*sin(2 pi f t + phase), phase in rad */
+  size_t n;      /* steps / table: number of points */
+  double *t, *v; /* steps / table: times (strictly increasing) and values */
 } rs_history;
 
 /* Value at time t (s). Steps hold the value until the next step time; before the

@@ -20,8 +20,8 @@ typedef struct rs_layout {
 static inline rs_layout rs_layout_make(int n, int ncomp, int nextra)
 {
   const int ncell = 2 * ncomp + 1;
-  return (rs_layout){.n = n, .ncomp = ncomp, .nextra = nextra, .ncell = ncell,
-                     .neq = ncell * n + nextra};
+  return (rs_layout){
+      .n = n, .ncomp = ncomp, .nextra = nextra, .ncell = ncell, .neq = ncell * n + nextra};
 }
 
 /* Index of component c of the traction of cell I. */

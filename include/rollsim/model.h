@@ -33,13 +33,13 @@ typedef enum { RS_SCALING_AUTO = 0, RS_SCALING_DIFFERENCE = 1, RS_SCALING_SELF =
 /* Model parameters: plain values (the driver builds them from a case). The histories
  * are copied by rs_model_create. */
 typedef struct rs_model_params {
-  int cells;                 /* along x */
-  int grid_from_range;       /* 1: x_range given; 0: +-extent Hertz half-widths */
-  double x_range[2];         /* mm, outer edges of the potential contact area */
-  double extent;             /* half-length in Hertz half-widths at the largest load */
-  double radius;             /* combined radius, mm: gap x^2/(2R) */
+  int cells;           /* along x */
+  int grid_from_range; /* 1: x_range given; 0: +-extent Hertz half-widths */
+  double x_range[2];   /* mm, outer edges of the potential contact area */
+  double extent;       /* half-length in Hertz half-widths at the largest load */
+  double radius;       /* combined radius, mm: gap x^2/(2R) */
   rs_normal_solution normal_solution;
-  double reference_length;   /* mm, L of the 2D kernel */
+  double reference_length; /* mm, L of the 2D kernel */
   double shear_modulus, poisson_ratio;
   double layer_thickness, layer_shear_modulus; /* third-body layer: h3 (0: none), G3 */
   rs_friction friction;
@@ -52,22 +52,22 @@ typedef struct rs_model_params {
   rs_history force;          /* F_x, N/mm */
   double end_time;           /* s: the grid is sized on the largest load up to it */
   rs_scaling scaling;
-  double time_scale;         /* s: sets r when there is neither rolling nor a time step */
+  double time_scale; /* s: sets r when there is neither rolling nor a time step */
 } rs_model_params;
 
 typedef struct rs_model {
-  rs_model_params par;     /* owns copies of the histories */
+  rs_model_params par; /* owns copies of the histories */
   rs_grid grid;
   rs_layout lay;
   rs_elastic_op el;
-  double layer_flex;       /* h3/G3, mm/(N/mm^2), added to the self term only */
-  double normal_load;      /* the largest load of the run (it sizes the grid) */
-  int load_varies;         /* the load is a history: p_n(t) from rs_model_normal_at */
+  double layer_flex;  /* h3/G3, mm/(N/mm^2), added to the self term only */
+  double normal_load; /* the largest load of the run (it sizes the grid) */
+  int load_varies;    /* the load is a history: p_n(t) from rs_model_normal_at */
   double hertz_a, hertz_p0;
-  double approach;         /* delta of the normal solution at t = 0, mm */
-  double *gap;             /* undeformed gap at the cell centres [n] */
-  double *pn;              /* pressure at t = 0 [n] */
-  double *bound;           /* traction bound g = mu p_n at t = 0 [n] */
+  double approach; /* delta of the normal solution at t = 0, mm */
+  double *gap;     /* undeformed gap at the cell centres [n] */
+  double *pn;      /* pressure at t = 0 [n] */
+  double *bound;   /* traction bound g = mu p_n at t = 0 [n] */
   /* State of the material entering at the leading edge: fresh (0), or the twin-disc
    * memory when set (rollsim/rig.h; owned by the caller, updated between time steps). */
   const struct rs_rig_memory *memory;
@@ -85,14 +85,14 @@ int rs_model_regrid(const rs_model *m, int cells, rs_model *out, rs_msg *msg);
  * and nowhere else. A frozen copy (rates zero, the inflow looked up at its own t) holds
  * the inputs of one time for the steady solver's pseudo-transient. */
 typedef struct rs_inputs {
-  double t;              /* s: their time (the inflow state is looked up there) */
-  double velocity;       /* V, mm/s */
-  double creepage;       /* xi (prescribed; with force control the unknown is used) */
-  double shift_velocity; /* mm/s */
-  double load;           /* normal load */
-  double force;          /* prescribed F_x (force control) */
+  double t;                     /* s: their time (the inflow state is looked up there) */
+  double velocity;              /* V, mm/s */
+  double creepage;              /* xi (prescribed; with force control the unknown is used) */
+  double shift_velocity;        /* mm/s */
+  double load;                  /* normal load */
+  double force;                 /* prescribed F_x (force control) */
   double load_rate, force_rate; /* d/dt of load and force */
-  int linear;            /* 1: the linear part only: no rigid slip, no inflow (J v) */
+  int linear;                   /* 1: the linear part only: no rigid slip, no inflow (J v) */
 } rs_inputs;
 void rs_model_inputs_at(const rs_model *m, double t, rs_inputs *in);
 /* Inputs held at their values: rates zero. */
@@ -102,33 +102,33 @@ void rs_inputs_freeze(rs_inputs *in);
  * SUNDIALS' sunindextype. */
 typedef struct rs_csr {
   int64_t nrows, cap_rows, cap; /* rows assembled, rows of the matrix, entries capacity */
-  int64_t *rowptr; /* [nrows + 1] */
-  int64_t *col;    /* [cap] */
-  double *val;     /* [cap] */
+  int64_t *rowptr;              /* [nrows + 1] */
+  int64_t *col;                 /* [cap] */
+  double *val;                  /* [cap] */
 } rs_csr;
 
 /* Work arrays for residual/Jacobian evaluation (one per solver: every evaluation writes
  * here, never into the model). */
 typedef struct rs_work {
   rs_elastic_work ew;
-  double *uel;     /* tangential elastic displacement, padded grid [ncomp (nx+1) ny] */
-  double *ueldot;  /* its time derivative on the grid [ncomp n] */
-  double *vslip;   /* slip velocity v_s [ncomp n] */
-  double *dupl;    /* Du_pl/Dt [ncomp n] */
-  double *dustar;  /* Dustar/Dt [n] */
+  double *uel;           /* tangential elastic displacement, padded grid [ncomp (nx+1) ny] */
+  double *ueldot;        /* its time derivative on the grid [ncomp n] */
+  double *vslip;         /* slip velocity v_s [ncomp n] */
+  double *dupl;          /* Du_pl/Dt [ncomp n] */
+  double *dustar;        /* Dustar/Dt [n] */
   unsigned char *branch; /* RS_BRANCH_* flags per cell [n] */
-  rs_law_out *law; /* per cell: rows and local Jacobian of the last evaluation [n] */
+  rs_law_out *law;       /* per cell: rows and local Jacobian of the last evaluation [n] */
   /* Row structure of the last Jacobian (rs_model_jacobian), per traction row k < ncomp n:
    * dense[k] = 1 if the row couples to every traction through the elastic operator (it
    * involves v_s); pivot[k] = the unknown a direct solver eliminates on it (the
    * traction, or the plastic displacement when the cell's yield rows fix the traction). */
   unsigned char *dense;
   int *pivot;
-  double r;        /* scaling of the last evaluation */
-  const double *pn, *bound; /* pressure and traction bound at the time of the last evaluation */
+  double r;                   /* scaling of the last evaluation */
+  const double *pn, *bound;   /* pressure and traction bound at the time of the last evaluation */
   double *pn_buf, *bound_buf; /* their storage when the load varies [n] */
-  double load_cached;      /* load of pn_buf (NAN: none) */
-  rs_msg msg;      /* why the last evaluation failed */
+  double load_cached;         /* load of pn_buf (NAN: none) */
+  rs_msg msg;                 /* why the last evaluation failed */
 } rs_work;
 
 int rs_work_create(rs_work *w, const rs_model *m);
@@ -163,8 +163,8 @@ int64_t rs_model_jac_capacity(const rs_model *m, int band);
 
 /* Jv = (dF/dy + cj dF/dy') v, exactly (up to roundoff), at the point of the last
  * rs_model_jacobian on w; wlin is scratch for the kinematics of v (a second work). */
-int rs_model_jv(const rs_model *m, const rs_work *w, rs_work *wlin, const rs_inputs *in,
-                double cj, const double *v, double *Jv);
+int rs_model_jv(const rs_model *m, const rs_work *w, rs_work *wlin, const rs_inputs *in, double cj,
+                const double *v, double *Jv);
 
 /* Consistent rates at a state y (model.md §9 "consistent start"): solves the adhesion
  * rows for p', exterior p' = 0, at the bound p' = g'; upl' and ustar' from their

@@ -15,38 +15,38 @@ typedef struct rs_output rs_output;
  * (NaN until then). */
 typedef struct rs_output_rig {
   size_t nsteps, nrevolutions;
-  const double *slip_start, *slip_end;  /* [nsteps], rig slip (V1 - V2)/V */
-  const double *time_start, *time_end;  /* [nsteps], s */
-  const double *window_start;           /* [nsteps], s: start of the averaging window */
-  double revolution_time;               /* s */
+  const double *slip_start, *slip_end; /* [nsteps], rig slip (V1 - V2)/V */
+  const double *time_start, *time_end; /* [nsteps], s */
+  const double *window_start;          /* [nsteps], s: start of the averaging window */
+  double revolution_time;              /* s */
   double recovery;
 } rs_output_rig;
 
 typedef struct rs_output_spec {
-  const char *path;       /* file to create (overwritten if it exists) */
-  const char *title;      /* global attribute title */
-  const char *case_text;  /* global attribute case: the full YAML as run */
-  const char *history;    /* global attribute history: e.g. the command line and date */
-  int dimension;          /* 2: force units N/mm; 3: N */
-  size_t nx;              /* number of cells */
-  const double *x;        /* cell centres, mm [nx] */
-  unsigned fields;        /* RS_FIELD_* mask (rollsim/case.h): which (time, x) fields to write */
+  const char *path;         /* file to create (overwritten if it exists) */
+  const char *title;        /* global attribute title */
+  const char *case_text;    /* global attribute case: the full YAML as run */
+  const char *history;      /* global attribute history: e.g. the command line and date */
+  int dimension;            /* 2: force units N/mm; 3: N */
+  size_t nx;                /* number of cells */
+  const double *x;          /* cell centres, mm [nx] */
+  unsigned fields;          /* RS_FIELD_* mask (rollsim/case.h): which (time, x) fields to write */
   const rs_output_rig *rig; /* twin-disc summaries, or NULL */
 } rs_output_spec;
 
 /* One record. Scalars per model.md §7; field arrays have nx entries (NULL allowed
  * for fields not in the mask). */
 typedef struct rs_record {
-  double time;            /* s */
-  double Fx, Fn;          /* N/mm (2D) */
-  double creepage;        /* 1 */
-  double velocity;        /* mm/s */
+  double time;     /* s */
+  double Fx, Fn;   /* N/mm (2D) */
+  double creepage; /* 1 */
+  double velocity; /* mm/s */
   int n_exterior, n_adhesion, n_slip, n_plastic;
-  double frictional_power; /* N mm/s per mm */
-  double plastic_power;    /* N mm/s per mm */
-  double elastic_energy;   /* N mm per mm */
+  double frictional_power;                           /* N mm/s per mm */
+  double plastic_power;                              /* N mm/s per mm */
+  double elastic_energy;                             /* N mm per mm */
   const double *px, *pn, *slip, *upl, *ustar, *tauc; /* [nx] */
-  const signed char *regime;                        /* [nx]: 0 E, 1 H, 2 S, 3 P */
+  const signed char *regime;                         /* [nx]: 0 E, 1 H, 2 S, 3 P */
 } rs_record;
 
 /* Create the file, define everything, write x, set status = "running".
@@ -72,13 +72,12 @@ int rs_output_set_status(rs_output *out, const char *status, rs_msg *msg);
 /* Close the file (status is left as it is) and free. NULL is allowed. */
 int rs_output_close(rs_output *out, rs_msg *msg);
 
-
 /* ---- Sweep files: one dimension per swept key, scalar results over them ---- */
 typedef struct rs_sweep_output rs_sweep_output;
 
 typedef struct rs_sweep_output_spec {
   const char *path, *title, *case_text, *history;
-  int dimension;          /* units of forces: 2 -> N/mm, 3 -> N */
+  int dimension; /* units of forces: 2 -> N/mm, 3 -> N */
   int naxes;
   const char *const *keys;     /* dotted case keys [naxes]; variable names get '_' for '.' */
   const int *sizes;            /* [naxes] */
@@ -95,6 +94,7 @@ typedef struct rs_sweep_point {
 
 int rs_sweep_output_create(rs_sweep_output **out, const rs_sweep_output_spec *spec, rs_msg *msg);
 /* Write the point at flat index (row-major over the axes, last fastest) and sync. */
-int rs_sweep_output_write(rs_sweep_output *out, size_t index, const rs_sweep_point *pt, rs_msg *msg);
+int rs_sweep_output_write(rs_sweep_output *out, size_t index, const rs_sweep_point *pt,
+                          rs_msg *msg);
 int rs_sweep_output_close(rs_sweep_output *out, const char *status, rs_msg *msg);
 #endif

@@ -18,12 +18,12 @@
 #include "rollsim/status.h"
 
 typedef struct rs_rig_memory {
-  int width;        /* values per sample: the state of the trailing column (2D: u_pl, u*) */
-  double delay[2];  /* s, per disc */
-  double recovery;  /* fraction of the state kept per revolution, [0, 1] */
+  int width;            /* values per sample: the state of the trailing column (2D: u_pl, u*) */
+  double delay[2];      /* s, per disc */
+  double recovery;      /* fraction of the state kept per revolution, [0, 1] */
   size_t start, n, cap; /* samples [start, n) of the arrays are live */
-  double *t;        /* [cap] */
-  double *value;    /* [cap][width] */
+  double *t;            /* [cap] */
+  double *value;        /* [cap][width] */
 } rs_rig_memory;
 
 int rs_rig_memory_create(rs_rig_memory *mem, int width, double delay_1, double delay_2,

@@ -11,10 +11,10 @@
 #include "rollsim/status.h"
 
 typedef struct rs_run_opts {
-  const char *output_path;  /* overrides case output.file when non-NULL */
-  const char *history;      /* netCDF history attribute (command line and date) */
-  int progress;             /* draw a progress bar on stderr */
-  int no_output;            /* compute only (sweep points): no netCDF file */
+  const char *output_path; /* overrides case output.file when non-NULL */
+  const char *history;     /* netCDF history attribute (command line and date) */
+  int progress;            /* draw a progress bar on stderr */
+  int no_output;           /* compute only (sweep points): no netCDF file */
   /* Transient mode: continue from the last record (state and time) of this earlier
    * output file (rollsim/restart.h) instead of rest or steady rolling; the run then
    * covers [t_last, end_time] on the same output grid k*output_interval. Steady mode:
@@ -25,9 +25,9 @@ typedef struct rs_run_opts {
 } rs_run_opts;
 
 typedef struct rs_run_result {
-  rs_diag final;            /* quantities at the last record */
+  rs_diag final; /* quantities at the last record */
   double mu;
-  double time;              /* simulated time of the last record, s */
+  double time; /* simulated time of the last record, s */
   rs_stats stats;
   double wall_seconds;
   size_t records;
@@ -38,7 +38,7 @@ typedef struct rs_run_result {
   size_t rig_nsteps;
   double *rig_step_mu, *rig_step_slip;
   double rig_revolutions;
-  double dx;                /* cell size, mm */
+  double dx; /* cell size, mm */
 } rs_run_result;
 
 void rs_run_result_free(rs_run_result *res);

@@ -21,7 +21,6 @@ typedef struct rs_msg {
 } rs_msg;
 
 /* printf-style: set the message (overwrites) and return status. */
-int rs_msg_set(rs_msg *msg, int status, const char *fmt, ...)
-    __attribute__((format(printf, 3, 4)));
+int rs_msg_set(rs_msg *msg, int status, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
 
 #endif

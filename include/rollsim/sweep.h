@@ -17,10 +17,10 @@ typedef struct rs_sweep_result {
   size_t points_done, points_failed;
   double wall_seconds;
   long newton_iters;
-  long lin_solves;  /* steady points: linear solves (direct) or Krylov iterations */
-  long jac_evals;   /* steady points: Jacobian evaluations */
-  long refused;     /* steady solutions refused by the physical check (rs_model_check_steady) */
-  long refined;     /* continuation steps halved where the regimes jumped or Newton failed */
+  long lin_solves; /* steady points: linear solves (direct) or Krylov iterations */
+  long jac_evals;  /* steady points: Jacobian evaluations */
+  long refused;    /* steady solutions refused by the physical check (rs_model_check_steady) */
+  long refined;    /* continuation steps halved where the regimes jumped or Newton failed */
   char file[1024];
 } rs_sweep_result;
 

@@ -18,17 +18,18 @@
  * ctx = NULL makes a context of its own (for a single solve, e.g. in a test). */
 
 typedef struct rs_stats {
-  long steps;            /* IDA steps (transient) */
-  long nonlin_iters;     /* Newton iterations (KINSOL, summed) */
-  long nonlin_fails;     /* nonlinear solves that failed (IDA then cuts the step) */
-  long err_test_fails;   /* IDA error-test failures */
-  long res_evals;        /* residual evaluations */
-  long jac_evals;        /* Jacobian evaluations = KLU factorizations */
-  long klu_analyses;     /* KLU symbolic analyses (the sparsity pattern changed) */
-  long lin_solves;       /* linear solves (direct) or Krylov iterations (steady solver) */
-  long factorizations;   /* of the iteration matrix (transient; a matrix equal to the last keeps it) */
-  long refused;          /* steady solutions refused by rs_model_check_steady (then recomputed
-                            by rolling the material, or the solve failed) */
+  long steps;          /* IDA steps (transient) */
+  long nonlin_iters;   /* Newton iterations (KINSOL, summed) */
+  long nonlin_fails;   /* nonlinear solves that failed (IDA then cuts the step) */
+  long err_test_fails; /* IDA error-test failures */
+  long res_evals;      /* residual evaluations */
+  long jac_evals;      /* Jacobian evaluations = KLU factorizations */
+  long klu_analyses;   /* KLU symbolic analyses (the sparsity pattern changed) */
+  long lin_solves;     /* linear solves (direct) or Krylov iterations (steady solver) */
+  long
+      factorizations; /* of the iteration matrix (transient; a matrix equal to the last keeps it) */
+  long refused;       /* steady solutions refused by rs_model_check_steady (then recomputed
+                         by rolling the material, or the solve failed) */
 } rs_stats;
 
 /* Linear algebra of the steady Newton iteration (all give the same solution to the
@@ -42,14 +43,14 @@ typedef enum { RS_LINEAR_AUTO = 0, RS_LINEAR_KLU, RS_LINEAR_DENSE, RS_LINEAR_KRY
 /* Transient integration. */
 typedef struct rs_transient rs_transient;
 typedef struct rs_transient_opts {
-  double rtol;        /* relative tolerance */
-  double atol;        /* absolute tolerance of tractions, N/mm^2 */
-  int max_order;      /* BDF order limit, 1..5 */
-  long max_steps;     /* per call of rs_transient_advance */
-  int max_newton;     /* Newton iterations per step (KINSOL), default 10 */
-  double t_stop;      /* IDA never steps beyond this time (INFINITY: no limit) */
+  double rtol;                      /* relative tolerance */
+  double atol;                      /* absolute tolerance of tractions, N/mm^2 */
+  int max_order;                    /* BDF order limit, 1..5 */
+  long max_steps;                   /* per call of rs_transient_advance */
+  int max_newton;                   /* Newton iterations per step (KINSOL), default 10 */
+  double t_stop;                    /* IDA never steps beyond this time (INFINITY: no limit) */
   volatile sig_atomic_t *interrupt; /* set asynchronously: stop at once (may be NULL) */
-  double max_step;    /* s, 0: no limit */
+  double max_step;                  /* s, 0: no limit */
   /* Called after every accepted time step with the solution there (may be NULL);
    * a status other than RS_OK stops the integration with that status. */
   int (*step_hook)(void *ctx, double t, const double *y);

@@ -32,28 +32,29 @@ static void on_signal(int sig)
 
 static void usage(FILE *f)
 {
-  fprintf(f,
-          "usage: rollsim run CASE.yaml [-o OUT.nc] [--restart OLD.nc] [--set KEY=VALUE]... [--quiet]\n"
-          "       rollsim check CASE.yaml [--set KEY=VALUE]...\n"
-          "       rollsim sweep CASE.yaml [-o OUT.nc] [--set KEY=VALUE]...\n"
-          "       rollsim --help | --version\n"
-          "\n"
-          "Transient 2D wheel-rail rolling contact with local plasticity (Kalker's theory\n"
-          "extended with a yield limit; SUNDIALS IDA/KINSOL, KLU, netCDF output).\n"
-          "\n"
-          "  run     solve the case, write the netCDF file (case output.file or -o), print a summary\n"
-          "  check   validate the case and print every resolved and derived parameter; run nothing\n"
-          "  sweep   run the case's sweep: block into one netCDF file\n"
-          "  -o FILE        output file (overrides output.file)\n"
-          "  --restart OLD.nc  (run, transient) continue from the last record of an earlier run's\n"
-          "                 file: its state (fields px, upl, ustar) and time, up to the case's end\n"
-          "                 time, into a new file; same grid and output times as the old run.\n"
-          "                 (run, steady) start Newton from that state instead of from rest\n"
-          "  --set KEY=VAL  override a case key by its dotted path, e.g. --set grid.cells=200\n"
-          "  --quiet        no progress bar\n"
-          "\n"
-          "Units: mm, N, s, N/mm^2. Exit codes: 0 ok, 2 invalid input, 3 solver failure,\n"
-          "4 interrupted, 1 internal/output error.\n");
+  fprintf(
+      f,
+      "usage: rollsim run CASE.yaml [-o OUT.nc] [--restart OLD.nc] [--set KEY=VALUE]... [--quiet]\n"
+      "       rollsim check CASE.yaml [--set KEY=VALUE]...\n"
+      "       rollsim sweep CASE.yaml [-o OUT.nc] [--set KEY=VALUE]...\n"
+      "       rollsim --help | --version\n"
+      "\n"
+      "Transient 2D wheel-rail rolling contact with local plasticity (Kalker's theory\n"
+      "extended with a yield limit; SUNDIALS IDA/KINSOL, KLU, netCDF output).\n"
+      "\n"
+      "  run     solve the case, write the netCDF file (case output.file or -o), print a summary\n"
+      "  check   validate the case and print every resolved and derived parameter; run nothing\n"
+      "  sweep   run the case's sweep: block into one netCDF file\n"
+      "  -o FILE        output file (overrides output.file)\n"
+      "  --restart OLD.nc  (run, transient) continue from the last record of an earlier run's\n"
+      "                 file: its state (fields px, upl, ustar) and time, up to the case's end\n"
+      "                 time, into a new file; same grid and output times as the old run.\n"
+      "                 (run, steady) start Newton from that state instead of from rest\n"
+      "  --set KEY=VAL  override a case key by its dotted path, e.g. --set grid.cells=200\n"
+      "  --quiet        no progress bar\n"
+      "\n"
+      "Units: mm, N, s, N/mm^2. Exit codes: 0 ok, 2 invalid input, 3 solver failure,\n"
+      "4 interrupted, 1 internal/output error.\n");
 }
 
 static int exit_code(int status)
@@ -207,8 +208,7 @@ static void print_summary(const rs_case *c, const rs_run_result *res, int status
            "the step)\n",
            100.0 * c->rig.average_window);
     for (size_t j = 0; j < res->rig_nsteps; j++)
-      printf("  %13zu %10.4f   %.6f\n", j + 1, 100.0 * res->rig_step_slip[j],
-             res->rig_step_mu[j]);
+      printf("  %13zu %10.4f   %.6f\n", j + 1, 100.0 * res->rig_step_slip[j], res->rig_step_mu[j]);
   }
   printf("  wall time %.3f s\n", res->wall_seconds);
   printf("  output: %s (%zu records)%s\n", res->file, res->records,

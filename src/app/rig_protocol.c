@@ -51,8 +51,7 @@ int rs_rig_run_create(rs_rig_run *r, const rs_case *c, const rs_model *m, rs_run
     r->time_start[j] = revs * rig->revolution_time;
     revs += rig->steps[j].revolutions;
     r->time_end[j] = j + 1 == ns ? c->end_time : revs * rig->revolution_time;
-    r->window_start[j] =
-        r->time_end[j] - rig->average_window * (r->time_end[j] - r->time_start[j]);
+    r->window_start[j] = r->time_end[j] - rig->average_window * (r->time_end[j] - r->time_start[j]);
     r->slip_start[j] = rig->steps[j].slip_start;
     r->slip_end[j] = rig->steps[j].slip_end;
     res->rig_step_mu[j] = res->rig_step_slip[j] = NAN;
@@ -110,9 +109,8 @@ int rs_rig_run_step(void *ctx, double t, const double *y)
       r->rev_mu += overlap_integral(t0, r->mu_prev, t, mu, a, b);
       r->rev_slip += overlap_integral(t0, r->slip_prev, t, slip, a, b);
       if (t < b * (1.0 - 1e-12)) break;
-      if (r->out &&
-          (status = rs_output_put_revolution(r->out, r->rev, r->rev_mu / (b - a),
-                                             r->rev_slip / (b - a), &r->msg)) != RS_OK)
+      if (r->out && (status = rs_output_put_revolution(r->out, r->rev, r->rev_mu / (b - a),
+                                                       r->rev_slip / (b - a), &r->msg)) != RS_OK)
         return status;
       r->res->rig_revolutions = (double)(r->rev + 1);
       r->rev++;

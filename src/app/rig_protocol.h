@@ -14,10 +14,10 @@ typedef struct rs_rig_run {
   const rs_case *c;
   const rs_model *m;
   rs_rig_memory mem;
-  rs_output *out;       /* NULL until the output file is open */
+  rs_output *out; /* NULL until the output file is open */
   rs_run_result *res;
   double *window_start, *slip_start, *slip_end, *time_start, *time_end; /* per step */
-  size_t nrev, rev, step;          /* revolutions, current revolution, current step */
+  size_t nrev, rev, step; /* revolutions, current revolution, current step */
   double t_prev, mu_prev, slip_prev;
   double rev_mu, rev_slip, step_mu, step_slip; /* integrals so far */
   int started;

@@ -38,8 +38,7 @@ static int write_record(run_state *s, double t, rs_diag *d, rs_msg *msg)
   const rs_layout *L = &s->m.lay;
   rs_inputs in;
   rs_model_inputs_at(&s->m, t, &in);
-  int status = rs_model_diagnostics(&s->m, &s->w, &in, s->y, s->yp, d, s->slip, s->tauc,
-                                    s->regime);
+  int status = rs_model_diagnostics(&s->m, &s->w, &in, s->y, s->yp, d, s->slip, s->tauc, s->regime);
   if (status != RS_OK) return rs_msg_set(msg, status, "%s", s->w.msg.text);
   rs_record rec = {.time = t,
                    .Fx = d->Fx,
@@ -176,10 +175,10 @@ static int read_restart(run_state *s, const rs_run_opts *o, const char *out_path
                       "--restart %s: it is also the output file; choose another one with -o",
                       o->restart_path);
   const rs_layout *L = &s->m.lay;
-  int status = rs_restart_read(o->restart_path, (size_t)s->m.grid.n, s->m.grid.x, t0,
-                               s->y + rs_at_p(L, 0, 0), s->y + rs_at_upl(L, 0, 0),
-                               s->y + rs_at_ustar(L, 0),
-                               L->nextra ? s->y + rs_at_extra(L, 0) : NULL, msg);
+  int status =
+      rs_restart_read(o->restart_path, (size_t)s->m.grid.n, s->m.grid.x, t0,
+                      s->y + rs_at_p(L, 0, 0), s->y + rs_at_upl(L, 0, 0), s->y + rs_at_ustar(L, 0),
+                      L->nextra ? s->y + rs_at_extra(L, 0) : NULL, msg);
   if (status != RS_OK) return status;
   if (c->mode == RS_MODE_STEADY) { /* the stored state starts Newton at the case's inputs */
     *t0 = 0.0;
@@ -265,7 +264,9 @@ int rs_run(const rs_case *c, const rs_run_opts *o, rs_run_result *res, rs_msg *m
   rs_output_spec spec = {.path = path,
                          .title = c->title ? c->title : "",
                          .case_text = c->yaml_text ? c->yaml_text : "",
-                         .history = history ? history : o->history ? o->history : "",
+                         .history = history      ? history
+                                    : o->history ? o->history
+                                                 : "",
                          .dimension = c->dimension,
                          .nx = (size_t)n,
                          .x = s.m.grid.x,

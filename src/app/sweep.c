@@ -41,13 +41,13 @@ typedef struct steady_chain {
   rs_steady *st;
   rs_work w;
   double *yp;
-  long jac_now;   /* Jacobian evaluations of the current solver (it counts from its creation) */
+  long jac_now; /* Jacobian evaluations of the current solver (it counts from its creation) */
   double *yprev, *ylast; /* solutions of the last two points on this chain (secant predictor) */
-  double xprev, xlast; /* their values of the swept input */
+  double xprev, xlast;   /* their values of the swept input */
   signed char *reg_last, *reg_new; /* regimes of the last solution and of a new one */
-  int nsolved;    /* points solved on this chain */
-  long jac_evals; /* of solvers already freed */
-  long refined;   /* continuation steps halved (regime jump or failure) */
+  int nsolved;                     /* points solved on this chain */
+  long jac_evals;                  /* of solvers already freed */
+  long refined;                    /* continuation steps halved (regime jump or failure) */
 } steady_chain;
 
 static void chain_drop(steady_chain *ch)
@@ -79,7 +79,7 @@ static int rolling_key(const char *key)
 /* The model's rolling input `key` held at x (an intermediate continuation point). */
 static void set_rolling_value(rs_model *m, const char *key, double x)
 {
-  rs_history *h = !strcmp(key, "rolling.creepage") ? &m->par.creepage
+  rs_history *h = !strcmp(key, "rolling.creepage")   ? &m->par.creepage
                   : !strcmp(key, "rolling.velocity") ? &m->par.velocity
                                                      : &m->par.shift_velocity;
   rs_history_free(h);
@@ -119,7 +119,8 @@ static int continue_to(steady_chain *ch, const char *key, double x, double *y, i
   int changed = 0;
   if (status == RS_OK && (status = regimes_of(ch, y, ch->reg_new)) == RS_OK)
     for (int i = 0; i < n; i++) changed += ch->reg_new[i] != ch->reg_last[i];
-  const int jump = changed > (n / JUMP_FRACTION > JUMP_MIN_CELLS ? n / JUMP_FRACTION : JUMP_MIN_CELLS);
+  const int jump =
+      changed > (n / JUMP_FRACTION > JUMP_MIN_CELLS ? n / JUMP_FRACTION : JUMP_MIN_CELLS);
   if ((status == RS_ERR_SOLVER || (status == RS_OK && jump)) && depth < MAX_HALVINGS) {
     ch->refined++;
     const double xmid = 0.5 * (ch->xlast + x);
@@ -146,8 +147,8 @@ static int steady_point(const rs_case *c, steady_chain *ch, double **y, int *ny,
                         rs_msg *msg)
 {
   int status = RS_OK;
-  const int chained = reuse && warm && ch->have_model && ch->st && ch->nsolved >= 1 &&
-                      *ny == ch->m.lay.neq;
+  const int chained =
+      reuse && warm && ch->have_model && ch->st && ch->nsolved >= 1 && *ny == ch->m.lay.neq;
   if (!chained) {
     chain_drop(ch);
     status = rs_model_from_case(&ch->m, c, msg);
@@ -285,7 +286,8 @@ int rs_sweep_run(const rs_sweep *s, const char *case_path, const char *const *se
       pt.frictional_power = pt.plastic_power = pt.elastic_energy = NAN;
       pt.n_exterior = pt.n_adhesion = pt.n_slip = pt.n_plastic = -1;
       res->points_failed++;
-      fprintf(stderr, "rollsim sweep: point %zu (%s): %s\n", p, assign[s->naxes - 1], point_msg.text);
+      fprintf(stderr, "rollsim sweep: point %zu (%s): %s\n", p, assign[s->naxes - 1],
+              point_msg.text);
       free(y); /* no warm start from a failed point */
       y = NULL;
       ny = 0;
@@ -300,7 +302,8 @@ int rs_sweep_run(const rs_sweep *s, const char *case_path, const char *const *se
       fflush(stderr);
     }
     if (status == RS_OK && o->interrupt_flag && *o->interrupt_flag)
-      status = rs_msg_set(msg, RS_ERR_INTERRUPTED, "interrupted after %zu of %zu points", p + 1, s->npoints);
+      status = rs_msg_set(msg, RS_ERR_INTERRUPTED, "interrupted after %zu of %zu points", p + 1,
+                          s->npoints);
   }
   if (o->progress) fputc('\n', stderr);
   chain_drop(&chain);
@@ -312,10 +315,14 @@ int rs_sweep_run(const rs_sweep *s, const char *case_path, const char *const *se
   res->refined = chain.refined;
   free(y);
   if (status == RS_OK && res->points_failed > 0)
-    status = rs_msg_set(msg, RS_ERR_SOLVER, "%zu of %zu sweep points did not converge (NaN in the file)",
-                        res->points_failed, s->npoints);
+    status =
+        rs_msg_set(msg, RS_ERR_SOLVER, "%zu of %zu sweep points did not converge (NaN in the file)",
+                   res->points_failed, s->npoints);
   char why[RS_MSG_LEN + 16];
-  snprintf(why, sizeof why, "%s%s", status == RS_OK ? "complete" : status == RS_ERR_INTERRUPTED ? "interrupted" : "failed: ",
+  snprintf(why, sizeof why, "%s%s",
+           status == RS_OK                ? "complete"
+           : status == RS_ERR_INTERRUPTED ? "interrupted"
+                                          : "failed: ",
            status == RS_OK || status == RS_ERR_INTERRUPTED ? "" : msg->text);
   rs_msg tmp;
   int cs = rs_sweep_output_close(out, why, status == RS_OK ? msg : &tmp);

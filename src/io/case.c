@@ -5,7 +5,7 @@
 #define _POSIX_C_SOURCE 200809L
 #include "io/case_internal.h"
 #include "rollsim/elastic2d.h" /* RS_PI */
-#include "rollsim/normal.h"  /* rs_hertz2d */
+#include "rollsim/normal.h"    /* rs_hertz2d */
 
 #include <math.h>
 #include <stdlib.h>
@@ -72,8 +72,7 @@ static int check_history(const resolver *r, const char *path, const rs_history *
   const yaml_node_t *n = given(r, path);
   double lo = rs_history_min(h, 0.0, end_time), big = rs_history_max_abs(h, 0.0, end_time);
   const char *sp = *spec->unit ? " " : "";
-  if (h->kind == RS_HISTORY_CONSTANT)
-    return rs_case_check_range(r->d, n, spec, path, h->value);
+  if (h->kind == RS_HISTORY_CONSTANT) return rs_case_check_range(r->d, n, spec, path, h->value);
   if (lo < spec->lo)
     return rs_case_error(r->d, n, path,
                          "must be >= %g%s%s at all times in [0, %g] s, reaches %g%s%s", spec->lo,
@@ -153,12 +152,11 @@ static int resolve_twin_disc(const resolver *r, rs_case *c)
   const yaml_node_t *block = given(r, "twin_disc");
   rs_twin_disc *rig = &c->rig;
   rig->on = block != NULL;
-  if (!block)
-    return RS_OK;
-  static const char *const owned[] = {"contact.normal_load", "contact.radius",
-                                      "rolling.velocity",    "rolling.creepage",
+  if (!block) return RS_OK;
+  static const char *const owned[] = {"contact.normal_load",      "contact.radius",
+                                      "rolling.velocity",         "rolling.creepage",
                                       "rolling.tangential_force", "rolling.shift_velocity",
-                                      "simulation.end_time", "simulation.rolled_distance"};
+                                      "simulation.end_time",      "simulation.rolled_distance"};
   for (size_t i = 0; i < sizeof owned / sizeof *owned; i++)
     if (given(r, owned[i]))
       return rs_case_error(r->d, given(r, owned[i]), owned[i],
@@ -168,8 +166,9 @@ static int resolve_twin_disc(const resolver *r, rs_case *c)
                                          "twin_disc.width", "twin_disc.normal_force"};
   for (size_t i = 0; i < sizeof required / sizeof *required; i++)
     if (!given(r, required[i]))
-      return rs_case_error(r->d, block, required[i], "missing (the twin_disc: block needs "
-                                                     "radius_1, radius_2, width, normal_force)");
+      return rs_case_error(r->d, block, required[i],
+                           "missing (the twin_disc: block needs "
+                           "radius_1, radius_2, width, normal_force)");
   if (c->mode != RS_MODE_TRANSIENT)
     return rs_case_error(r->d, given(r, "simulation.mode"), "simulation.mode",
                          "a twin_disc: run is transient (many revolutions); remove mode: steady");
@@ -212,12 +211,13 @@ static int resolve_twin_disc(const resolver *r, rs_case *c)
     rig->nsteps = 1;
     rig->steps[0] = (rs_rig_step){(v1 - v2) / V, (v1 - v2) / V, rig->revolutions};
     if (!(fabs(rig->steps[0].slip_end) < 1.0))
-      return rs_case_error(r->d, rpm2, "twin_disc.rpm_2", "gives slip %g: not a fraction in (-1, 1)",
-                           rig->steps[0].slip_end);
+      return rs_case_error(r->d, rpm2, "twin_disc.rpm_2",
+                           "gives slip %g: not a fraction in (-1, 1)", rig->steps[0].slip_end);
   }
   rig->revolution_time = two_pi * rig->radius_1 / V;
   rs_history_free(&c->normal_load);
-  c->normal_load = (rs_history){.kind = RS_HISTORY_CONSTANT, .value = rig->normal_force / rig->width};
+  c->normal_load =
+      (rs_history){.kind = RS_HISTORY_CONSTANT, .value = rig->normal_force / rig->width};
   c->radius = 1.0 / (1.0 / rig->radius_1 + 1.0 / rig->radius_2);
   rs_history_free(&c->velocity);
   c->velocity = (rs_history){.kind = RS_HISTORY_CONSTANT, .value = V};
@@ -227,8 +227,7 @@ static int resolve_twin_disc(const resolver *r, rs_case *c)
   h->kind = RS_HISTORY_TABLE;
   h->t = malloc(2 * rig->nsteps * sizeof *h->t);
   h->v = malloc(2 * rig->nsteps * sizeof *h->v);
-  if (!h->t || !h->v)
-    return rs_msg_set(r->d->msg, RS_ERR_INTERNAL, "out of memory");
+  if (!h->t || !h->v) return rs_msg_set(r->d->msg, RS_ERR_INTERNAL, "out of memory");
   double t = 0.0, revolutions = 0.0;
   h->n = 0;
   for (size_t i = 0; i < rig->nsteps; i++) {
@@ -254,15 +253,13 @@ static int resolve_force(const resolver *r, rs_case *c)
 {
   const yaml_node_t *force = given(r, "rolling.tangential_force");
   c->force_control = force != NULL;
-  if (!force)
-    return RS_OK;
+  if (!force) return RS_OK;
   if (given(r, "rolling.creepage"))
     return rs_case_error(r->d, force, "rolling.tangential_force",
                          "give rolling.creepage or rolling.tangential_force, not both (with a "
                          "prescribed force the creepage is computed)");
   int status = check_history(r, "rolling.tangential_force", &c->tangential_force, c->end_time);
-  if (status != RS_OK)
-    return status;
+  if (status != RS_OK) return status;
   const double fmax = rs_history_max_abs(&c->tangential_force, 0.0, c->end_time);
   const double limit = c->mu * rs_history_min(&c->normal_load, 0.0, c->end_time);
   if (!(fmax < limit))
@@ -311,8 +308,7 @@ static char *default_output_file(const char *path)
   else if (len > 4 && !strcmp(base + len - 4, ".yml"))
     len -= 4;
   char *file = malloc(len + sizeof "results/.nc");
-  if (file)
-    snprintf(file, len + sizeof "results/.nc", "results/%.*s.nc", (int)len, base);
+  if (file) snprintf(file, len + sizeof "results/.nc", "results/%.*s.nc", (int)len, base);
   return file;
 }
 
@@ -331,8 +327,7 @@ static int resolve(const rs_case_doc *d, rs_case_input *in, const yaml_node_t **
   const char *names[] = {"contact.normal_load", "rolling.velocity", "rolling.creepage",
                          "rolling.shift_velocity"};
   for (int i = 0; i < 4; i++)
-    if ((status = check_history(&r, names[i], hs[i], c->end_time)) != RS_OK)
-      return status;
+    if ((status = check_history(&r, names[i], hs[i], c->end_time)) != RS_OK) return status;
   if (!(rs_history_min(&c->normal_load, 0.0, c->end_time) > 0))
     return rs_case_error(d, given(&r, "contact.normal_load"), "contact.normal_load",
                          c->normal_load.kind == RS_HISTORY_CONSTANT
@@ -357,8 +352,7 @@ static int resolve(const rs_case_doc *d, rs_case_input *in, const yaml_node_t **
 int rs_case_load(rs_case *c, const char *path, const char *const *sets, int nsets, rs_msg *msg)
 {
   memset(c, 0, sizeof *c);
-  if (!path)
-    return rs_msg_set(msg, RS_ERR_INPUT, "no case file given");
+  if (!path) return rs_msg_set(msg, RS_ERR_INPUT, "no case file given");
   rs_case_input in;
   memset(&in, 0, sizeof in);
   set_defaults(&in);
@@ -366,18 +360,13 @@ int rs_case_load(rs_case *c, const char *path, const char *const *sets, int nset
   rs_case_doc d;
   int status =
       where ? rs_case_doc_load(&d, path, msg) : rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory");
-  for (int i = 0; status == RS_OK && i < nsets; i++)
-    status = rs_case_doc_set(&d, sets[i]);
-  if (status == RS_OK)
-    status = rs_case_parse(&d, &in, where);
-  if (status == RS_OK)
-    status = resolve(&d, &in, where);
+  for (int i = 0; status == RS_OK && i < nsets; i++) status = rs_case_doc_set(&d, sets[i]);
+  if (status == RS_OK) status = rs_case_parse(&d, &in, where);
+  if (status == RS_OK) status = resolve(&d, &in, where);
   if (status == RS_OK && !(in.c.source_path = strdup(path)))
     status = rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory");
-  if (status == RS_OK)
-    status = rs_case_doc_emit(&d, &in.c.yaml_text);
-  if (where)
-    rs_case_doc_free(&d);
+  if (status == RS_OK) status = rs_case_doc_emit(&d, &in.c.yaml_text);
+  if (where) rs_case_doc_free(&d);
   free(where);
   if (status != RS_OK) {
     rs_case_free(&in.c);
@@ -389,8 +378,7 @@ int rs_case_load(rs_case *c, const char *path, const char *const *sets, int nset
 
 void rs_case_free(rs_case *c)
 {
-  if (!c)
-    return;
+  if (!c) return;
   free(c->source_path);
   free(c->yaml_text);
   free(c->title);
@@ -410,9 +398,7 @@ static void print_history(const rs_history *h, FILE *out)
 {
   char a[32], b[32], e[32], f[32];
   switch (h->kind) {
-  case RS_HISTORY_CONSTANT:
-    fprintf(out, "%s", rs_case_fmt(h->value, a, sizeof a));
-    break;
+  case RS_HISTORY_CONSTANT: fprintf(out, "%s", rs_case_fmt(h->value, a, sizeof a)); break;
   case RS_HISTORY_RAMP:
     fprintf(out, "{ramp: {from: %s, to: %s, start: %s, duration: %s}}", rs_case_fmt(h->from, a, 32),
             rs_case_fmt(h->to, b, 32), rs_case_fmt(h->start, e, 32),
@@ -451,8 +437,7 @@ void rs_case_print(const rs_case *c, FILE *out)
       continue;
     }
     if (!strncmp(k->path, "twin_disc", 9) && !c->rig.on) {
-      if (k->kind == RS_KEY_SECTION)
-        fprintf(out, "twin_disc: none  # no rig mode\n");
+      if (k->kind == RS_KEY_SECTION) fprintf(out, "twin_disc: none  # no rig mode\n");
       continue;
     }
     if (!strncmp(k->path, "twin_disc.", 10) && (k->flags & RS_KEY_NULLABLE) &&
@@ -466,8 +451,7 @@ void rs_case_print(const rs_case *c, FILE *out)
       fprintf(out, "  # slip s = (V1 - V2)/V, revolutions of disc 1\n");
       continue;
     }
-    if (k->kind == RS_KEY_SECTION || k->kind == RS_KEY_OPAQUE)
-      continue;
+    if (k->kind == RS_KEY_SECTION || k->kind == RS_KEY_OPAQUE) continue;
     if (!strcmp(k->path, "rolling.tangential_force") && !c->force_control) {
       fprintf(out, "%s: null  # N/mm (not given: the creepage is prescribed)\n", k->path);
       continue;
@@ -498,27 +482,18 @@ void rs_case_print(const rs_case *c, FILE *out)
     case RS_KEY_NUMBER:
       fprintf(out, "%s", rs_case_fmt(*(const double *)field, num, sizeof num));
       break;
-    case RS_KEY_INTEGER:
-      fprintf(out, "%d", *(const int *)field);
-      break;
-    case RS_KEY_LONG:
-      fprintf(out, "%ld", *(const long *)field);
-      break;
+    case RS_KEY_INTEGER: fprintf(out, "%d", *(const int *)field); break;
+    case RS_KEY_LONG: fprintf(out, "%ld", *(const long *)field); break;
     case RS_KEY_TEXT:
       fputc('"', out);
       for (const char *s = *(char *const *)field; s && *s; s++) {
-        if (*s == '"' || *s == '\\')
-          fputc('\\', out);
+        if (*s == '"' || *s == '\\') fputc('\\', out);
         fputc(*s, out);
       }
       fputc('"', out);
       break;
-    case RS_KEY_CHOICE:
-      fprintf(out, "%s", k->choices[field ? *(const int *)field : 0]);
-      break;
-    case RS_KEY_HISTORY:
-      print_history(field, out);
-      break;
+    case RS_KEY_CHOICE: fprintf(out, "%s", k->choices[field ? *(const int *)field : 0]); break;
+    case RS_KEY_HISTORY: print_history(field, out); break;
     case RS_KEY_FIELDS: {
       int first = 1;
       fputc('[', out);
@@ -530,15 +505,13 @@ void rs_case_print(const rs_case *c, FILE *out)
       fputc(']', out);
       break;
     }
-    default:
-      break;
+    default: break;
     }
     if (*k->unit)
       fprintf(out, "  # %s", k->unit);
     else if (k->kind == RS_KEY_NUMBER || k->kind == RS_KEY_HISTORY)
       fprintf(out, "  # 1");
-    if (k->flags & RS_KEY_DERIVED)
-      fprintf(out, " (= k_tau/(G + k_tau))");
+    if (k->flags & RS_KEY_DERIVED) fprintf(out, " (= k_tau/(G + k_tau))");
     fputc('\n', out);
   }
 }

@@ -25,20 +25,17 @@ static int parse_params(const rs_case_doc *d, const yaml_node_t *map, const char
                         const history_param *params, size_t count, const char *needs, rs_history *h)
 {
   const char *names[8];
-  for (size_t i = 0; i < count; i++)
-    names[i] = params[i].name;
+  for (size_t i = 0; i < count; i++) names[i] = params[i].name;
   names[count] = NULL;
   int status = rs_case_check_mapping(d, map, key, names);
-  if (status != RS_OK)
-    return status;
+  if (status != RS_OK) return status;
   for (size_t i = 0; i < count; i++) {
     char sub[320];
     snprintf(sub, sizeof sub, "%s.%s", key, params[i].name);
     const yaml_node_t *n = rs_case_lookup(d, map, params[i].name);
     double *field = (double *)((char *)h + params[i].offset);
     if (!n) {
-      if (params[i].required)
-        return rs_case_error(d, map, sub, "missing: %s", needs);
+      if (params[i].required) return rs_case_error(d, map, sub, "missing: %s", needs);
       *field = params[i].fallback;
     } else if ((status = rs_case_number(d, n, sub, field)) != RS_OK)
       return status;
@@ -57,8 +54,7 @@ static int parse_ramp(const rs_case_doc *d, const yaml_node_t *n, const char *ke
   h->kind = RS_HISTORY_RAMP;
   int status = parse_params(d, n, key, params, 4,
                             "a ramp needs from, to and duration (s); start defaults to 0 s", h);
-  if (status != RS_OK)
-    return status;
+  if (status != RS_OK) return status;
   if (!(h->duration > 0))
     return rs_case_error(d, rs_case_lookup(d, n, "duration"), key,
                          "duration must be > 0 s, got %g (use steps for a jump)", h->duration);
@@ -77,8 +73,7 @@ static int parse_sine(const rs_case_doc *d, const yaml_node_t *n, const char *ke
   int status =
       parse_params(d, n, key, params, 4,
                    "a sine needs mean, amplitude and frequency (Hz); phase (rad) defaults to 0", h);
-  if (status != RS_OK)
-    return status;
+  if (status != RS_OK) return status;
   if (!(h->frequency >= 0 && h->frequency <= 1e9))
     return rs_case_error(d, rs_case_lookup(d, n, "frequency"), key,
                          "frequency must be in [0, 1e9] Hz, got %g", h->frequency);
@@ -92,8 +87,7 @@ static int alloc_points(const rs_case_doc *d, rs_history *h, size_t n)
 {
   h->t = malloc((n ? n : 1) * sizeof *h->t);
   h->v = malloc((n ? n : 1) * sizeof *h->v);
-  if (!h->t || !h->v)
-    return rs_msg_set(d->msg, RS_ERR_INTERNAL, "out of memory");
+  if (!h->t || !h->v) return rs_msg_set(d->msg, RS_ERR_INTERNAL, "out of memory");
   return RS_OK;
 }
 
@@ -106,8 +100,7 @@ static int parse_steps(const rs_case_doc *d, const yaml_node_t *n, const char *k
                          rs_case_describe(n, got, sizeof got));
   size_t count = (size_t)(n->data.sequence.items.top - n->data.sequence.items.start);
   int status = alloc_points(d, h, count);
-  if (status != RS_OK)
-    return status;
+  if (status != RS_OK) return status;
   for (size_t i = 0; i < count; i++) {
     const yaml_node_t *pt =
         yaml_document_get_node((yaml_document_t *)&d->doc, n->data.sequence.items.start[i]);
@@ -136,19 +129,14 @@ static int parse_csv_line(const char *s, double *t, double *v)
 {
   char *end;
   *t = strtod(s, &end);
-  if (end == s)
-    return 0;
+  if (end == s) return 0;
   s = end;
-  while (*s == ' ' || *s == '\t')
-    s++;
-  if (*s == ',' || *s == ';')
-    s++;
+  while (*s == ' ' || *s == '\t') s++;
+  if (*s == ',' || *s == ';') s++;
   *v = strtod(s, &end);
-  if (end == s)
-    return 0;
+  if (end == s) return 0;
   for (s = end; *s; s++)
-    if (!isspace((unsigned char)*s))
-      return 0;
+    if (!isspace((unsigned char)*s)) return 0;
   return 1;
 }
 
@@ -161,8 +149,7 @@ static int read_table(const rs_case_doc *d, const yaml_node_t *n, const char *ke
   const char *name = (const char *)n->data.scalar.value;
   size_t len = strlen(d->dir) + strlen(name) + 1;
   char *path = malloc(len);
-  if (!path)
-    return rs_msg_set(d->msg, RS_ERR_INTERNAL, "out of memory");
+  if (!path) return rs_msg_set(d->msg, RS_ERR_INTERNAL, "out of memory");
   snprintf(path, len, "%s%s", name[0] == '/' ? "" : d->dir, name);
   h->kind = RS_HISTORY_TABLE;
   FILE *f = fopen(path, "r");
@@ -178,10 +165,8 @@ static int read_table(const rs_case_doc *d, const yaml_node_t *n, const char *ke
   while (status == RS_OK && getline(&line, &cap, f) >= 0) {
     lineno++;
     char *s = line;
-    while (isspace((unsigned char)*s))
-      s++;
-    if (!*s || *s == '#')
-      continue;
+    while (isspace((unsigned char)*s)) s++;
+    if (!*s || *s == '#') continue;
     double t, v;
     if (!parse_csv_line(s, &t, &v)) {
       if (!seen_content++) /* a header line */
@@ -207,11 +192,9 @@ static int read_table(const rs_case_doc *d, const yaml_node_t *n, const char *ke
     if (h->n == capacity) {
       capacity = capacity ? 2 * capacity : 64;
       double *tt = realloc(h->t, capacity * sizeof *tt);
-      if (tt)
-        h->t = tt;
+      if (tt) h->t = tt;
       double *vv = tt ? realloc(h->v, capacity * sizeof *vv) : NULL;
-      if (vv)
-        h->v = vv;
+      if (vv) h->v = vv;
       if (!tt || !vv) {
         status = rs_msg_set(d->msg, RS_ERR_INTERNAL, "out of memory");
         break;
@@ -251,18 +234,14 @@ int rs_case_history(const rs_case_doc *d, const yaml_node_t *n, const char *key,
                                                            : "");
   static const char *const forms[] = {"ramp", "steps", "sine", "table", NULL};
   int status = rs_case_check_mapping(d, n, key, forms);
-  if (status != RS_OK)
-    return status;
+  if (status != RS_OK) return status;
   const yaml_node_pair_t *pair = n->data.mapping.pairs.start;
   const yaml_node_t *k = yaml_document_get_node((yaml_document_t *)&d->doc, pair->key);
   const yaml_node_t *v = yaml_document_get_node((yaml_document_t *)&d->doc, pair->value);
   const char *form = (const char *)k->data.scalar.value;
   snprintf(sub, sizeof sub, "%s.%s", key, form);
-  if (!strcmp(form, "ramp"))
-    return parse_ramp(d, v, sub, h);
-  if (!strcmp(form, "sine"))
-    return parse_sine(d, v, sub, h);
-  if (!strcmp(form, "steps"))
-    return parse_steps(d, v, key, h);
+  if (!strcmp(form, "ramp")) return parse_ramp(d, v, sub, h);
+  if (!strcmp(form, "sine")) return parse_sine(d, v, sub, h);
+  if (!strcmp(form, "steps")) return parse_steps(d, v, key, h);
   return read_table(d, v, key, h);
 }

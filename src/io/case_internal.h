@@ -64,15 +64,15 @@ const char *rs_case_fmt(double x, char *buf, size_t len);
 /* ---- case_keys.c: the key table and the parsing of the document into a case ---- */
 
 typedef enum rs_case_key_kind {
-  RS_KEY_SECTION, /* a mapping of keys */
-  RS_KEY_OPAQUE,  /* a mapping accepted as is (sweep:, handled elsewhere) */
-  RS_KEY_NUMBER,  /* double */
-  RS_KEY_INTEGER, /* int */
-  RS_KEY_LONG,    /* long */
-  RS_KEY_TEXT,    /* char * */
-  RS_KEY_CHOICE,  /* int (an enum), one of `choices` */
-  RS_KEY_HISTORY, /* rs_history */
-  RS_KEY_FIELDS,  /* unsigned mask of RS_FIELD_* */
+  RS_KEY_SECTION,  /* a mapping of keys */
+  RS_KEY_OPAQUE,   /* a mapping accepted as is (sweep:, handled elsewhere) */
+  RS_KEY_NUMBER,   /* double */
+  RS_KEY_INTEGER,  /* int */
+  RS_KEY_LONG,     /* long */
+  RS_KEY_TEXT,     /* char * */
+  RS_KEY_CHOICE,   /* int (an enum), one of `choices` */
+  RS_KEY_HISTORY,  /* rs_history */
+  RS_KEY_FIELDS,   /* unsigned mask of RS_FIELD_* */
   RS_KEY_PROTOCOL, /* rs_twin_disc steps: a list of {slip|ramp_to, revolutions} (case_rig.c) */
   RS_KEY_RANGE     /* double[2]: [lo, hi] with lo < hi, each within the key's range */
 } rs_case_key_kind;
@@ -120,6 +120,7 @@ int rs_case_history(const rs_case_doc *d, const yaml_node_t *n, const char *key,
                     rs_history *h);
 
 /* ---- case_rig.c: the twin_disc: block ---- */
-int rs_case_protocol(const rs_case_doc *d, const yaml_node_t *n, const char *key, rs_twin_disc *rig);
+int rs_case_protocol(const rs_case_doc *d, const yaml_node_t *n, const char *key,
+                     rs_twin_disc *rig);
 void rs_case_print_protocol(const rs_twin_disc *rig, FILE *out);
 #endif

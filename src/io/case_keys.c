@@ -22,7 +22,7 @@ const char *const rs_case_field_names[] = {"px",    "pn",   "slip",   "upl",
                                            "ustar", "tauc", "regime", NULL};
 
 #define F(member) offsetof(rs_case_input, member)
-#define BIG 1e12 /* sanity bound on moduli, loads, lengths: larger is surely a typo */
+#define BIG       1e12 /* sanity bound on moduli, loads, lengths: larger is surely a typo */
 
 const rs_case_key rs_case_keys[] = {
     {"title", RS_KEY_TEXT, F(c.title), "", 0, 0, RS_KEY_NULLABLE, NULL},
@@ -129,8 +129,7 @@ const size_t rs_case_nkeys = sizeof rs_case_keys / sizeof rs_case_keys[0];
 int rs_case_key_index(const char *path)
 {
   for (size_t i = 0; i < rs_case_nkeys; i++)
-    if (!strcmp(rs_case_keys[i].path, path))
-      return (int)i;
+    if (!strcmp(rs_case_keys[i].path, path)) return (int)i;
   return -1;
 }
 
@@ -163,8 +162,7 @@ static int parse_fields(const rs_case_doc *d, const yaml_node_t *n, const char *
     int i = 0;
     if (item && item->type == YAML_SCALAR_NODE)
       for (; rs_case_field_names[i]; i++)
-        if (!strcmp((const char *)item->data.scalar.value, rs_case_field_names[i]))
-          break;
+        if (!strcmp((const char *)item->data.scalar.value, rs_case_field_names[i])) break;
     if (!item || item->type != YAML_SCALAR_NODE || !rs_case_field_names[i]) {
       for (int j = 0; rs_case_field_names[j]; j++)
         strcat(strcat(names, j ? ", " : ""), rs_case_field_names[j]);
@@ -187,8 +185,7 @@ static int parse_range(const rs_case_doc *d, const yaml_node_t *n, const rs_case
   if (n->type == YAML_SEQUENCE_NODE &&
       n->data.sequence.items.top - n->data.sequence.items.start == 2)
     for (int k = 0; k < 2; k++)
-      item[k] = yaml_document_get_node((yaml_document_t *)&d->doc,
-                                       n->data.sequence.items.start[k]);
+      item[k] = yaml_document_get_node((yaml_document_t *)&d->doc, n->data.sequence.items.start[k]);
   if (!item[0] || !item[1])
     return rs_case_error(d, n, spec->path, "expected [lo, hi] (%s), got %s", spec->unit,
                          rs_case_describe(n, got, sizeof got));
@@ -219,38 +216,29 @@ static int parse_value(const rs_case_doc *d, const rs_case_key *spec, const yaml
     return RS_OK;
   case RS_KEY_INTEGER:
   case RS_KEY_LONG:
-    if ((status = rs_case_number(d, n, spec->path, &x)) != RS_OK)
-      return status;
+    if ((status = rs_case_number(d, n, spec->path, &x)) != RS_OK) return status;
     if (x != floor(x))
       return rs_case_error(d, n, spec->path, "expected a whole number, got %s",
                            (const char *)n->data.scalar.value);
-    if ((status = rs_case_check_range(d, n, spec, spec->path, x)) != RS_OK)
-      return status;
+    if ((status = rs_case_check_range(d, n, spec, spec->path, x)) != RS_OK) return status;
     if (spec->kind == RS_KEY_INTEGER)
       *(int *)field = (int)x;
     else
       *(long *)field = (long)x;
     return RS_OK;
-  case RS_KEY_TEXT:
-    return rs_case_text(d, n, spec->path, (char **)field);
+  case RS_KEY_TEXT: return rs_case_text(d, n, spec->path, (char **)field);
   case RS_KEY_CHOICE:
-    if ((status = rs_case_choice(d, n, spec->path, spec->choices, &choice)) != RS_OK)
-      return status;
-    if (field)
-      *(int *)field = choice;
+    if ((status = rs_case_choice(d, n, spec->path, spec->choices, &choice)) != RS_OK) return status;
+    if (field) *(int *)field = choice;
     return RS_OK;
   case RS_KEY_HISTORY:
     rs_history_free((rs_history *)field);
     return rs_case_history(d, n, spec->path, spec->unit, (rs_history *)field);
-  case RS_KEY_FIELDS:
-    return parse_fields(d, n, spec->path, (unsigned *)field);
-  case RS_KEY_PROTOCOL:
-    return rs_case_protocol(d, n, spec->path, (rs_twin_disc *)field);
-  case RS_KEY_RANGE:
-    return parse_range(d, n, spec, (double *)field);
+  case RS_KEY_FIELDS: return parse_fields(d, n, spec->path, (unsigned *)field);
+  case RS_KEY_PROTOCOL: return rs_case_protocol(d, n, spec->path, (rs_twin_disc *)field);
+  case RS_KEY_RANGE: return parse_range(d, n, spec, (double *)field);
   case RS_KEY_SECTION:
-  case RS_KEY_OPAQUE:
-    break;
+  case RS_KEY_OPAQUE: break;
   }
   return rs_msg_set(d->msg, RS_ERR_INTERNAL, "%s: not a value key", spec->path);
 }
@@ -276,8 +264,7 @@ static int parse_mapping(rs_case_doc *d, const char *section, const yaml_node_t 
   const char *names[64];
   child_names(section, names, 64);
   int status = rs_case_check_mapping(d, map, *section ? section : NULL, names);
-  if (status != RS_OK)
-    return status;
+  if (status != RS_OK) return status;
   size_t len = strlen(section);
   for (size_t i = 0; i < rs_case_nkeys; i++) {
     const rs_case_key *spec = &rs_case_keys[i];
@@ -285,20 +272,17 @@ static int parse_mapping(rs_case_doc *d, const char *section, const yaml_node_t 
             : !!strchr(spec->path, '.'))
       continue;
     const yaml_node_t *n = rs_case_lookup(d, map, spec->path + (len ? len + 1 : 0));
-    if (!n)
-      continue;
+    if (!n) continue;
     char got[96];
     switch (spec->kind) {
     case RS_KEY_SECTION:
       if (rs_case_is_null(n)) /* "plasticity:" with nothing under it: as if absent */
         continue;
       where[i] = n;
-      if ((status = parse_mapping(d, spec->path, n, in, where)) != RS_OK)
-        return status;
+      if ((status = parse_mapping(d, spec->path, n, in, where)) != RS_OK) return status;
       break;
     case RS_KEY_OPAQUE:
-      if (rs_case_is_null(n))
-        continue;
+      if (rs_case_is_null(n)) continue;
       if (n->type != YAML_MAPPING_NODE)
         return rs_case_error(d, n, spec->path,
                              "expected a mapping of dotted keys to value lists, got %s",
@@ -306,11 +290,9 @@ static int parse_mapping(rs_case_doc *d, const char *section, const yaml_node_t 
       where[i] = n;
       break;
     default:
-      if ((spec->flags & RS_KEY_NULLABLE) && rs_case_is_null(n))
-        continue; /* null: the default */
+      if ((spec->flags & RS_KEY_NULLABLE) && rs_case_is_null(n)) continue; /* null: the default */
       where[i] = n;
-      if ((status = parse_value(d, spec, n, in)) != RS_OK)
-        return status;
+      if ((status = parse_value(d, spec, n, in)) != RS_OK) return status;
     }
   }
   return RS_OK;

@@ -26,19 +26,23 @@ int rs_case_protocol(const rs_case_doc *d, const yaml_node_t *n, const char *key
     const yaml_node_t *item =
         yaml_document_get_node((yaml_document_t *)&d->doc, n->data.sequence.items.start[i]);
     if (!item || item->type != YAML_MAPPING_NODE)
-      return rs_case_error(d, item, key, "step %zu: expected {slip: S, revolutions: N} or "
-                                         "{ramp_to: S, revolutions: N}, got %s",
+      return rs_case_error(d, item, key,
+                           "step %zu: expected {slip: S, revolutions: N} or "
+                           "{ramp_to: S, revolutions: N}, got %s",
                            i + 1, rs_case_describe(item, got, sizeof got));
     int status = rs_case_check_mapping(d, item, key, allowed);
     if (status != RS_OK) return status;
-    const yaml_node_t *held = rs_case_lookup(d, item, "slip"), *ramp = rs_case_lookup(d, item, "ramp_to"),
+    const yaml_node_t *held = rs_case_lookup(d, item, "slip"),
+                      *ramp = rs_case_lookup(d, item, "ramp_to"),
                       *revs = rs_case_lookup(d, item, "revolutions");
     if (!!held == !!ramp)
-      return rs_case_error(d, item, key, "step %zu: give slip (held) or ramp_to (ramped from the "
-                                         "previous slip), one of the two",
+      return rs_case_error(d, item, key,
+                           "step %zu: give slip (held) or ramp_to (ramped from the "
+                           "previous slip), one of the two",
                            i + 1);
     if (!revs)
-      return rs_case_error(d, item, key, "step %zu: give its length in revolutions of disc 1", i + 1);
+      return rs_case_error(d, item, key, "step %zu: give its length in revolutions of disc 1",
+                           i + 1);
     rs_rig_step *st = &rig->steps[i];
     double slip;
     if ((status = rs_case_number(d, held ? held : ramp, key, &slip)) != RS_OK ||
@@ -49,8 +53,8 @@ int rs_case_protocol(const rs_case_doc *d, const yaml_node_t *n, const char *key
                            "step %zu: slip %g is not a fraction in (-1, 1) (0.03 = 3 %%)", i + 1,
                            slip);
     if (!(st->revolutions > 0.0 && st->revolutions <= 1e7))
-      return rs_case_error(d, revs, key, "step %zu: revolutions must be in (0, 1e7], got %g",
-                           i + 1, st->revolutions);
+      return rs_case_error(d, revs, key, "step %zu: revolutions must be in (0, 1e7], got %g", i + 1,
+                           st->revolutions);
     st->slip_start = held ? slip : previous;
     st->slip_end = slip;
     previous = slip;

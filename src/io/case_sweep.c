@@ -20,7 +20,8 @@ void rs_sweep_free(rs_sweep *s)
   memset(s, 0, sizeof *s);
 }
 
-static int read_values(const rs_case_doc *d, const yaml_node_t *v, const char *key, rs_sweep_axis *ax)
+static int read_values(const rs_case_doc *d, const yaml_node_t *v, const char *key,
+                       rs_sweep_axis *ax)
 {
   char ctx[256];
   snprintf(ctx, sizeof ctx, "sweep.%s", key);
@@ -39,7 +40,8 @@ static int read_values(const rs_case_doc *d, const yaml_node_t *v, const char *k
         rs_case_number(d, yaml_document_get_node(doc, it[2]), ctx, &cnt))
       return RS_ERR_INPUT;
     if (!(cnt >= 1 && cnt <= 100000 && cnt == floor(cnt)))
-      return rs_case_error(d, ls, ctx, "linspace count must be a whole number in 1..100000, got %g", cnt);
+      return rs_case_error(d, ls, ctx, "linspace count must be a whole number in 1..100000, got %g",
+                           cnt);
     ax->n = (int)cnt;
     ax->values = malloc((size_t)ax->n * sizeof *ax->values);
     if (!ax->values) return rs_msg_set(d->msg, RS_ERR_INTERNAL, "out of memory");
@@ -71,7 +73,8 @@ int rs_sweep_load(rs_sweep *s, const char *path, const char *const *sets, int ns
   const yaml_node_t *root = status == RS_OK ? rs_case_doc_root(&d) : NULL;
   const yaml_node_t *sw = root ? rs_case_lookup(&d, root, "sweep") : NULL;
   if (status == RS_OK && (!sw || rs_case_is_null(sw)))
-    status = rs_msg_set(msg, RS_ERR_INPUT, "%s: the case has no sweep: block (use rollsim run)", path);
+    status =
+        rs_msg_set(msg, RS_ERR_INPUT, "%s: the case has no sweep: block (use rollsim run)", path);
   if (status == RS_OK && sw->type != YAML_MAPPING_NODE)
     status = rs_case_error(&d, sw, "sweep", "expected a mapping of dotted keys to value lists");
   if (status == RS_OK) {
@@ -90,13 +93,15 @@ int rs_sweep_load(rs_sweep *s, const char *path, const char *const *sets, int ns
       }
       const char *key = (const char *)k->data.scalar.value;
       const int idx = rs_case_key_index(key);
-      if (idx < 0 || (rs_case_keys[idx].kind != RS_KEY_NUMBER && rs_case_keys[idx].kind != RS_KEY_INTEGER &&
-                      rs_case_keys[idx].kind != RS_KEY_HISTORY && rs_case_keys[idx].kind != RS_KEY_LONG)) {
+      if (idx < 0 ||
+          (rs_case_keys[idx].kind != RS_KEY_NUMBER && rs_case_keys[idx].kind != RS_KEY_INTEGER &&
+           rs_case_keys[idx].kind != RS_KEY_HISTORY && rs_case_keys[idx].kind != RS_KEY_LONG)) {
         status = rs_case_error(&d, k, "sweep", "%s is not a numeric case key", key);
         break;
       }
       for (int j = 0; j < i; j++)
-        if (!strcmp(s->axes[j].key, key)) status = rs_case_error(&d, k, "sweep", "%s is swept twice", key);
+        if (!strcmp(s->axes[j].key, key))
+          status = rs_case_error(&d, k, "sweep", "%s is swept twice", key);
       if (status != RS_OK) break;
       s->axes[i].key = strdup(key);
       if (!s->axes[i].key) {
@@ -123,7 +128,8 @@ int rs_sweep_load(rs_sweep *s, const char *path, const char *const *sets, int ns
   char assign[512], num[64];
   for (int a = 0; status == RS_OK && a < s->naxes; a++)
     for (int k = 0; status == RS_OK && k < s->axes[a].n; k++) {
-      snprintf(assign, sizeof assign, "%s=%s", s->axes[a].key, rs_case_fmt(s->axes[a].values[k], num, sizeof num));
+      snprintf(assign, sizeof assign, "%s=%s", s->axes[a].key,
+               rs_case_fmt(s->axes[a].values[k], num, sizeof num));
       all[nsets] = assign;
       rs_case c;
       rs_msg inner;

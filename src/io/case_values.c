@@ -22,8 +22,7 @@ int rs_case_error(const rs_case_doc *d, const yaml_node_t *node, const char *key
   va_start(ap, fmt);
   vsnprintf(what, sizeof what, fmt, ap);
   va_end(ap);
-  if (!node && d->has_doc)
-    node = yaml_document_get_root_node((yaml_document_t *)&d->doc);
+  if (!node && d->has_doc) node = yaml_document_get_root_node((yaml_document_t *)&d->doc);
   if (node) {
     int index = (int)(node - d->doc.nodes.start) + 1;
     for (int i = 0; i < d->nsets; i++) {
@@ -36,17 +35,14 @@ int rs_case_error(const rs_case_doc *d, const yaml_node_t *node, const char *key
     }
   }
   size_t line = node ? node->start_mark.line + 1 : 1;
-  if (key)
-    return rs_msg_set(d->msg, RS_ERR_INPUT, "%s:%zu: %s: %s", d->path, line, key, what);
+  if (key) return rs_msg_set(d->msg, RS_ERR_INPUT, "%s:%zu: %s: %s", d->path, line, key, what);
   return rs_msg_set(d->msg, RS_ERR_INPUT, "%s:%zu: %s", d->path, line, what);
 }
 
 int rs_case_is_null(const yaml_node_t *n)
 {
-  if (!n)
-    return 1;
-  if (n->type != YAML_SCALAR_NODE || n->data.scalar.style != YAML_PLAIN_SCALAR_STYLE)
-    return 0;
+  if (!n) return 1;
+  if (n->type != YAML_SCALAR_NODE || n->data.scalar.style != YAML_PLAIN_SCALAR_STYLE) return 0;
   const char *s = (const char *)n->data.scalar.value;
   return !*s || !strcmp(s, "~") || !strcmp(s, "null") || !strcmp(s, "Null") || !strcmp(s, "NULL");
 }
@@ -66,8 +62,7 @@ const char *rs_case_describe(const yaml_node_t *n, char *buf, size_t len)
     size_t cut = strlen(s), max = len > 12 ? len - 12 : 0;
     if (cut > max) { /* cut at a UTF-8 character boundary */
       cut = max;
-      while (cut > 0 && ((unsigned char)s[cut] & 0xc0) == 0x80)
-        cut--;
+      while (cut > 0 && ((unsigned char)s[cut] & 0xc0) == 0x80) cut--;
     }
     snprintf(buf, len, "\"%.*s%s\"", (int)cut, s, cut < strlen(s) ? "..." : "");
   }
@@ -107,8 +102,7 @@ int rs_case_text(const rs_case_doc *d, const yaml_node_t *n, const char *key, ch
   if (!n || n->type != YAML_SCALAR_NODE)
     return rs_case_error(d, n, key, "expected text, got %s", rs_case_describe(n, got, sizeof got));
   char *copy = strdup((const char *)n->data.scalar.value);
-  if (!copy)
-    return rs_msg_set(d->msg, RS_ERR_INTERNAL, "out of memory");
+  if (!copy) return rs_msg_set(d->msg, RS_ERR_INTERNAL, "out of memory");
   free(*out);
   *out = copy;
   return RS_OK;
@@ -144,20 +138,16 @@ int rs_case_choice(const rs_case_doc *d, const yaml_node_t *n, const char *key,
 static size_t edit_distance(const char *a, const char *b)
 {
   size_t la = strlen(a), lb = strlen(b), row[64];
-  if (la >= 63 || lb >= 63)
-    return 99;
-  for (size_t j = 0; j <= lb; j++)
-    row[j] = j;
+  if (la >= 63 || lb >= 63) return 99;
+  for (size_t j = 0; j <= lb; j++) row[j] = j;
   for (size_t i = 1; i <= la; i++) {
     size_t diag = row[0];
     row[0] = i;
     for (size_t j = 1; j <= lb; j++) {
       size_t up = row[j];
       size_t best = diag + (a[i - 1] != b[j - 1]);
-      if (up + 1 < best)
-        best = up + 1;
-      if (row[j - 1] + 1 < best)
-        best = row[j - 1] + 1;
+      if (up + 1 < best) best = up + 1;
+      if (row[j - 1] + 1 < best) best = row[j - 1] + 1;
       row[j] = best;
       diag = up;
     }
@@ -210,8 +200,7 @@ int rs_case_check_mapping(const rs_case_doc *d, const yaml_node_t *map, const ch
 yaml_node_t *rs_case_lookup(const rs_case_doc *d, const yaml_node_t *map, const char *name)
 {
   yaml_document_t *doc = (yaml_document_t *)&d->doc; /* libyaml's getters are not const */
-  if (!map || map->type != YAML_MAPPING_NODE)
-    return NULL;
+  if (!map || map->type != YAML_MAPPING_NODE) return NULL;
   for (yaml_node_pair_t *p = map->data.mapping.pairs.start; p < map->data.mapping.pairs.top; p++) {
     yaml_node_t *k = yaml_document_get_node(doc, p->key);
     if (k && k->type == YAML_SCALAR_NODE && !strcmp((const char *)k->data.scalar.value, name))
@@ -223,7 +212,6 @@ yaml_node_t *rs_case_lookup(const rs_case_doc *d, const yaml_node_t *map, const 
 const char *rs_case_fmt(double x, char *buf, size_t len)
 {
   snprintf(buf, len, "%.15g", x);
-  if (strtod(buf, NULL) != x)
-    snprintf(buf, len, "%.17g", x);
+  if (strtod(buf, NULL) != x) snprintf(buf, len, "%.17g", x);
   return buf;
 }

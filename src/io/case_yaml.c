@@ -26,8 +26,7 @@ static int read_whole_file(const char *path, char **buf, size_t *len, rs_msg *ms
       status = rs_msg_set(msg, RS_ERR_INPUT, "cannot read case file %s: %s", path, strerror(errno));
       break;
     }
-    if (feof(f))
-      break;
+    if (feof(f)) break;
     if (cap - n - 1 == 0) {
       char *bigger = cap < ((size_t)1 << 30) ? realloc(b, 2 * cap) : NULL;
       if (!bigger) {
@@ -40,8 +39,7 @@ static int read_whole_file(const char *path, char **buf, size_t *len, rs_msg *ms
     }
   }
   fclose(f);
-  if (!b)
-    return rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory reading case file %s", path);
+  if (!b) return rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory reading case file %s", path);
   if (status != RS_OK) {
     free(b);
     return status;
@@ -62,8 +60,7 @@ static int parser_error(const yaml_parser_t *p, const char *where, const char *t
   const char *problem = p->problem ? p->problem : "unknown error";
   if (p->error == YAML_READER_ERROR) {
     size_t line = 1;
-    for (size_t i = 0; i < p->problem_offset && i < len; i++)
-      line += text[i] == '\n';
+    for (size_t i = 0; i < p->problem_offset && i < len; i++) line += text[i] == '\n';
     return rs_msg_set(msg, RS_ERR_INPUT, "%s:%zu: not readable as YAML text: %s (byte 0x%02x)",
                       where, line, problem, (unsigned)p->problem_value & 0xffu);
   }
@@ -81,14 +78,12 @@ int rs_case_doc_load(rs_case_doc *d, const char *path, rs_msg *msg)
   d->msg = msg;
   const char *slash = strrchr(path, '/');
   d->dir = slash ? strndup(path, (size_t)(slash - path) + 1) : strdup("");
-  if (!d->dir)
-    return rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory");
+  if (!d->dir) return rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory");
 
   char *text = NULL;
   size_t len = 0;
   int status = read_whole_file(path, &text, &len, msg);
-  if (status != RS_OK)
-    return status;
+  if (status != RS_OK) return status;
 
   yaml_parser_t parser;
   if (!yaml_parser_initialize(&parser)) {
@@ -131,11 +126,9 @@ int rs_case_doc_load(rs_case_doc *d, const char *path, rs_msg *msg)
 
 void rs_case_doc_free(rs_case_doc *d)
 {
-  if (d->has_doc)
-    yaml_document_delete(&d->doc);
+  if (d->has_doc) yaml_document_delete(&d->doc);
   d->has_doc = 0;
-  for (int i = 0; i < d->nsets; i++)
-    free(d->sets[i].key);
+  for (int i = 0; i < d->nsets; i++) free(d->sets[i].key);
   free(d->sets);
   free(d->dir);
   d->sets = NULL;
@@ -155,8 +148,7 @@ yaml_node_t *rs_case_doc_root(rs_case_doc *d)
 static int copy_node(yaml_document_t *dst, yaml_document_t *src, int index)
 {
   yaml_node_t *n = yaml_document_get_node(src, index);
-  if (!n)
-    return 0;
+  if (!n) return 0;
   switch (n->type) {
   case YAML_SCALAR_NODE:
     return yaml_document_add_scalar(dst, n->tag, n->data.scalar.value, (int)n->data.scalar.length,
@@ -167,8 +159,7 @@ static int copy_node(yaml_document_t *dst, yaml_document_t *src, int index)
     for (size_t i = 0; seq && i < count; i++) {
       int item =
           copy_node(dst, src, yaml_document_get_node(src, index)->data.sequence.items.start[i]);
-      if (!item || !yaml_document_append_sequence_item(dst, seq, item))
-        return 0;
+      if (!item || !yaml_document_append_sequence_item(dst, seq, item)) return 0;
     }
     return seq;
   }
@@ -179,13 +170,11 @@ static int copy_node(yaml_document_t *dst, yaml_document_t *src, int index)
       yaml_node_pair_t pair = yaml_document_get_node(src, index)->data.mapping.pairs.start[i];
       int key = copy_node(dst, src, pair.key);
       int value = key ? copy_node(dst, src, pair.value) : 0;
-      if (!value || !yaml_document_append_mapping_pair(dst, map, key, value))
-        return 0;
+      if (!value || !yaml_document_append_mapping_pair(dst, map, key, value)) return 0;
     }
     return map;
   }
-  default:
-    return 0;
+  default: return 0;
   }
 }
 
@@ -208,8 +197,7 @@ static int add_set_value(rs_case_doc *d, const char *key, const char *value, int
     else /* an empty VALUE is null, as in "key:" */
       *index = yaml_document_add_scalar(&d->doc, NULL, (yaml_char_t *)"null", 4,
                                         YAML_PLAIN_SCALAR_STYLE);
-    if (!*index)
-      status = rs_msg_set(d->msg, RS_ERR_INTERNAL, "out of memory");
+    if (!*index) status = rs_msg_set(d->msg, RS_ERR_INTERNAL, "out of memory");
     yaml_document_delete(&vdoc);
   }
   yaml_parser_delete(&parser);
@@ -239,14 +227,12 @@ int rs_case_doc_set(rs_case_doc *d, const char *assignment)
                       "--set %s: expected KEY=VALUE with a dotted key, e.g. --set grid.cells=200",
                       assignment);
   rs_case_set_origin *grown = realloc(d->sets, (size_t)(d->nsets + 1) * sizeof *grown);
-  if (!grown)
-    return rs_msg_set(d->msg, RS_ERR_INTERNAL, "out of memory");
+  if (!grown) return rs_msg_set(d->msg, RS_ERR_INTERNAL, "out of memory");
   d->sets = grown;
   rs_case_set_origin *origin = &d->sets[d->nsets];
   origin->first_node = origin->end_node = 0;
   origin->key = strndup(assignment, (size_t)(eq - assignment));
-  if (!origin->key)
-    return rs_msg_set(d->msg, RS_ERR_INTERNAL, "out of memory");
+  if (!origin->key) return rs_msg_set(d->msg, RS_ERR_INTERNAL, "out of memory");
   d->nsets++;
   const char *key = origin->key;
   size_t keylen = strlen(key);
@@ -257,8 +243,7 @@ int rs_case_doc_set(rs_case_doc *d, const char *assignment)
   origin->end_node = origin->first_node;
   int value = 0;
   int status = add_set_value(d, key, eq + 1, &value);
-  if (status != RS_OK)
-    return status;
+  if (status != RS_OK) return status;
 
   /* Walk the dotted key from the root, creating missing (or null) mappings. */
   int map = 1;
@@ -266,8 +251,7 @@ int rs_case_doc_set(rs_case_doc *d, const char *assignment)
   for (const char *p = key;;) {
     const char *dot = strchr(p, '.');
     size_t len = dot ? (size_t)(dot - p) : strlen(p);
-    if (len >= sizeof part)
-      return rs_msg_set(d->msg, RS_ERR_INPUT, "--set %s: key too long", key);
+    if (len >= sizeof part) return rs_msg_set(d->msg, RS_ERR_INPUT, "--set %s: key too long", key);
     memcpy(part, p, len);
     part[len] = '\0';
     yaml_node_t *m = yaml_document_get_node(&d->doc, map);
@@ -289,8 +273,7 @@ int rs_case_doc_set(rs_case_doc *d, const char *assignment)
     }
     if (!next || rs_case_is_null(yaml_document_get_node(&d->doc, next))) {
       int created = yaml_document_add_mapping(&d->doc, NULL, YAML_ANY_MAPPING_STYLE);
-      if (!created)
-        return rs_msg_set(d->msg, RS_ERR_INTERNAL, "out of memory");
+      if (!created) return rs_msg_set(d->msg, RS_ERR_INTERNAL, "out of memory");
       if (next)
         yaml_document_get_node(&d->doc, map)->data.mapping.pairs.start[pair].value = created;
       else {
@@ -320,11 +303,9 @@ static int sink_write(void *data, unsigned char *buffer, size_t size)
   text_sink *s = data;
   if (s->len + size + 1 > s->cap) {
     size_t cap = s->cap ? s->cap : 1024;
-    while (s->len + size + 1 > cap)
-      cap *= 2;
+    while (s->len + size + 1 > cap) cap *= 2;
     char *grown = realloc(s->text, cap);
-    if (!grown)
-      return 0;
+    if (!grown) return 0;
     s->text = grown;
     s->cap = cap;
   }

@@ -49,20 +49,20 @@
 #endif
 
 /* I/O block size passed to netCDF; its buffer holds at most two blocks. */
-#define RS_IO_BLOCK ((size_t)4096)
+#define RS_IO_BLOCK       ((size_t)4096)
 /* Free header space reserved beyond the case text (nc__enddef h_minfree). */
 #define RS_HEADER_RESERVE ((size_t)4096)
 
 /* (time, x) fields: interfaces.md table. The regime field is stored as NC_BYTE. */
 typedef struct field_var {
-  unsigned bit;          /* RS_FIELD_* */
+  unsigned bit; /* RS_FIELD_* */
   const char *name;
   const char *units;
   const char *long_name;
-  size_t member;         /* offsetof(rs_record, array), for the double fields */
+  size_t member; /* offsetof(rs_record, array), for the double fields */
 } field_var;
 
-#define N_FIELDS 7
+#define N_FIELDS     7
 #define REGIME_FIELD 6
 static const field_var field_vars[N_FIELDS] = {
     {RS_FIELD_PX, "px", "N/mm2", "tangential traction on body 1", offsetof(rs_record, px)},
@@ -70,8 +70,7 @@ static const field_var field_vars[N_FIELDS] = {
     {RS_FIELD_SLIP, "slip", "1", "relative slip v_s/V (slip velocity in mm/s when V = 0)",
      offsetof(rs_record, slip)},
     {RS_FIELD_UPL, "upl", "mm", "plastic displacement", offsetof(rs_record, upl)},
-    {RS_FIELD_USTAR, "ustar", "mm", "accumulated plastic deformation",
-     offsetof(rs_record, ustar)},
+    {RS_FIELD_USTAR, "ustar", "mm", "accumulated plastic deformation", offsetof(rs_record, ustar)},
     {RS_FIELD_TAUC, "tauc", "N/mm2", "current yield limit", offsetof(rs_record, tauc)},
     {RS_FIELD_REGIME, "regime", "1", "contact regime of the cell", 0},
 };
@@ -80,13 +79,13 @@ static const field_var field_vars[N_FIELDS] = {
  * in 2D. traction_coefficient is computed here (Fx/Fn). */
 typedef struct scalar_var {
   const char *name;
-  nc_type type;          /* NC_DOUBLE or NC_INT */
-  size_t member;         /* offsetof(rs_record, value); unused for traction_coefficient */
+  nc_type type;  /* NC_DOUBLE or NC_INT */
+  size_t member; /* offsetof(rs_record, value); unused for traction_coefficient */
   const char *units_2d, *units_3d;
   const char *long_name;
 } scalar_var;
 
-#define N_SCALARS 12
+#define N_SCALARS       12
 #define TRACTION_SCALAR 2
 static const scalar_var scalar_vars[N_SCALARS] = {
     {"Fx", NC_DOUBLE, offsetof(rs_record, Fx), "N/mm", "N", "total tangential force on body 1"},
@@ -101,8 +100,8 @@ static const scalar_var scalar_vars[N_SCALARS] = {
     {"n_slip", NC_INT, offsetof(rs_record, n_slip), "1", "1", "number of cells in slip"},
     {"n_plastic", NC_INT, offsetof(rs_record, n_plastic), "1", "1",
      "number of cells in plastic flow"},
-    {"frictional_power", NC_DOUBLE, offsetof(rs_record, frictional_power), "N mm/s/mm",
-     "N mm/s", "frictional power dissipated by slip"},
+    {"frictional_power", NC_DOUBLE, offsetof(rs_record, frictional_power), "N mm/s/mm", "N mm/s",
+     "frictional power dissipated by slip"},
     {"plastic_power", NC_DOUBLE, offsetof(rs_record, plastic_power), "N mm/s/mm", "N mm/s",
      "plastic power dissipated"},
     {"elastic_energy", NC_DOUBLE, offsetof(rs_record, elastic_energy), "N mm/mm", "N mm",
@@ -111,12 +110,12 @@ static const scalar_var scalar_vars[N_SCALARS] = {
 
 struct rs_output {
   int ncid;
-  char *path;            /* as given; error messages name it */
+  char *path; /* as given; error messages name it */
   size_t nx;
   unsigned fields;
-  size_t records;        /* records written and synced */
+  size_t records; /* records written and synced */
   int time_id, x_id;
-  int field_id[N_FIELDS];   /* -1 when not in the mask */
+  int field_id[N_FIELDS]; /* -1 when not in the mask */
   int scalar_id[N_SCALARS];
   int has_rig;
   int rig_meta_id[6];
@@ -175,8 +174,8 @@ static int define_rig(rs_output *out, const rs_output_rig *rig)
       return err;
   if ((err = nc_put_att_double(ncid, NC_GLOBAL, "twin_disc_revolution_time", NC_DOUBLE, 1,
                                &rig->revolution_time)) ||
-      (err = nc_put_att_double(ncid, NC_GLOBAL, "twin_disc_recovery", NC_DOUBLE, 1,
-                               &rig->recovery)))
+      (err =
+           nc_put_att_double(ncid, NC_GLOBAL, "twin_disc_recovery", NC_DOUBLE, 1, &rig->recovery)))
     return err;
   out->has_rig = 1;
   return NC_NOERR;
@@ -190,13 +189,11 @@ static int write_rig_meta(rs_output *out, const rs_output_rig *rig)
                            rig->window_start};
   int err;
   for (int k = 0; k < 5; k++)
-    if ((err = nc_put_var_double(ncid, out->rig_meta_id[k], meta[k])))
-      return err;
+    if ((err = nc_put_var_double(ncid, out->rig_meta_id[k], meta[k]))) return err;
   const double t_end = rig->nsteps ? rig->time_end[rig->nsteps - 1] : 0.0;
   const size_t nmax = rig->nsteps > rig->nrevolutions ? rig->nsteps : rig->nrevolutions;
   double *buf = malloc((nmax ? nmax : 1) * sizeof *buf);
-  if (!buf)
-    return NC_ENOMEM;
+  if (!buf) return NC_ENOMEM;
   for (size_t i = 0; i < rig->nrevolutions; i++)
     buf[i] = fmin((double)(i + 1) * rig->revolution_time, t_end);
   err = nc_put_var_double(ncid, out->rig_meta_id[5], buf);
@@ -254,15 +251,13 @@ void rs_output_status_text(char buf[RS_OUTPUT_STATUS_LEN], const char *status)
 int rs_output_make_parent_dirs(const char *path, rs_msg *msg)
 {
   char *dir = strdup(path);
-  if (!dir)
-    return rs_msg_set(msg, RS_ERR_OUTPUT, "output file %s: out of memory", path);
+  if (!dir) return rs_msg_set(msg, RS_ERR_OUTPUT, "output file %s: out of memory", path);
   int status = RS_OK;
   char *slash = strrchr(dir, '/');
   if (slash && slash != dir) {
     *slash = '\0';
     for (char *p = dir + 1;; p++) {
-      if (*p != '/' && *p != '\0')
-        continue;
+      if (*p != '/' && *p != '\0') continue;
       char saved = *p;
       *p = '\0';
       if (mkdir(dir, 0777) != 0 && errno != EEXIST) {
@@ -271,8 +266,7 @@ int rs_output_make_parent_dirs(const char *path, rs_msg *msg)
         break;
       }
       *p = saved;
-      if (saved == '\0')
-        break;
+      if (saved == '\0') break;
     }
   }
   free(dir);
@@ -296,8 +290,7 @@ static int define_file(rs_output *out, const rs_output_spec *spec, const char **
     return err;
   char status[RS_OUTPUT_STATUS_LEN];
   rs_output_status_text(status, "running");
-  if ((err = nc_put_att_text(ncid, NC_GLOBAL, "status", RS_OUTPUT_STATUS_LEN, status)))
-    return err;
+  if ((err = nc_put_att_text(ncid, NC_GLOBAL, "status", RS_OUTPUT_STATUS_LEN, status))) return err;
 
   *what = "defining dimensions";
   if ((err = nc_def_dim(ncid, "time", NC_UNLIMITED, &time_dim)) ||
@@ -319,8 +312,7 @@ static int define_file(rs_output *out, const rs_output_spec *spec, const char **
 
   if (spec->rig) {
     *what = "defining the twin-disc summaries";
-    if ((err = define_rig(out, spec->rig)))
-      return err;
+    if ((err = define_rig(out, spec->rig))) return err;
   }
 
   /* Fields first, scalars last: the last record variable is a double (see top). */
@@ -329,8 +321,7 @@ static int define_file(rs_output *out, const rs_output_spec *spec, const char **
   for (int f = 0; f < N_FIELDS; f++) {
     const field_var *fv = &field_vars[f];
     out->field_id[f] = -1;
-    if (!(spec->fields & fv->bit))
-      continue;
+    if (!(spec->fields & fv->bit)) continue;
     const nc_type type = f == REGIME_FIELD ? NC_BYTE : NC_DOUBLE;
     int id;
     if ((err = nc_def_var(ncid, fv->name, type, 2, field_dims, &id)) ||
@@ -384,8 +375,7 @@ int rs_output_create(rs_output **outp, const rs_output_spec *spec, rs_msg *msg)
   char *part = malloc(path_len + sizeof ".part");
   if (!out || !part || !(out->path = strdup(spec->path))) {
     free(part);
-    if (out)
-      free(out->path);
+    if (out) free(out->path);
     free(out);
     return rs_msg_set(msg, RS_ERR_OUTPUT, "output file %s: out of memory", spec->path);
   }
@@ -411,15 +401,13 @@ int rs_output_create(rs_output **outp, const rs_output_spec *spec, rs_msg *msg)
     free(out);
     return status;
   }
-  if (block == 0)
-    block = RS_IO_BLOCK;
+  if (block == 0) block = RS_IO_BLOCK;
 
   const char *what = "";
   err = define_file(out, spec, &what);
   if (err == NC_NOERR) {
     /* Records start on a multiple of two I/O blocks, beyond the buffer holding numrecs. */
-    const size_t h_minfree =
-        RS_HEADER_RESERVE + (spec->case_text ? strlen(spec->case_text) : 0);
+    const size_t h_minfree = RS_HEADER_RESERVE + (spec->case_text ? strlen(spec->case_text) : 0);
     what = "writing the header";
     err = nc__enddef(out->ncid, h_minfree, 4, 0, 2 * block);
   }
@@ -457,8 +445,7 @@ int rs_output_create(rs_output **outp, const rs_output_spec *spec, rs_msg *msg)
 /* The array of field f in rec (NULL when the caller has none). */
 static const void *field_data(const rs_record *rec, int f)
 {
-  if (f == REGIME_FIELD)
-    return rec->regime;
+  if (f == REGIME_FIELD) return rec->regime;
   return *(const double *const *)((const char *)rec + field_vars[f].member);
 }
 
@@ -473,21 +460,17 @@ int rs_output_write(rs_output *out, const rs_record *rec, rs_msg *msg)
    * netCDF will write on the next sync or close. */
   for (int f = 0; f < N_FIELDS; f++)
     if (out->field_id[f] >= 0 && !field_data(rec, f))
-      return rs_msg_set(msg, RS_ERR_INTERNAL,
-                        "output file %s: record %zu has no data for field %s", out->path,
-                        out->records, field_vars[f].name);
+      return rs_msg_set(msg, RS_ERR_INTERNAL, "output file %s: record %zu has no data for field %s",
+                        out->path, out->records, field_vars[f].name);
 
-  if ((err = nc_put_var1_double(ncid, out->time_id, start, &rec->time)))
-    goto fail;
+  if ((err = nc_put_var1_double(ncid, out->time_id, start, &rec->time))) goto fail;
 
   for (int f = 0; f < N_FIELDS; f++) {
-    if (out->field_id[f] < 0)
-      continue;
+    if (out->field_id[f] < 0) continue;
     const void *data = field_data(rec, f);
     err = f == REGIME_FIELD ? nc_put_vara_schar(ncid, out->field_id[f], start, count, data)
                             : nc_put_vara_double(ncid, out->field_id[f], start, count, data);
-    if (err)
-      goto fail;
+    if (err) goto fail;
   }
 
   for (int s = 0; s < N_SCALARS; s++) {
@@ -501,13 +484,11 @@ int rs_output_write(rs_output *out, const rs_record *rec, rs_msg *msg)
     } else {
       err = nc_put_var1_double(ncid, out->scalar_id[s], start, (const double *)member);
     }
-    if (err)
-      goto fail;
+    if (err) goto fail;
   }
 
   /* Data first, then numrecs: one nc_sync does both, in that order (see top). */
-  if ((err = nc_sync(ncid)))
-    goto fail;
+  if ((err = nc_sync(ncid))) goto fail;
   out->records++;
   return RS_OK;
 
@@ -517,10 +498,7 @@ fail:
                     out->path, out->records, rec->time, nc_strerror(err));
 }
 
-size_t rs_output_records(const rs_output *out)
-{
-  return out ? out->records : 0;
-}
+size_t rs_output_records(const rs_output *out) { return out ? out->records : 0; }
 
 int rs_output_set_status(rs_output *out, const char *status, rs_msg *msg)
 {
@@ -528,8 +506,7 @@ int rs_output_set_status(rs_output *out, const char *status, rs_msg *msg)
   rs_output_status_text(text, status);
   /* Same size as before: allowed in data mode, and the header keeps its layout. */
   int err = nc_put_att_text(out->ncid, NC_GLOBAL, "status", RS_OUTPUT_STATUS_LEN, text);
-  if (err)
-    return rs_output_nc_failure(msg, out->path, "setting the status attribute", err);
+  if (err) return rs_output_nc_failure(msg, out->path, "setting the status attribute", err);
   if ((err = nc_sync(out->ncid)))
     return rs_output_nc_failure(msg, out->path, "syncing the status attribute", err);
   return RS_OK;
@@ -537,12 +514,10 @@ int rs_output_set_status(rs_output *out, const char *status, rs_msg *msg)
 
 int rs_output_close(rs_output *out, rs_msg *msg)
 {
-  if (!out)
-    return RS_OK;
+  if (!out) return RS_OK;
   int status = RS_OK;
   int err = nc_close(out->ncid);
-  if (err)
-    status = rs_output_nc_failure(msg, out->path, "closing", err);
+  if (err) status = rs_output_nc_failure(msg, out->path, "closing", err);
   free(out->path);
   free(out);
   return status;

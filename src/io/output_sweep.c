@@ -88,7 +88,9 @@ int rs_sweep_output_create(rs_sweep_output **outp, const rs_sweep_output_spec *s
     err = nc_def_var(o->ncid, sweep_vars[v].name, sweep_vars[v].type == SW_INT ? NC_INT : NC_DOUBLE,
                      spec->naxes, dims, &o->varid[v]);
     if (!err) err = rs_output_put_text(o->ncid, o->varid[v], "long_name", sweep_vars[v].long_name);
-    if (!err) err = rs_output_put_text(o->ncid, o->varid[v], "units", unit_of(&sweep_vars[v], spec->dimension));
+    if (!err)
+      err = rs_output_put_text(o->ncid, o->varid[v], "units",
+                               unit_of(&sweep_vars[v], spec->dimension));
     if (!err && sweep_vars[v].type == SW_INT) {
       const int fill = -1;
       err = nc_put_att_int(o->ncid, o->varid[v], "_FillValue", NC_INT, 1, &fill);
@@ -99,11 +101,14 @@ int rs_sweep_output_create(rs_sweep_output **outp, const rs_sweep_output_spec *s
   if (!err) err = rs_output_put_text(o->ncid, NC_GLOBAL, "Conventions", "CF-1.10");
   if (!err) err = rs_output_put_text(o->ncid, NC_GLOBAL, "title", spec->title ? spec->title : "");
   if (!err) err = rs_output_put_text(o->ncid, NC_GLOBAL, "source", "rollsim " RS_VERSION);
-  if (!err) err = rs_output_put_text(o->ncid, NC_GLOBAL, "history", spec->history ? spec->history : "");
-  if (!err) err = rs_output_put_text(o->ncid, NC_GLOBAL, "case", spec->case_text ? spec->case_text : "");
+  if (!err)
+    err = rs_output_put_text(o->ncid, NC_GLOBAL, "history", spec->history ? spec->history : "");
+  if (!err)
+    err = rs_output_put_text(o->ncid, NC_GLOBAL, "case", spec->case_text ? spec->case_text : "");
   if (!err) err = nc_put_att_text(o->ncid, NC_GLOBAL, "status", RS_OUTPUT_STATUS_LEN, status_buf);
   if (!err) err = nc_enddef(o->ncid);
-  for (int a = 0; a < spec->naxes && !err; a++) err = nc_put_var_double(o->ncid, coord[a], spec->values[a]);
+  for (int a = 0; a < spec->naxes && !err; a++)
+    err = nc_put_var_double(o->ncid, coord[a], spec->values[a]);
   if (!err) err = nc_sync(o->ncid);
   if (err) {
     status = rs_output_nc_failure(msg, spec->path, "cannot write the sweep layout", err);
@@ -124,10 +129,23 @@ int rs_sweep_output_write(rs_sweep_output *o, size_t index, const rs_sweep_point
     index /= o->sizes[a];
   }
   const double ratio = pt->Fn != 0.0 ? pt->Fx / pt->Fn : NAN;
-  const double dv[] = {pt->Fx, pt->Fn, ratio, pt->creepage, pt->velocity, 0, 0, 0, 0,
-                       pt->frictional_power, pt->plastic_power, pt->elastic_energy, 0};
-  const int iv[] = {0, 0, 0, 0, 0, pt->n_exterior, pt->n_adhesion, pt->n_slip, pt->n_plastic,
-                    0, 0, 0, pt->converged};
+  const double dv[] = {
+      pt->Fx, pt->Fn, ratio, pt->creepage,         pt->velocity,      0,
+      0,      0,      0,     pt->frictional_power, pt->plastic_power, pt->elastic_energy,
+      0};
+  const int iv[] = {0,
+                    0,
+                    0,
+                    0,
+                    0,
+                    pt->n_exterior,
+                    pt->n_adhesion,
+                    pt->n_slip,
+                    pt->n_plastic,
+                    0,
+                    0,
+                    0,
+                    pt->converged};
   int err = 0;
   for (size_t v = 0; v < N_SWEEP_VARS && !err; v++)
     err = sweep_vars[v].type == SW_INT ? nc_put_var1_int(o->ncid, o->varid[v], start, &iv[v])

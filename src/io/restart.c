@@ -30,8 +30,7 @@ static int read_file(int ncid, const char *path, size_t nx, const double *x, dou
                       "restart file %s: its grid has %zu cells, the case has %zu "
                       "(grid.cells and grid.extent must be those of the old run)",
                       path, len_x, nx);
-  if (nrec == 0)
-    return rs_msg_set(msg, RS_ERR_INPUT, "restart file %s: holds no records", path);
+  if (nrec == 0) return rs_msg_set(msg, RS_ERR_INPUT, "restart file %s: holds no records", path);
 
   if ((err = nc_inq_varid(ncid, "x", &var)) || (err = nc_get_var_double(ncid, var, xold)))
     return nc_fail(msg, path, "reading x", err);
@@ -63,8 +62,8 @@ static int read_file(int ncid, const char *path, size_t nx, const double *x, dou
     int ndims, dims[NC_MAX_VAR_DIMS];
     if ((err = nc_inq_varndims(ncid, var, &ndims)) || ndims != 2 ||
         (err = nc_inq_vardimid(ncid, var, dims)) || dims[0] != dim_t || dims[1] != dim_x)
-      return rs_msg_set(msg, RS_ERR_INPUT, "restart file %s: variable '%s' is not a (time, x) field",
-                        path, name);
+      return rs_msg_set(msg, RS_ERR_INPUT,
+                        "restart file %s: variable '%s' is not a (time, x) field", path, name);
     const size_t start[2] = {last, 0}, count[2] = {1, nx};
     double *dst = state[f];
     if ((err = nc_get_vara_double(ncid, var, start, count, dst)))
@@ -76,9 +75,8 @@ static int read_file(int ncid, const char *path, size_t nx, const double *x, dou
                           "(t = %g s)",
                           path, name, i, *t_last);
   }
-  if (creepage &&
-      ((err = nc_inq_varid(ncid, "creepage", &var)) ||
-       (err = nc_get_var1_double(ncid, var, &last, creepage)) || !isfinite(*creepage)))
+  if (creepage && ((err = nc_inq_varid(ncid, "creepage", &var)) ||
+                   (err = nc_get_var1_double(ncid, var, &last, creepage)) || !isfinite(*creepage)))
     return rs_msg_set(msg, RS_ERR_INPUT,
                       "restart file %s: no valid creepage at its last record (needed to continue "
                       "a run with a prescribed tangential force)",

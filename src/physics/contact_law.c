@@ -16,7 +16,7 @@ double rs_yield_limit(const rs_plasticity *pl, double ustar)
 double rs_yield_slope(const rs_plasticity *pl, double ustar)
 {
   return (pl->on && ustar >= 0.0 && pl->tau_c0 + pl->k_tau * ustar > pl->tau_c_min) ? pl->k_tau
-                                                                                     : 0.0;
+                                                                                    : 0.0;
 }
 
 rs_state rs_contact_state(const rs_plasticity *pl, int in_contact, double p_norm, double g,

@@ -12,8 +12,8 @@
  * -(n-1)..n wraps to distinct indices mod M. */
 struct rs_elastic_fft {
   int M;
-  double *in;                 /* [M]: plan-time buffer (the products use a work's) */
-  fftw_complex *out;          /* [M/2 + 1] */
+  double *in;                  /* [M]: plan-time buffer (the products use a work's) */
+  fftw_complex *out;           /* [M/2 + 1] */
   fftw_complex *ktang, *knorm; /* transformed kernels, scaled by 1/M [M/2 + 1] */
   fftw_plan fwd, bwd;
 };
@@ -72,10 +72,7 @@ fail:
 }
 
 /* Primitive of ln|s|: s ln|s| - s, with the limit 0 at s = 0. */
-static double ln_primitive(double s)
-{
-  return s == 0.0 ? 0.0 : s * log(fabs(s)) - s;
-}
+static double ln_primitive(double s) { return s == 0.0 ? 0.0 : s * log(fabs(s)) - s; }
 
 int rs_elastic2d_create(rs_elastic2d *el, int n, double dx, double shear_modulus,
                         double poisson_ratio, double reference_length, rs_msg *msg)
@@ -160,7 +157,7 @@ void rs_elastic2d_apply(const rs_elastic2d *el, rs_elastic2d_work *w, const doub
   }
   for (int i = 0; i < nout; i++) {
     const double *row = coef_table + i + n; /* row[-j] = coef(i - j) */
-    double s[4] = {0.0, 0.0, 0.0, 0.0}; /* independent partial sums: no add latency chain */
+    double s[4] = {0.0, 0.0, 0.0, 0.0};     /* independent partial sums: no add latency chain */
     int j = 0;
     for (; j + 4 <= n; j += 4)
       for (int k = 0; k < 4; k++) s[k] += row[-(j + k)] * p[j + k];

@@ -8,8 +8,8 @@ int rs_elastic_op_create(rs_elastic_op *op, const rs_grid *g, double shear_modul
 {
   memset(op, 0, sizeof *op);
   if (g->ny != 1)
-    return rs_msg_set(msg, RS_ERR_INPUT, "3D contact (a grid of %d x %d cells) is not available yet",
-                      g->nx, g->ny);
+    return rs_msg_set(msg, RS_ERR_INPUT,
+                      "3D contact (a grid of %d x %d cells) is not available yet", g->nx, g->ny);
   op->dim = 2;
   op->ncomp = 1;
   op->nx = g->nx;

@@ -5,8 +5,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-int rs_grid_create(rs_grid *g, int nx, double x_lo, double x_hi, int ny, double y_lo,
-                   double y_hi, rs_msg *msg)
+int rs_grid_create(rs_grid *g, int nx, double x_lo, double x_hi, int ny, double y_lo, double y_hi,
+                   rs_msg *msg)
 {
   memset(g, 0, sizeof *g);
   const int line = ny == 1 && y_lo == 0.0 && y_hi == 0.0;

@@ -13,11 +13,9 @@ static const double two_pi = 6.283185307179586476925286766559;
 /* Index of the last point with t[i] <= t, or -1 if t < t[0] (binary search). */
 static long last_point_at_or_before(const rs_history *h, double t)
 {
-  if (h->n == 0 || t < h->t[0])
-    return -1;
+  if (h->n == 0 || t < h->t[0]) return -1;
   size_t lo = 0, hi = h->n - 1;
-  if (t >= h->t[hi])
-    return (long)hi;
+  if (t >= h->t[hi]) return (long)hi;
   while (hi - lo > 1) { /* invariant: t[lo] <= t < t[hi] */
     size_t mid = lo + (hi - lo) / 2;
     if (h->t[mid] <= t)
@@ -31,30 +29,22 @@ static long last_point_at_or_before(const rs_history *h, double t)
 double rs_history_eval(const rs_history *h, double t)
 {
   switch (h->kind) {
-  case RS_HISTORY_CONSTANT:
-    return h->value;
+  case RS_HISTORY_CONSTANT: return h->value;
   case RS_HISTORY_RAMP:
-    if (t <= h->start)
-      return h->from;
-    if (t >= h->start + h->duration)
-      return h->to;
+    if (t <= h->start) return h->from;
+    if (t >= h->start + h->duration) return h->to;
     return h->from + (h->to - h->from) * (t - h->start) / h->duration;
-  case RS_HISTORY_SINE:
-    return h->mean + h->amplitude * sin(two_pi * h->frequency * t + h->phase);
+  case RS_HISTORY_SINE: return h->mean + h->amplitude * sin(two_pi * h->frequency * t + h->phase);
   case RS_HISTORY_STEPS: {
-    if (h->n == 0)
-      return 0.0;
+    if (h->n == 0) return 0.0;
     long i = last_point_at_or_before(h, t);
     return h->v[i < 0 ? 0 : i];
   }
   case RS_HISTORY_TABLE: {
-    if (h->n == 0)
-      return 0.0;
+    if (h->n == 0) return 0.0;
     long i = last_point_at_or_before(h, t);
-    if (i < 0)
-      return h->v[0];
-    if ((size_t)i == h->n - 1)
-      return h->v[h->n - 1];
+    if (i < 0) return h->v[0];
+    if ((size_t)i == h->n - 1) return h->v[h->n - 1];
     double w = (t - h->t[i]) / (h->t[i + 1] - h->t[i]);
     return h->v[i] + w * (h->v[i + 1] - h->v[i]);
   }
@@ -66,18 +56,15 @@ double rs_history_rate(const rs_history *h, double t)
 {
   switch (h->kind) {
   case RS_HISTORY_CONSTANT:
-  case RS_HISTORY_STEPS:
-    return 0.0;
+  case RS_HISTORY_STEPS: return 0.0;
   case RS_HISTORY_RAMP: /* right derivative: the slope on [start, start + duration) */
-    if (t < h->start || t >= h->start + h->duration)
-      return 0.0;
+    if (t < h->start || t >= h->start + h->duration) return 0.0;
     return (h->to - h->from) / h->duration;
   case RS_HISTORY_SINE:
     return h->amplitude * two_pi * h->frequency * cos(two_pi * h->frequency * t + h->phase);
   case RS_HISTORY_TABLE: {
     long i = last_point_at_or_before(h, t);
-    if (i < 0 || (size_t)i + 1 >= h->n)
-      return 0.0;
+    if (i < 0 || (size_t)i + 1 >= h->n) return 0.0;
     return (h->v[i + 1] - h->v[i]) / (h->t[i + 1] - h->t[i]);
   }
   }
@@ -87,17 +74,13 @@ double rs_history_rate(const rs_history *h, double t)
 int rs_history_is_constant(const rs_history *h)
 {
   switch (h->kind) {
-  case RS_HISTORY_CONSTANT:
-    return 1;
-  case RS_HISTORY_RAMP:
-    return h->from == h->to;
-  case RS_HISTORY_SINE:
-    return h->amplitude == 0.0 || h->frequency == 0.0;
+  case RS_HISTORY_CONSTANT: return 1;
+  case RS_HISTORY_RAMP: return h->from == h->to;
+  case RS_HISTORY_SINE: return h->amplitude == 0.0 || h->frequency == 0.0;
   case RS_HISTORY_STEPS:
   case RS_HISTORY_TABLE:
     for (size_t i = 1; i < h->n; i++)
-      if (h->v[i] != h->v[0])
-        return 0;
+      if (h->v[i] != h->v[0]) return 0;
     return 1;
   }
   return 1;
@@ -107,13 +90,10 @@ double rs_history_next_breakpoint(const rs_history *h, double t)
 {
   switch (h->kind) {
   case RS_HISTORY_CONSTANT:
-  case RS_HISTORY_SINE:
-    return INFINITY;
+  case RS_HISTORY_SINE: return INFINITY;
   case RS_HISTORY_RAMP:
-    if (t < h->start)
-      return h->start;
-    if (t < h->start + h->duration)
-      return h->start + h->duration;
+    if (t < h->start) return h->start;
+    if (t < h->start + h->duration) return h->start + h->duration;
     return INFINITY;
   case RS_HISTORY_STEPS:
   case RS_HISTORY_TABLE: {
@@ -132,8 +112,7 @@ static void sine_range(const rs_history *h, double t0, double t1, double *lo, do
   double a = rs_history_eval(h, t0), b = rs_history_eval(h, t1);
   *lo = fmin(a, b);
   *hi = fmax(a, b);
-  if (h->amplitude == 0.0 || h->frequency == 0.0)
-    return;
+  if (h->amplitude == 0.0 || h->frequency == 0.0) return;
   double th0 = two_pi * h->frequency * t0 + h->phase;
   double th1 = two_pi * h->frequency * t1 + h->phase;
   double amp = fabs(h->amplitude);
@@ -146,10 +125,8 @@ static void sine_range(const rs_history *h, double t0, double t1, double *lo, do
     has_top = has_bottom;
     has_bottom = tmp;
   }
-  if (has_top)
-    *hi = h->mean + amp;
-  if (has_bottom)
-    *lo = h->mean - amp;
+  if (has_top) *hi = h->mean + amp;
+  if (has_bottom) *lo = h->mean - amp;
 }
 
 /* Range over [t0, t1] of a piecewise-linear or piecewise-constant history: the
@@ -192,8 +169,7 @@ double rs_history_min(const rs_history *h, double t0, double t1)
 
 void rs_history_free(rs_history *h)
 {
-  if (!h)
-    return;
+  if (!h) return;
   free(h->t);
   free(h->v);
   h->t = h->v = NULL;
@@ -204,8 +180,7 @@ int rs_history_copy(rs_history *dst, const rs_history *src)
 {
   *dst = *src;
   dst->t = dst->v = NULL;
-  if (src->n == 0 || !src->t)
-    return RS_OK;
+  if (src->n == 0 || !src->t) return RS_OK;
   dst->t = malloc(src->n * sizeof *dst->t);
   dst->v = malloc(src->n * sizeof *dst->v);
   if (!dst->t || !dst->v) {

@@ -45,7 +45,8 @@ static int build_grid(rs_model *m, int cells, double x_lo, double x_hi, rs_msg *
   if (status == RS_OK && rs_elastic_work_create(&ew, &m->el) != RS_OK)
     status = rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory for the elastic products");
   if (status == RS_OK)
-    status = rs_model_pressure(m, &ew, rs_history_eval(&m->par.load, 0.0), m->pn, &m->approach, msg);
+    status =
+        rs_model_pressure(m, &ew, rs_history_eval(&m->par.load, 0.0), m->pn, &m->approach, msg);
   rs_elastic_work_free(&ew);
   if (status != RS_OK) return status;
   const double mu = rs_friction_mu(&m->par.friction, 0.0);
@@ -83,8 +84,8 @@ int rs_model_create(rs_model *m, const rs_model_params *par, rs_msg *msg)
                                   : rs_history_eval(&par->load, 0.0);
   rs_hertz2d(m->normal_load, par->radius, par->shear_modulus, par->poisson_ratio, &m->hertz_a,
              &m->hertz_p0);
-  m->layer_flex = par->layer_thickness > 0.0 ? par->layer_thickness / par->layer_shear_modulus
-                                             : 0.0;
+  m->layer_flex =
+      par->layer_thickness > 0.0 ? par->layer_thickness / par->layer_shear_modulus : 0.0;
   const double half = par->extent * m->hertz_a;
   status = par->grid_from_range ? build_grid(m, par->cells, par->x_range[0], par->x_range[1], msg)
                                 : build_grid(m, par->cells, -half, half, msg);
@@ -246,9 +247,8 @@ void rs_model_kinematics(const rs_model *m, rs_work *w, const rs_inputs *in, con
   const double *p = y + rs_at_p(L, 0, 0), *upl = y + rs_at_upl(L, 0, 0);
   const double *us = y + rs_at_ustar(L, 0);
   const double c3 = m->layer_flex, V = in->velocity, a = V / m->grid.dx;
-  const double vrigid =
-      in->linear ? (L->nextra ? V * y[rs_at_extra(L, 0)] : 0.0)
-                 : V * rs_model_creepage(m, in, y) + in->shift_velocity;
+  const double vrigid = in->linear ? (L->nextra ? V * y[rs_at_extra(L, 0)] : 0.0)
+                                   : V * rs_model_creepage(m, in, y) + in->shift_velocity;
   rs_elastic_op_tang(&m->el, &w->ew, p, w->uel, 1);
   rs_elastic_op_tang(&m->el, &w->ew, yp + rs_at_p(L, 0, 0), w->ueldot, 0);
   for (int i = 0; i < n; i++) {
@@ -314,8 +314,7 @@ int rs_model_evaluate(const rs_model *m, rs_work *w, const rs_inputs *in, const 
   if (F && m->par.force_control) {
     double sum = 0.0;
     for (int i = 0; i < n; i++) sum += y[rs_at_p(L, 0, i)];
-    F[rs_at_extra(L, 0)] =
-        m->grid.area / (2.0 * m->hertz_a) * sum - in->force / (2.0 * m->hertz_a);
+    F[rs_at_extra(L, 0)] = m->grid.area / (2.0 * m->hertz_a) * sum - in->force / (2.0 * m->hertz_a);
   }
   return RS_OK;
 }

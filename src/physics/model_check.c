@@ -120,8 +120,8 @@ int rs_model_check_steady(const rs_model *m, rs_work *w, const rs_inputs *in, co
   /* The residual of the transient at y' = 0, with the scaling of a time step of one
    * cell passage (c_j = V/dx): another r, the same zero set. */
   if (status == RS_OK) {
-    status = rs_model_residual(m, w, in, y, yp, in->velocity > 0.0 ? in->velocity / m->grid.dx : 0.0,
-                               F);
+    status =
+        rs_model_residual(m, w, in, y, yp, in->velocity > 0.0 ? in->velocity / m->grid.dx : 0.0, F);
     if (status != RS_OK) rs_msg_set(msg, status, "%s", w->msg.text);
   }
   if (status == RS_OK) {

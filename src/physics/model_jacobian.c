@@ -163,8 +163,7 @@ int rs_model_jacobian(const rs_model *m, rs_work *w, const rs_inputs *in, const 
   for (int c = 0; c < nc; c++)
     for (int i = 0; i < n; i++) put_row(m, &w->law[i], rs_law_row_f(c), i, in, cj, band, 1, J);
   for (int c = 0; c < nc; c++)
-    for (int i = 0; i < n; i++)
-      put_row(m, &w->law[i], rs_law_row_pl(nc, c), i, in, cj, band, 0, J);
+    for (int i = 0; i < n; i++) put_row(m, &w->law[i], rs_law_row_pl(nc, c), i, in, cj, band, 0, J);
   for (int i = 0; i < n; i++) put_row(m, &w->law[i], rs_law_row_star(nc), i, in, cj, band, 0, J);
   /* Force rows: (dA sum p_k - F_k)/(2a). */
   const double force_row = m->grid.area / (2.0 * m->hertz_a);
@@ -176,8 +175,8 @@ int rs_model_jacobian(const rs_model *m, rs_work *w, const rs_inputs *in, const 
   return RS_OK;
 }
 
-int rs_model_jv(const rs_model *m, const rs_work *w, rs_work *wlin, const rs_inputs *in,
-                double cj, const double *v, double *Jv)
+int rs_model_jv(const rs_model *m, const rs_work *w, rs_work *wlin, const rs_inputs *in, double cj,
+                const double *v, double *Jv)
 {
   const rs_layout *L = &m->lay;
   const int n = L->n, nc = L->ncomp;
@@ -200,7 +199,7 @@ int rs_model_jv(const rs_model *m, const rs_work *w, rs_work *wlin, const rs_inp
       double sum = 0.0;
       for (int q = 0; q < 3 * nc + 2; q++)
         if (o->present[lr][q]) sum += o->jac[lr][q] * d[q];
-      const int row = lr < nc ? rs_at_p(L, lr, i)
+      const int row = lr < nc       ? rs_at_p(L, lr, i)
                       : lr < 2 * nc ? rs_at_upl(L, lr - nc, i)
                                     : rs_at_ustar(L, i);
       Jv[row] = sum;

@@ -45,8 +45,8 @@ int rs_model_consistent_rates(const rs_model *m, rs_work *w, const rs_inputs *in
   rs_model_kinematics(m, w, in, y, yp); /* with p' = 0 inside: v_s holds all but A p'_H */
   int h = 0;
   for (int i = 0; i < n; i++)
-    if (rs_contact_state(&m->par.plasticity, w->pn[i] > 0.0, fabs(y[rs_at_p(L, 0, i)]),
-                         w->bound[i], us[i]) == RS_STATE_INSIDE)
+    if (rs_contact_state(&m->par.plasticity, w->pn[i] > 0.0, fabs(y[rs_at_p(L, 0, i)]), w->bound[i],
+                         us[i]) == RS_STATE_INSIDE)
       adh[h++] = i;
   if (h > 0) {
     /* Adhesion: v_s = 0 with Du_pl/Dt = 0, i.e. (A + c3 I) p'_H = -v_s(p'_H = 0).
@@ -70,8 +70,8 @@ int rs_model_consistent_rates(const rs_model *m, rs_work *w, const rs_inputs *in
     int one = 1, info = 0;
     dgesv_(&hb, &one, mat, &hb, ipiv, rhs, &hb, &info);
     if (info != 0) {
-      status = rs_msg_set(msg, RS_ERR_SOLVER, "initial rates: singular adhesion system (info %d)",
-                          info);
+      status =
+          rs_msg_set(msg, RS_ERR_SOLVER, "initial rates: singular adhesion system (info %d)", info);
       goto done;
     }
     for (int c = 0; c < h; c++) yp[rs_at_p(L, 0, adh[c])] = rhs[c];
@@ -84,8 +84,8 @@ int rs_model_consistent_rates(const rs_model *m, rs_work *w, const rs_inputs *in
    * limit below the bound (flow takes up the slip velocity left over). */
   for (int i = 0; i < n; i++) {
     double flow = 0.0;
-    if (rs_contact_state(&m->par.plasticity, w->pn[i] > 0.0, fabs(y[rs_at_p(L, 0, i)]),
-                         w->bound[i], us[i]) == RS_STATE_AT_YIELD)
+    if (rs_contact_state(&m->par.plasticity, w->pn[i] > 0.0, fabs(y[rs_at_p(L, 0, i)]), w->bound[i],
+                         us[i]) == RS_STATE_AT_YIELD)
       flow = -(w->vslip[i] - w->dupl[i]);
     const int up = rs_grid_upstream(&m->grid, i);
     const double upl_next = up >= 0 ? y[rs_at_upl(L, 0, up)] : upl_in;

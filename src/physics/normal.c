@@ -13,7 +13,6 @@
 
 #include "base/util.h"
 
-
 void rs_normal2d_hertz(const double *x, int n, double a, double p0, double *pn)
 {
   for (int i = 0; i < n; i++) {
@@ -117,8 +116,8 @@ int rs_normal2d_solve_direct(const rs_elastic2d *el, rs_elastic2d_work *w, const
     if (!changed) break;
   }
   if (iter > max_iter) {
-    status = rs_msg_set(msg, RS_ERR_SOLVER, "normal problem: active set did not settle in %d iterations",
-                        max_iter);
+    status = rs_msg_set(msg, RS_ERR_SOLVER,
+                        "normal problem: active set did not settle in %d iterations", max_iter);
     goto done;
   }
   if (delta_out) *delta_out = delta;

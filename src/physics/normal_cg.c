@@ -60,11 +60,11 @@ static void recompute(cg_state *s, double target)
 
 /* Convergence (see below): ||r||_2 over C below CG_TOL lambda p_max from the
  * recurrence, confirmed by the recomputed r to CG_CONFIRM. */
-#define CG_TOL 1e-11
+#define CG_TOL     1e-11
 #define CG_CONFIRM 1e-8
 
-int rs_normal2d_solve_cg(const rs_elastic2d *el, rs_elastic2d_work *w, const double *h,
-                         double load, double *pn, double *delta_out, int *iterations, rs_msg *msg)
+int rs_normal2d_solve_cg(const rs_elastic2d *el, rs_elastic2d_work *w, const double *h, double load,
+                         double *pn, double *delta_out, int *iterations, rs_msg *msg)
 {
   const int n = el->n;
   if (!(load > 0.0))

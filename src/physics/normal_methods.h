@@ -29,7 +29,7 @@ static inline double rs_normal2d_start_gap(const rs_elastic2d *el, double load)
 /* The two methods behind rs_normal2d_solve_with (same arguments and outputs). */
 int rs_normal2d_solve_direct(const rs_elastic2d *el, rs_elastic2d_work *w, const double *h,
                              double load, double *pn, double *delta, int *iterations, rs_msg *msg);
-int rs_normal2d_solve_cg(const rs_elastic2d *el, rs_elastic2d_work *w, const double *h,
-                         double load, double *pn, double *delta, int *iterations, rs_msg *msg);
+int rs_normal2d_solve_cg(const rs_elastic2d *el, rs_elastic2d_work *w, const double *h, double load,
+                         double *pn, double *delta, int *iterations, rs_msg *msg);
 
 #endif

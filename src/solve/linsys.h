@@ -54,12 +54,12 @@ void rs_sundials_silent(int error_code, const char *module, const char *function
 
 /* A SUNDIALS set-up call, checked on its own: on failure `msg` names the call and the
  * enclosing function jumps to its `fail` label. */
-#define RS_SUN_CHECK(call, msg, what)                                                          \
-  do {                                                                                        \
-    if ((call) != 0) {                                                                        \
-      rs_msg_set(msg, RS_ERR_INTERNAL, "could not set up the %s: %s failed", what, #call);    \
-      goto fail;                                                                              \
-    }                                                                                         \
+#define RS_SUN_CHECK(call, msg, what)                                                              \
+  do {                                                                                             \
+    if ((call) != 0) {                                                                             \
+      rs_msg_set(msg, RS_ERR_INTERNAL, "could not set up the %s: %s failed", what, #call);         \
+      goto fail;                                                                                   \
+    }                                                                                              \
   } while (0)
 
 #endif

@@ -45,8 +45,7 @@ void rs_krylov_free(rs_krylov *k)
 
 const char *rs_krylov_error(const rs_krylov *k) { return k->w.msg.text; }
 
-int rs_krylov_setup(rs_krylov *k, const rs_inputs *in, const double *y, const double *yp,
-                    double cj)
+int rs_krylov_setup(rs_krylov *k, const rs_inputs *in, const double *y, const double *yp, double cj)
 {
   const rs_model *m = k->m;
   const int neq = m->lay.neq;

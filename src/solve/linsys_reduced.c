@@ -55,26 +55,28 @@ typedef struct red_content {
 
 #define RC(LS) ((red_content *)(LS)->content)
 
-static SUNLinearSolver_Type red_gettype(SUNLinearSolver LS) {
+static SUNLinearSolver_Type red_gettype(SUNLinearSolver LS)
+{
   (void)LS;
   return SUNLINEARSOLVER_DIRECT;
 }
 
-static SUNLinearSolver_ID red_getid(SUNLinearSolver LS) {
+static SUNLinearSolver_ID red_getid(SUNLinearSolver LS)
+{
   (void)LS;
   return SUNLINEARSOLVER_CUSTOM;
 }
 
-static int red_initialize(SUNLinearSolver LS) {
+static int red_initialize(SUNLinearSolver LS)
+{
   RC(LS)->last_flag = SUNLS_SUCCESS;
   return SUNLS_SUCCESS;
 }
 
-static sunindextype red_lastflag(SUNLinearSolver LS) {
-  return (sunindextype)RC(LS)->last_flag;
-}
+static sunindextype red_lastflag(SUNLinearSolver LS) { return (sunindextype)RC(LS)->last_flag; }
 
-static int fallback_setup(SUNLinearSolver LS, SUNMatrix A) {
+static int fallback_setup(SUNLinearSolver LS, SUNMatrix A)
+{
   red_content *c = RC(LS);
   c->use_fallback = 1;
   c->st.fallbacks++;
@@ -89,7 +91,8 @@ static int fallback_setup(SUNLinearSolver LS, SUNMatrix A) {
 }
 
 /* Grow a buffer to hold at least need elements. */
-static int grow(void **p, int64_t *cap, int64_t need, size_t size) {
+static int grow(void **p, int64_t *cap, int64_t need, size_t size)
+{
   if (need <= *cap) return 0;
   void *q = realloc(*p, (size_t)need * size);
   if (!q) return -1;
@@ -98,7 +101,8 @@ static int grow(void **p, int64_t *cap, int64_t need, size_t size) {
   return 0;
 }
 
-static int red_setup(SUNLinearSolver LS, SUNMatrix placeholder) {
+static int red_setup(SUNLinearSolver LS, SUNMatrix placeholder)
+{
   (void)placeholder;
   red_content *c = RC(LS);
   SUNMatrix A = c->J;
@@ -127,8 +131,7 @@ static int red_setup(SUNLinearSolver LS, SUNMatrix placeholder) {
    * dense row meet X, not every plastic p, which keeps the Schur update O(h n) instead of
    * O(h^3)). */
   int h = 0;
-  for (int k = 0; k < neq; k++)
-    c->dpos[k] = -1;
+  for (int k = 0; k < neq; k++) c->dpos[k] = -1;
   for (int i = 0; i < n; i++) {
     if (!c->dense[i]) continue;
     c->drow[h] = i;
@@ -151,8 +154,7 @@ static int red_setup(SUNLinearSolver LS, SUNMatrix placeholder) {
   /* J_SZ (rows not dense, columns not dense) and the coupled dense columns. */
   int s = 0;
   int64_t nnz = 0;
-  for (int i = 0; i < n; i++)
-    c->cpl[i] = 0; /* scratch marks, h <= n */
+  for (int i = 0; i < n; i++) c->cpl[i] = 0; /* scratch marks, h <= n */
   c->sp[0] = 0;
   for (int r = 0; r < neq; r++) {
     if (r < n && c->dense[r]) continue;
@@ -214,8 +216,7 @@ static int red_setup(SUNLinearSolver LS, SUNMatrix placeholder) {
     if (grow((void **)&c->B, &c->bcap, need, sizeof *c->B)) return SUNLS_MEM_FAIL;
     if (grow((void **)&c->X, &c->xcap, need, sizeof *c->X)) return SUNLS_MEM_FAIL;
     memset(c->B, 0, (size_t)need * sizeof *c->B);
-    for (int q = 0; q < ncpl; q++)
-      c->cmap[c->cpl[q]] = q; /* dense index -> coupled index */
+    for (int q = 0; q < ncpl; q++) c->cmap[c->cpl[q]] = q; /* dense index -> coupled index */
     for (int si = 0; si < nz; si++) {
       const int r = c->srow[si];
       for (int64_t k = rowptr[r]; k < rowptr[r + 1]; k++) {
@@ -242,8 +243,7 @@ static int red_setup(SUNLinearSolver LS, SUNMatrix placeholder) {
     double *acc = c->t; /* [ncpl] row of J_DZ X, contiguous */
     for (int r = 0; r < h; r++) {
       const int i = c->drow[r];
-      for (int q = 0; q < ncpl; q++)
-        acc[q] = 0.0;
+      for (int q = 0; q < ncpl; q++) acc[q] = 0.0;
       int hit = 0;
       for (int64_t k = rowptr[i]; k < rowptr[i + 1]; k++) {
         const int64_t j = col[k];
@@ -252,14 +252,12 @@ static int red_setup(SUNLinearSolver LS, SUNMatrix placeholder) {
           c->S[(size_t)c->dpos[j] * h + r] += v;
         } else if (ncpl > 0 && v != 0.0 && c->xnz[c->zpos[j]]) { /* most rows of X are 0 */
           const double *x = c->X + (size_t)c->zpos[j] * ncpl;
-          for (int q = 0; q < ncpl; q++)
-            acc[q] += v * x[q];
+          for (int q = 0; q < ncpl; q++) acc[q] += v * x[q];
           hit = 1;
         }
       }
       if (hit)
-        for (int q = 0; q < ncpl; q++)
-          c->S[(size_t)c->cpl[q] * h + r] -= acc[q];
+        for (int q = 0; q < ncpl; q++) c->S[(size_t)c->cpl[q] * h + r] -= acc[q];
     }
     int info = 0;
     dgetrf_(&h, &h, c->S, &h, c->ipiv, &info);
@@ -279,7 +277,8 @@ static int red_setup(SUNLinearSolver LS, SUNMatrix placeholder) {
 }
 
 static int red_solve(SUNLinearSolver LS, SUNMatrix placeholder, N_Vector x, N_Vector b,
-                     sunrealtype tol) {
+                     sunrealtype tol)
+{
   (void)placeholder;
   red_content *c = RC(LS);
   if (c->use_fallback) {
@@ -294,8 +293,7 @@ static int red_solve(SUNLinearSolver LS, SUNMatrix placeholder, N_Vector x, N_Ve
   const int64_t *rowptr = c->rowptr, *col = c->col;
   const double *val = c->val;
   /* t = J_SZ^-1 b_S */
-  for (int s = 0; s < nz; s++)
-    c->t[s] = bv[c->srow[s]];
+  for (int s = 0; s < nz; s++) c->t[s] = bv[c->srow[s]];
   if (nz > 0 && !klu_l_tsolve(c->sym, c->num, nz, 1, c->t, &c->common)) {
     c->last_flag = SUNLS_PACKAGE_FAIL_REC;
     return SUNLS_PACKAGE_FAIL_REC;
@@ -317,16 +315,14 @@ static int red_solve(SUNLinearSolver LS, SUNMatrix placeholder, N_Vector x, N_Ve
       c->last_flag = SUNLS_PACKAGE_FAIL_REC;
       return SUNLS_PACKAGE_FAIL_REC;
     }
-    for (int r = 0; r < h; r++)
-      xv[c->dcol[r]] = c->rd[r];
+    for (int r = 0; r < h; r++) xv[c->dcol[r]] = c->rd[r];
   }
   /* x_Z = t - X x_D */
   for (int z = 0; z < nz; z++) {
     double v = c->t[z];
     const double *xr = c->X + (size_t)z * ncpl;
     if (ncpl > 0 && c->xnz[z])
-      for (int q = 0; q < ncpl; q++)
-        v -= xr[q] * c->rd[c->cpl[q]];
+      for (int q = 0; q < ncpl; q++) v -= xr[q] * c->rd[c->cpl[q]];
     xv[c->zcol[z]] = v;
   }
   c->st.solves++;
@@ -334,7 +330,8 @@ static int red_solve(SUNLinearSolver LS, SUNMatrix placeholder, N_Vector x, N_Ve
   return SUNLS_SUCCESS;
 }
 
-static int red_free(SUNLinearSolver LS) {
+static int red_free(SUNLinearSolver LS)
+{
   if (!LS) return SUNLS_SUCCESS;
   red_content *c = RC(LS);
   if (c) {
@@ -371,7 +368,8 @@ static int red_free(SUNLinearSolver LS) {
 }
 
 SUNLinearSolver rs_lsreduced_create(int n, int neq, const unsigned char *dense, const int *pivot,
-                                    SUNMatrix J, SUNLinearSolver fallback, SUNContext ctx) {
+                                    SUNMatrix J, SUNLinearSolver fallback, SUNContext ctx)
+{
   SUNLinearSolver LS = SUNLinSolNewEmpty(ctx);
   if (!LS) return NULL;
   LS->ops->gettype = red_gettype;
@@ -418,6 +416,4 @@ fail:
   return NULL;
 }
 
-void rs_lsreduced_get_stats(SUNLinearSolver LS, rs_lsreduced_stats *st) {
-  *st = RC(LS)->st;
-}
+void rs_lsreduced_get_stats(SUNLinearSolver LS, rs_lsreduced_stats *st) { *st = RC(LS)->st; }

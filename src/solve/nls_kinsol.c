@@ -63,8 +63,8 @@ static SUNNonlinearSolver_Type nls_gettype(SUNNonlinearSolver nls)
   return SUNNONLINEARSOLVER_ROOTFIND;
 }
 
-static int nls_solve(SUNNonlinearSolver nls, N_Vector y0, N_Vector ycor, N_Vector w, sunrealtype tol,
-                     sunbooleantype call_lsetup, void *mem)
+static int nls_solve(SUNNonlinearSolver nls, N_Vector y0, N_Vector ycor, N_Vector w,
+                     sunrealtype tol, sunbooleantype call_lsetup, void *mem)
 {
   (void)y0;
   (void)call_lsetup; /* exact Newton: the Jacobian is rebuilt at every iteration */

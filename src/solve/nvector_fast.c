@@ -7,7 +7,8 @@
 #include "rollsim/status.h"
 
 /* BLAS level 1 (Fortran interface). */
-extern double ddot_(const int *n, const double *x, const int *incx, const double *y, const int *incy);
+extern double ddot_(const int *n, const double *x, const int *incx, const double *y,
+                    const int *incy);
 extern void daxpy_(const int *n, const double *a, const double *x, const int *incx, double *y,
                    const int *incy);
 
@@ -133,7 +134,10 @@ static double minimum(N_Vector x)
   return mn;
 }
 
-static double wl2norm(N_Vector x, N_Vector w) { return sqrt(wsqrsum(len(x), data(x), data(w), NULL)); }
+static double wl2norm(N_Vector x, N_Vector w)
+{
+  return sqrt(wsqrsum(len(x), data(x), data(w), NULL));
+}
 
 static double l1norm(N_Vector x)
 {
@@ -152,7 +156,10 @@ static void compare(double c, N_Vector x, N_Vector z)
   for (int i = 0; i < n; i++) zd[i] = fabs(xd[i]) >= c ? 1.0 : 0.0;
 }
 
-static double wsqrsumlocal(N_Vector x, N_Vector w) { return wsqrsum(len(x), data(x), data(w), NULL); }
+static double wsqrsumlocal(N_Vector x, N_Vector w)
+{
+  return wsqrsum(len(x), data(x), data(w), NULL);
+}
 
 static double wsqrsummasklocal(N_Vector x, N_Vector w, N_Vector id)
 {

@@ -18,13 +18,13 @@
 
 struct rs_steady {
   const rs_model *m;
-  SUNContext ctx;         /* the run's (not owned unless own_ctx) */
-  SUNContext own_ctx;     /* created here when the caller gave none */
+  SUNContext ctx;     /* the run's (not owned unless own_ctx) */
+  SUNContext own_ctx; /* created here when the caller gave none */
   void *kmem;
   N_Vector u, uscale, fscale;
   rs_linsys ls;
-  rs_linear linear;       /* resolved choice (never AUTO); DENSE: ls.reduced */
-  SUNLinearSolver gmres;  /* KRYLOV: SPGMR with the products and preconditioner of kry */
+  rs_linear linear;      /* resolved choice (never AUTO); DENSE: ls.reduced */
+  SUNLinearSolver gmres; /* KRYLOV: SPGMR with the products and preconditioner of kry */
   rs_krylov kry;
   rs_work work;
   double *yp;     /* y' seen by the residual: 0, or cj (y - y_prev) in pseudo-time steps */
@@ -141,7 +141,7 @@ enum { KRYLOV_FROM_CELLS = 300 };
  * GMRES iterations for the elastic creep curve at 850 cells; 1e-6 cost 30 % more). */
 enum { KRYLOV_BAND = 16, KRYLOV_MAXL = 60 };
 #define KRYLOV_ETA_PLASTIC 1e-6
-#define KRYLOV_ETA 1e-3
+#define KRYLOV_ETA         1e-3
 
 int rs_steady_create(rs_steady **out, const rs_model *m, SUNContext ctx, rs_msg *msg)
 {
@@ -216,9 +216,9 @@ int rs_steady_create_with(rs_steady **out, const rs_model *m, SUNContext ctx, rs
     /* The residual is piecewise linear: once the active set is right, an accurate
      * linear solve ends the iteration (a loose forcing term would add iterations). */
     RS_SUN_CHECK(KINSetEtaForm(s->kmem, KIN_ETACONSTANT), msg, what);
-    RS_SUN_CHECK(KINSetEtaConstValue(s->kmem, m->par.plasticity.on ? KRYLOV_ETA_PLASTIC
-                                                                  : KRYLOV_ETA),
-                 msg, what);
+    RS_SUN_CHECK(
+        KINSetEtaConstValue(s->kmem, m->par.plasticity.on ? KRYLOV_ETA_PLASTIC : KRYLOV_ETA), msg,
+        what);
   } else {
     RS_SUN_CHECK(KINSetLinearSolver(s->kmem, rs_linsys_solver(&s->ls), rs_linsys_matrix(&s->ls)),
                  msg, what);
@@ -346,8 +346,13 @@ static int pseudo_transient(rs_steady *s, double *y, rs_stats *stats, rs_msg *ms
   int status = (z && zp && rs_work_create(&w, m) == RS_OK) ? RS_OK : RS_ERR_INTERNAL;
   if (status != RS_OK) rs_msg_set(msg, status, "out of memory (pseudo-transient)");
   rs_transient *tr = NULL;
-  rs_transient_opts o = {.rtol = 1e-6, .atol = 1e-6, .max_order = 5, .max_steps = 1000000,
-                         .max_newton = 10, .t_stop = INFINITY, .frozen = &frozen};
+  rs_transient_opts o = {.rtol = 1e-6,
+                         .atol = 1e-6,
+                         .max_order = 5,
+                         .max_steps = 1000000,
+                         .max_newton = 10,
+                         .t_stop = INFINITY,
+                         .frozen = &frozen};
   if (status == RS_OK) status = rs_model_consistent_rates(m, &w, &frozen, z, zp, msg);
   if (status == RS_OK) status = rs_transient_create(&tr, m, s->ctx, 0.0, z, zp, &o, msg);
   int kin_flag = 0;
@@ -404,8 +409,7 @@ static int grid_sequencing(rs_steady *s, double *y, rs_stats *stats)
   double *yc = calloc((size_t)coarse.lay.neq, sizeof *yc);
   int status = yc && rs_work_create(&cw, &coarse) == RS_OK ? RS_OK : RS_ERR_INTERNAL;
   if (status == RS_OK) status = rs_steady_create(&cs, &coarse, s->ctx, &cmsg);
-  if (status == RS_OK)
-    status = rs_model_interpolate_state(m, y, &coarse, &cw, &s->in, yc, &cmsg);
+  if (status == RS_OK) status = rs_model_interpolate_state(m, y, &coarse, &cw, &s->in, yc, &cmsg);
   rs_stats cst = {0};
   if (status == RS_OK) status = rs_steady_solve(cs, s->in.t, yc, &cst, &cmsg);
   if (stats) { /* the coarse grids' work counts too */
@@ -482,8 +486,10 @@ int rs_steady_solve(rs_steady *s, double t, double *y, rs_stats *stats, rs_msg *
     if (!rolled && status == RS_ERR_SOLVER) {
       memcpy(y, start, (size_t)neq * sizeof *y);
       status = pseudo_transient(s, y, stats, msg);
-      if (status == RS_OK) status = rs_model_check_steady(m, &s->work, &s->in, y, &why);
-      else why.text[0] = '\0'; /* msg says why the transient path failed */
+      if (status == RS_OK)
+        status = rs_model_check_steady(m, &s->work, &s->in, y, &why);
+      else
+        why.text[0] = '\0'; /* msg says why the transient path failed */
     }
     if (status != RS_OK && why.text[0]) rs_msg_set(msg, status, "%s", why.text);
   }

@@ -199,8 +199,9 @@ int rs_transient_advance(rs_transient *tr, double tout, double *y, double *yp, r
   const int flag = tr->step_hook ? advance_by_steps(tr, tout, &tret, &hook_status)
                                  : IDASolve(tr->ida, tout, &tret, tr->y, tr->yp, IDA_NORMAL);
   if (hook_status != RS_OK)
-    return rs_msg_set(msg, hook_status, "at t = %.9g s: recording the state leaving the contact "
-                                        "failed",
+    return rs_msg_set(msg, hook_status,
+                      "at t = %.9g s: recording the state leaving the contact "
+                      "failed",
                       tret);
   if (flag < 0 && tr->interrupt && *tr->interrupt) {
     IDAGetCurrentTime(tr->ida, &tret);
@@ -215,9 +216,9 @@ int rs_transient_advance(rs_transient *tr, double tout, double *y, double *yp, r
     sunrealtype h = 0.0;
     IDAGetCurrentStep(tr->ida, &h);
     IDAGetCurrentTime(tr->ida, &tret);
-    const char *why = flag == IDA_CONV_FAIL   ? "the contact problem of a time step had no solution "
-                                                "(Newton failed repeatedly)"
-                      : flag == IDA_ERR_FAIL  ? "the error test failed repeatedly"
+    const char *why = flag == IDA_CONV_FAIL  ? "the contact problem of a time step had no solution "
+                                               "(Newton failed repeatedly)"
+                      : flag == IDA_ERR_FAIL ? "the error test failed repeatedly"
                       : flag == IDA_TOO_MUCH_WORK ? "solver.max_steps reached"
                                                   : "solver error";
     rs_msg_set(msg, RS_ERR_SOLVER, "transient solver failed at t = %.9g s (step %.3g s): %s [%s]",

@@ -26,10 +26,7 @@
 static char case_path[64];
 static FILE *devnull;
 
-static void remove_case_file(void)
-{
-  unlink(case_path);
-}
+static void remove_case_file(void) { unlink(case_path); }
 
 int LLVMFuzzerInitialize(int *argc, char ***argv)
 {
@@ -52,8 +49,7 @@ int LLVMFuzzerInitialize(int *argc, char ***argv)
   close(fd);
   atexit(remove_case_file);
   devnull = fopen("/dev/null", "w");
-  if (!devnull)
-    abort();
+  if (!devnull) abort();
   return 0;
 }
 
@@ -65,8 +61,8 @@ static void load(const char *const *sets, int nsets)
   if (status == RS_OK) {
     rs_case_print(&c, devnull);
   } else if (status != RS_ERR_INPUT || msg.text[0] == '\0' || c.yaml_text || c.title ||
-             c.output_file || c.source_path || c.normal_load.t || c.creepage.t ||
-             c.velocity.t || c.shift_velocity.t) {
+             c.output_file || c.source_path || c.normal_load.t || c.creepage.t || c.velocity.t ||
+             c.shift_velocity.t) {
     /* rs_case_load's contract: an error says what and leaves the case freed/zeroed */
     fprintf(stderr, "fuzz_case: status %d, message \"%s\"\n", status, msg.text);
     abort();
@@ -77,10 +73,8 @@ static void load(const char *const *sets, int nsets)
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
   FILE *f = fopen(case_path, "wb");
-  if (!f)
-    abort();
-  if (size && fwrite(data, 1, size, f) != size)
-    abort();
+  if (!f) abort();
+  if (size && fwrite(data, 1, size, f) != size) abort();
   fclose(f);
 
   load(NULL, 0);
@@ -95,8 +89,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
   /* A comment line "#set KEY=VALUE" in the input is passed as a --set too (main() passes on
    * only arguments with a '='): the file stays valid YAML and the --set parser is fuzzed. */
   for (size_t i = 0; i + 5 <= size; i++) {
-    if ((i > 0 && data[i - 1] != '\n') || memcmp(data + i, "#set ", 5))
-      continue;
+    if ((i > 0 && data[i - 1] != '\n') || memcmp(data + i, "#set ", 5)) continue;
     const uint8_t *start = data + i + 5;
     const size_t rest = size - (i + 5);
     const uint8_t *eol = memchr(start, '\n', rest);
