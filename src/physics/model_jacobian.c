@@ -79,6 +79,34 @@ static void put_traction_columns(const rs_model *m, const rs_law_out *o, int lr,
     const int jx1 = band > 0 && ix + band < nx ? ix + band + 1 : nx;
     const int jy0 = band > 0 && iy > band ? iy - band : 0;
     const int jy1 = band > 0 && iy + band < m->grid.ny ? iy + band + 1 : m->grid.ny;
+    if (nc == 1 && m->el.dim == 2) { /* the line kernel: the hot loop of 2D assemblies */
+      const double *restrict coef = m->el.line.tang + m->el.line.n; /* coef[k] = A(k) */
+      const int64_t k0 = J->rowptr[J->nrows + 1];
+      int64_t *restrict col = J->col + k0 - jx0;
+      double *restrict val = J->val + k0 - jx0;
+      if (any_vs) {
+        const double cvs = o->jac[lr][rs_law_var_vs(1, 0)];
+        for (int j = jx0; j < jx1; j++) {
+          col[j] = j;
+          val[j] = cvs * (cj * coef[ix - j] - a * (coef[ix + 1 - j] - coef[ix - j]));
+        }
+        /* the layer on the diagonal and at the upstream neighbour, as the same sums */
+        double d = cj * coef[0] - a * (coef[1] - coef[0]) + (cj + a) * c3;
+        if (ix >= jx0 && ix < jx1) val[ix] = cvs * d;
+        if (up >= jx0 && up < jx1) {
+          d = cj * coef[ix - up] - a * (coef[ix + 1 - up] - coef[ix - up]);
+          val[up] = cvs * (d - a * c3);
+        }
+      } else {
+        for (int j = jx0; j < jx1; j++) {
+          col[j] = j;
+          val[j] = 0.0;
+        }
+      }
+      if (has_p && ix >= jx0 && ix < jx1) val[ix] += cp;
+      J->rowptr[J->nrows + 1] = k0 + (jx1 - jx0);
+      continue;
+    }
     for (int jy = jy0; jy < jy1; jy++)
       for (int jx = jx0; jx < jx1; jx++) {
         const int Jc = jy * nx + jx, kx = ix - jx, ky = iy - jy;
