@@ -14,3 +14,4 @@ rs_unit_test(test_sine_creepage)
 # The optimised SUNDIALS vector kernels (a private header of src/).
 rs_unit_test(test_nvector_fast)
 target_include_directories(test_nvector_fast PRIVATE ${PROJECT_SOURCE_DIR}/src)
+rs_unit_test(test_elastic3d)
