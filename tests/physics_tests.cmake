@@ -16,3 +16,7 @@ rs_unit_test(test_nvector_fast)
 target_include_directories(test_nvector_fast PRIVATE ${PROJECT_SOURCE_DIR}/src)
 rs_unit_test(test_elastic3d)
 rs_unit_test(test_normal3d)
+# Timings of the 3D products and normal solve (bench/normal3d_timing.c; never run by ctest).
+add_executable(rollsim_bench_3d ${PROJECT_SOURCE_DIR}/bench/normal3d_timing.c)
+target_link_libraries(rollsim_bench_3d PRIVATE rollsim_lib)
+target_include_directories(rollsim_bench_3d PRIVATE ${PROJECT_SOURCE_DIR}/src)
