@@ -19,8 +19,12 @@ static void run(int cells)
   rs_msg msg = {{0}};
   rs_hertz_ellipse hz;
   rs_hertz3d(load, A, B, G, nu, &hz, &msg);
-  const rs_grid3d grid = {.nx = cells, .ny = cells, .x0 = -1.1 * hz.a, .y0 = -1.1 * hz.b,
-                          .dx = 2.2 * hz.a / cells, .dy = 2.2 * hz.b / cells};
+  const rs_grid3d grid = {.nx = cells,
+                          .ny = cells,
+                          .x0 = -1.1 * hz.a,
+                          .y0 = -1.1 * hz.b,
+                          .dx = 2.2 * hz.a / cells,
+                          .dy = 2.2 * hz.b / cells};
   const int n = cells * cells;
   rs_elastic3d el;
   rs_elastic3d_work work;
@@ -32,7 +36,8 @@ static void run(int cells)
   }
   const double t_create = rs_wall_clock() - t0;
   double *h = malloc((size_t)n * sizeof *h), *pn = malloc((size_t)n * sizeof *pn);
-  double *ux = malloc((size_t)(n + cells) * sizeof *ux), *uy = malloc((size_t)(n + cells) * sizeof *uy);
+  double *ux = malloc((size_t)(n + cells) * sizeof *ux),
+         *uy = malloc((size_t)(n + cells) * sizeof *uy);
   rs_normal3d_gap(&grid, A, B, h);
   rs_hertz3d_pressure(&hz, &grid, pn);
   enum { REPS = 31 };
@@ -40,10 +45,12 @@ static void run(int cells)
   const int inner = cells <= 32 ? 50 : cells <= 64 ? 10 : 2;
   for (int r = 0; r < REPS; r++) {
     t0 = rs_wall_clock();
-    for (int k = 0; k < inner; k++) rs_elastic3d_apply_tang(&el, &work, pn, h, ux, uy, cells + 1);
+    for (int k = 0; k < inner; k++)
+      rs_elastic3d_apply_tang(&el, &work, pn, h, ux, uy, cells + 1);
     t_tang[r] = (rs_wall_clock() - t0) / inner;
     t0 = rs_wall_clock();
-    for (int k = 0; k < inner; k++) rs_elastic3d_apply_norm(&el, &work, pn, ux, cells + 1);
+    for (int k = 0; k < inner; k++)
+      rs_elastic3d_apply_norm(&el, &work, pn, ux, cells + 1);
     t_norm[r] = (rs_wall_clock() - t0) / inner;
   }
   int iters = 0;
@@ -67,7 +74,8 @@ static void run(int cells)
          "%8.3f ms  normal solve %8.2f ms (%3d CG it.)  errors a %+.2e b %+.2e p0 %+.2e\n",
          cells, cells, work.mx, work.my, 1e3 * t_create, 1e3 * bench_median(t_tang, REPS),
          1e3 * bench_median(t_norm, REPS), 1e3 * bench_median(t_solve, 9), iters,
-         sqrt(5.0 * mxx / sum) / hz.a - 1.0, sqrt(5.0 * myy / sum) / hz.b - 1.0, pmax / hz.p0 - 1.0);
+         sqrt(5.0 * mxx / sum) / hz.a - 1.0, sqrt(5.0 * myy / sum) / hz.b - 1.0,
+         pmax / hz.p0 - 1.0);
   free(h);
   free(pn);
   free(ux);
@@ -83,6 +91,7 @@ int main(int argc, char **argv)
     run(64);
     run(128);
   }
-  for (int i = 1; i < argc; i++) run(atoi(argv[i]));
+  for (int i = 1; i < argc; i++)
+    run(atoi(argv[i]));
   return 0;
 }

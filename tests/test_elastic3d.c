@@ -53,7 +53,8 @@ static void quad_outside(double x1, double x2, double y1, double y2, int panels,
                          double out[4])
 {
   const double hx = (x2 - x1) / panels, hy = (y2 - y1) / panels;
-  for (int c = 0; c < 4; c++) out[c] = 0.0;
+  for (int c = 0; c < 4; c++)
+    out[c] = 0.0;
   for (int a = 0; a < panels; a++)
     for (int b = 0; b < panels; b++)
       for (int i = 0; i < q->n; i++)
@@ -63,7 +64,8 @@ static void quad_outside(double x1, double x2, double y1, double y2, int panels,
           double k[4];
           point_load(x, y, k);
           const double w = 0.25 * hx * hy * q->weight[i] * q->weight[j];
-          for (int c = 0; c < 4; c++) out[c] += w * k[c];
+          for (int c = 0; c < 4; c++)
+            out[c] += w * k[c];
         }
 }
 
@@ -81,7 +83,8 @@ static void quad_inside(double x1, double x2, double y1, double y2, int panels, 
   double corner[5] = {atan2(y1, x1), atan2(y1, x2), atan2(y2, x2), atan2(y2, x1)};
   qsort(corner, 4, sizeof corner[0], cmp_double);
   corner[4] = corner[0] + 2.0 * RS_PI;
-  for (int c = 0; c < 4; c++) out[c] = 0.0;
+  for (int c = 0; c < 4; c++)
+    out[c] = 0.0;
   for (int piece = 0; piece < 4; piece++) {
     const double h = (corner[piece + 1] - corner[piece]) / panels;
     for (int a = 0; a < panels; a++)
@@ -95,7 +98,8 @@ static void quad_inside(double x1, double x2, double y1, double y2, int panels, 
         if (st < 0.0) rho = fmin(rho, y1 / st);
         double k[4];
         point_load(ct, st, k);
-        for (int c = 0; c < 4; c++) out[c] += 0.5 * h * q->weight[i] * k[c] * rho;
+        for (int c = 0; c < 4; c++)
+          out[c] += 0.5 * h * q->weight[i] * k[c] * rho;
       }
   }
 }
@@ -124,8 +128,8 @@ static void check_against_quadrature(const rule *q, double dx, double dy, double
     worst[0] = fmax(worst[0], diff / scale);
     worst[1] = fmax(worst[1], quad_err / scale);
     if (diff > tol) {
-      printf("FAIL %s A_%s at (%g, %g): closed %.15g, quadrature %.15g (est. error %.2g)\n",
-             what, name[c], sx, sy, closed[c], fine[c], quad_err);
+      printf("FAIL %s A_%s at (%g, %g): closed %.15g, quadrature %.15g (est. error %.2g)\n", what,
+             name[c], sx, sy, closed[c], fine[c], quad_err);
       ts_failures++;
     }
   }
@@ -140,9 +144,9 @@ static void check_closed_forms(void)
     return;
   }
   const double dx = 0.1, dy = 0.07;
-  static const int offsets[][2] = {{0, 0},  {1, 0},    {-1, 0},   {0, 1},    {0, -1},
-                                   {1, 1},  {-1, 1},   {1, -1},   {2, 1},    {3, -2},
-                                   {-5, 4}, {20, 7},   {-50, 30}, {200, 150}, {-400, 300}};
+  static const int offsets[][2] = {{0, 0},  {1, 0},  {-1, 0},   {0, 1},     {0, -1},
+                                   {1, 1},  {-1, 1}, {1, -1},   {2, 1},     {3, -2},
+                                   {-5, 4}, {20, 7}, {-50, 30}, {200, 150}, {-400, 300}};
   double worst[2] = {0.0, 0.0};
   for (size_t k = 0; k < sizeof offsets / sizeof offsets[0]; k++)
     check_against_quadrature(&q, dx, dy, offsets[k][0] * dx, offsets[k][1] * dy, "cell", worst);
@@ -151,7 +155,8 @@ static void check_closed_forms(void)
   check_against_quadrature(&q, dx, dy, 0.5 * dx, 0.1 * dy, "edge", worst);
   check_against_quadrature(&q, dx, dy, 0.7 * dx, 0.0, "outside", worst);
   printf("     closed form vs quadrature: largest difference %.3g A_zz (quadrature error "
-         "estimate up to %.3g A_zz)\n", worst[0], worst[1]);
+         "estimate up to %.3g A_zz)\n",
+         worst[0], worst[1]);
   ts_check_true("closed-form coefficients match quadrature of the point-load formulas",
                 ts_failures == 0);
 
@@ -179,10 +184,11 @@ static void check_closed_forms(void)
     rs_elastic3d_rect(dx, dy, sx, sy, G, NU, a);
     point_load(sx, sy, k);
     double rel = 0.0;
-    for (int c = 0; c < 4; c++) rel = fmax(rel, fabs(a[c] / (dx * dy * k[c]) - 1.0));
+    for (int c = 0; c < 4; c++)
+      rel = fmax(rel, fabs(a[c] / (dx * dy * k[c]) - 1.0));
     const double r2 = sx * sx + sy * sy;
-    printf("     far cell at %d cells: |A/(dx dy K) - 1| = %.3g, bound (dx^2+dy^2)/r^2 = %.3g\n",
-           f, rel, (dx * dx + dy * dy) / r2);
+    printf("     far cell at %d cells: |A/(dx dy K) - 1| = %.3g, bound (dx^2+dy^2)/r^2 = %.3g\n", f,
+           rel, (dx * dx + dy * dy) / r2);
     TS_CHECK(rel <= (dx * dx + dy * dy) / r2, "far cell %d: %g", f, rel);
     if (rel_prev > 0.0)
       TS_CHECK(fabs(rel_prev / rel - 4.0) < 0.2, "second order: ratio %g", rel_prev / rel);
@@ -207,9 +213,11 @@ static void check_tables(void)
     for (int kx = -(nx - 1); kx <= nx; kx++) {
       double a[4];
       rs_elastic3d_rect(dx, dy, kx * dx, ky * dy, G, NU, a);
-      const double got[4] = {rs_elastic3d_coef(&el, 0, 0, kx, ky), rs_elastic3d_coef(&el, 0, 1, kx, ky),
-                             rs_elastic3d_coef(&el, 1, 1, kx, ky), rs_elastic3d_coef(&el, 2, 2, kx, ky)};
-      for (int c = 0; c < 4; c++) worst = fmax(worst, fabs(got[c] - a[c]) / fabs(a[3]));
+      const double got[4] = {
+          rs_elastic3d_coef(&el, 0, 0, kx, ky), rs_elastic3d_coef(&el, 0, 1, kx, ky),
+          rs_elastic3d_coef(&el, 1, 1, kx, ky), rs_elastic3d_coef(&el, 2, 2, kx, ky)};
+      for (int c = 0; c < 4; c++)
+        worst = fmax(worst, fabs(got[c] - a[c]) / fabs(a[3]));
       transpose = fmax(transpose, fabs(rs_elastic3d_coef(&el, 1, 0, kx, ky) - got[1]));
       for (int t = 0; t < 2; t++)
         zero_coupling = fmax(zero_coupling, fabs(rs_elastic3d_coef(&el, 2, t, kx, ky)) +
@@ -299,10 +307,10 @@ static void check_2d_limit(void)
   double worst_xx = 0.0, worst_zz = 0.0;
   for (int kx = 1; kx <= 10; kx++) {
     const double x = kx * d;
-    const double err_xx = (strip_xx[kx] - strip_xx[0]) -
-                          (rs_elastic2d_tang(&el2, kx) - rs_elastic2d_tang(&el2, 0));
-    const double err_zz = (strip_zz[kx] - strip_zz[0]) -
-                          (rs_elastic2d_norm(&el2, kx) - rs_elastic2d_norm(&el2, 0));
+    const double err_xx =
+        (strip_xx[kx] - strip_xx[0]) - (rs_elastic2d_tang(&el2, kx) - rs_elastic2d_tang(&el2, 0));
+    const double err_zz =
+        (strip_zz[kx] - strip_zz[0]) - (rs_elastic2d_norm(&el2, kx) - rs_elastic2d_norm(&el2, 0));
     const double pred_xx = -c * d * x * x * (3.0 * NU - 1.0) / (2.0 * Y * Y);
     const double pred_zz = c * (1.0 - NU) * d * x * x / (2.0 * Y * Y);
     worst_xx = fmax(worst_xx, fabs(err_xx / pred_xx - 1.0));
@@ -343,8 +351,8 @@ static void check_eigenvalue_bound(int nx, int ny, double dx, double dy)
   double *work = malloc((size_t)lwork * sizeof *work);
   dsyev_("N", "U", &n, a, &n, w, work, &lwork, &info);
   const double bound = rs_elastic3d_norm_lower_eigenvalue(&el);
-  printf("     %d x %d cells %g x %g: lambda_min %.6g, bound %.6g (ratio %.4f), A_zz(0) %.6g\n",
-         nx, ny, dx, dy, w[0], bound, bound / w[0], rs_elastic3d_coef(&el, 2, 2, 0, 0));
+  printf("     %d x %d cells %g x %g: lambda_min %.6g, bound %.6g (ratio %.4f), A_zz(0) %.6g\n", nx,
+         ny, dx, dy, w[0], bound, bound / w[0], rs_elastic3d_coef(&el, 2, 2, 0, 0));
   ts_check_true("eigenvalue bound is positive and below lambda_min of A_zz",
                 info == 0 && bound > 0.0 && bound <= w[0] * (1.0 + 1e-12));
   free(work);

@@ -29,8 +29,8 @@ static double slope_jump(const double *column)
 {
   double worst = 0.0, prev = 0.0;
   for (int r = 0; r + 1 < RS_KALKER_ROWS; r++) {
-    const double slope = log(column[r + 1] / column[r]) /
-                         log(rs_kalker_row_ratio(r + 1) / rs_kalker_row_ratio(r));
+    const double slope =
+        log(column[r + 1] / column[r]) / log(rs_kalker_row_ratio(r + 1) / rs_kalker_row_ratio(r));
     if (r > 0) worst = fmax(worst, fabs(slope - prev));
     prev = slope;
   }
@@ -42,12 +42,13 @@ static void check_table(void)
   double worst = 0.0, column[RS_KALKER_ROWS];
   for (int w = 0; w < 3; w++)
     for (int j = 0; j < RS_KALKER_NUS; j++) {
-      for (int r = 0; r < RS_KALKER_ROWS; r++) column[r] = rs_kalker_table(w, r, j);
+      for (int r = 0; r < RS_KALKER_ROWS; r++)
+        column[r] = rs_kalker_table(w, r, j);
       worst = fmax(worst, slope_jump(column));
     }
-  ts_check("table: log-log slope changes by at most 0.25 between row intervals", worst, 0.0,
-           0.25);
-  for (int r = 0; r < RS_KALKER_ROWS; r++) column[r] = rs_kalker_table(2, r, 1);
+  ts_check("table: log-log slope changes by at most 0.25 between row intervals", worst, 0.0, 0.25);
+  for (int r = 0; r < RS_KALKER_ROWS; r++)
+    column[r] = rs_kalker_table(2, r, 1);
   column[7] = 1.15; /* the slip in one source copy (C23, a/b = 0.8, nu = 0.25) */
   printf("     with C23(0.8, 0.25) = 1.15 instead of 1.25 the slope would jump by %.2f\n",
          slope_jump(column));
@@ -83,9 +84,10 @@ static void check_interpolation(void)
   int exact = 1, status_ok = 1;
   for (int r = 0; r < RS_KALKER_ROWS; r++)
     for (int j = 0; j < RS_KALKER_NUS; j++) {
-      status_ok = status_ok && rs_kalker_coefficients(rs_kalker_row_ratio(r), 0.25 * j, &c,
-                                                      &msg) == RS_OK;
-      for (int w = 0; w < 3; w++) exact = exact && coefficient(&c, w) == rs_kalker_table(w, r, j);
+      status_ok =
+          status_ok && rs_kalker_coefficients(rs_kalker_row_ratio(r), 0.25 * j, &c, &msg) == RS_OK;
+      for (int w = 0; w < 3; w++)
+        exact = exact && coefficient(&c, w) == rs_kalker_table(w, r, j);
     }
   ts_check_true("table values returned exactly at every node (a/b, nu)", exact && status_ok);
 
@@ -120,8 +122,8 @@ static void check_interpolation(void)
   monotone = 1;
   for (int r = 0; r < RS_KALKER_ROWS; r++)
     for (int half = 0; half <= 1 && (half == 0 || r + 1 < RS_KALKER_ROWS); half++) {
-      const double ratio = half ? sqrt(rs_kalker_row_ratio(r) * rs_kalker_row_ratio(r + 1))
-                                : rs_kalker_row_ratio(r);
+      const double ratio =
+          half ? sqrt(rs_kalker_row_ratio(r) * rs_kalker_row_ratio(r + 1)) : rs_kalker_row_ratio(r);
       for (int j = 0; j + 1 < RS_KALKER_NUS; j++) {
         rs_kalker_coefficients(ratio, 0.25 * j, &lo, &msg);
         rs_kalker_coefficients(ratio, 0.25 * (j + 1), &hi, &msg);

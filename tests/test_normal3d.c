@@ -29,8 +29,8 @@
 
 #include <stdlib.h>
 
-extern void dgesv_(const int *n, const int *nrhs, double *a, const int *lda, int *ipiv,
-                   double *b, const int *ldb, int *info);
+extern void dgesv_(const int *n, const int *nrhs, double *a, const int *lda, int *ipiv, double *b,
+                   const int *ldb, int *info);
 
 static const double G = 82000.0, NU = 0.28, LOAD = 10000.0;
 
@@ -130,8 +130,8 @@ static void check_hertz_closes_gap(const char *name, double curv_x, double curv_
          name, hz.a, hz.b, hz.p0, hz.approach, hz.eccentricity, hz.major_along_x ? "x" : "y");
   char what[160];
   snprintf(what, sizeof what,
-           "%s: Hertz pressure closes the gap, |u_z - (delta - h)|/delta (quadrature %.1g)",
-           name, est);
+           "%s: Hertz pressure closes the gap, |u_z - (delta - h)|/delta (quadrature %.1g)", name,
+           est);
   ts_check(what, worst, 0.0, 1e-9);
 }
 
@@ -197,7 +197,8 @@ static int dense_solve(const rs_elastic3d *el, const double *h, double load, dou
       mat[(size_t)c * ld + m] = scale;
       rhs[c] = -h[index[c]];
     }
-    for (int r = 0; r < m; r++) mat[(size_t)m * ld + r] = -scale;
+    for (int r = 0; r < m; r++)
+      mat[(size_t)m * ld + r] = -scale;
     mat[(size_t)m * ld + m] = 0.0;
     rhs[m] = scale * load / (el->dx * el->dy);
     int info = 0;
@@ -205,7 +206,8 @@ static int dense_solve(const rs_elastic3d *el, const double *h, double load, dou
     if (info != 0) break;
     *delta = scale * rhs[m];
     int changed = 0;
-    for (int i = 0; i < n; i++) p[i] = 0.0;
+    for (int i = 0; i < n; i++)
+      p[i] = 0.0;
     for (int c = 0; c < m; c++) {
       p[index[c]] = rhs[c];
       if (rhs[c] < 0.0) {
@@ -242,7 +244,8 @@ static int check_complementarity(const char *name, const rs_elastic3d *el, const
   double *u = malloc((size_t)n * sizeof *u), hmax = 0.0, on = 0.0, out = INFINITY, pmin = 0.0;
   rs_elastic3d_direct_norm(el, pn, u, el->nx);
   int contact = 0;
-  for (int i = 0; i < n; i++) hmax = fmax(hmax, fabs(h[i]));
+  for (int i = 0; i < n; i++)
+    hmax = fmax(hmax, fabs(h[i]));
   for (int i = 0; i < n; i++) {
     const double g = h[i] - delta + u[i];
     pmin = fmin(pmin, pn[i]);
@@ -270,8 +273,12 @@ static void check_discrete_hertz(const char *name, double Rx, double Ry, int cel
   rs_msg msg = {{0}};
   const double A = 0.5 / Rx, B = 0.5 / Ry;
   rs_hertz3d(LOAD, A, B, G, NU, &hz, &msg);
-  const rs_grid3d grid = {.nx = cells, .ny = cells, .x0 = -1.1 * hz.a, .y0 = -1.1 * hz.b,
-                          .dx = 2.2 * hz.a / cells, .dy = 2.2 * hz.b / cells};
+  const rs_grid3d grid = {.nx = cells,
+                          .ny = cells,
+                          .x0 = -1.1 * hz.a,
+                          .y0 = -1.1 * hz.b,
+                          .dx = 2.2 * hz.a / cells,
+                          .dy = 2.2 * hz.b / cells};
   rs_elastic3d el;
   rs_elastic3d_work work;
   if (rs_elastic3d_create(&el, grid.nx, grid.ny, grid.dx, grid.dy, G, NU, &msg) != RS_OK ||
@@ -328,8 +335,12 @@ static void check_against_dense(void)
   rs_msg msg = {{0}};
   const double A = 0.5 / 460.0, B = 0.5 / 300.0;
   rs_hertz3d(LOAD, A, B, G, NU, &hz, &msg);
-  const rs_grid3d grid = {.nx = 18, .ny = 14, .x0 = -1.3 * hz.a, .y0 = -1.3 * hz.b,
-                          .dx = 2.6 * hz.a / 18, .dy = 2.6 * hz.b / 14};
+  const rs_grid3d grid = {.nx = 18,
+                          .ny = 14,
+                          .x0 = -1.3 * hz.a,
+                          .y0 = -1.3 * hz.b,
+                          .dx = 2.6 * hz.a / 18,
+                          .dy = 2.6 * hz.b / 14};
   const int n = grid.nx * grid.ny;
   rs_elastic3d el;
   rs_elastic3d_work work;
@@ -352,10 +363,10 @@ static void check_against_dense(void)
   rs_hertz3d_pressure(&hz, &grid, start);
   double d_dense = 0.0, d_cg = 0.0, d_warm = 0.0;
   int it_cg = 0, it_warm = 0;
-  const int ok = dense_solve(&el, h, LOAD, p_dense, &d_dense) == 0 &&
-                 rs_normal3d_solve(&el, &work, h, LOAD, NULL, p_cg, &d_cg, &it_cg, &msg) == RS_OK &&
-                 rs_normal3d_solve(&el, &work, h, LOAD, start, p_warm, &d_warm, &it_warm, &msg) ==
-                     RS_OK;
+  const int ok =
+      dense_solve(&el, h, LOAD, p_dense, &d_dense) == 0 &&
+      rs_normal3d_solve(&el, &work, h, LOAD, NULL, p_cg, &d_cg, &it_cg, &msg) == RS_OK &&
+      rs_normal3d_solve(&el, &work, h, LOAD, start, p_warm, &d_warm, &it_warm, &msg) == RS_OK;
   ts_check_true("wavy gap: dense active set and CG (uniform and Hertz starts) converge", ok);
   if (ok) {
     double pmax = 0.0, diff = 0.0, diff_warm = 0.0;
@@ -366,7 +377,8 @@ static void check_against_dense(void)
     }
     const int contact = check_complementarity("wavy gap", &el, h, p_cg, d_cg);
     printf("     wavy gap, 18 x 14 cells: %d in contact; CG %d iterations (uniform start), %d "
-           "(Hertz start)\n", contact, it_cg, it_warm);
+           "(Hertz start)\n",
+           contact, it_cg, it_warm);
     ts_check("wavy gap: CG - dense pressure, relative to p_max", diff / pmax, 0.0, 1e-9);
     ts_check("wavy gap: CG - dense approach (relative)", d_cg / d_dense - 1.0, 0.0, 1e-9);
     ts_check("wavy gap: uniform vs Hertz start, relative to p_max", diff_warm / pmax, 0.0, 1e-9);

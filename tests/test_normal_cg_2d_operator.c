@@ -41,7 +41,8 @@ int main(void)
   }
   const rs_normal_operator op = {.n = n,
                                  .cell_area = dx,
-                                 .lambda = 0.5 * (rs_elastic2d_norm(&el, 0) - rs_elastic2d_norm(&el, 1)),
+                                 .lambda =
+                                     0.5 * (rs_elastic2d_norm(&el, 0) - rs_elastic2d_norm(&el, 1)),
                                  .apply = apply_line_kernel,
                                  .context = &el};
   for (int pass = 0; pass < 2; pass++) {

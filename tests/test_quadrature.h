@@ -7,8 +7,8 @@
 #include <math.h>
 #include <stdlib.h>
 
-extern void dstev_(const char *jobz, const int *n, double *d, double *e, double *z,
-                   const int *ldz, double *work, int *info);
+extern void dstev_(const char *jobz, const int *n, double *d, double *e, double *z, const int *ldz,
+                   double *work, int *info);
 
 /* n-point rule on [-1, 1] into node[n], weight[n]; returns 0 on success. */
 static inline int tq_gauss_legendre(int n, double *node, double *weight)
@@ -23,7 +23,8 @@ static inline int tq_gauss_legendre(int n, double *node, double *weight)
       off[k] = (k + 1) / sqrt(4.0 * (k + 1) * (k + 1) - 1.0); /* beta_k = k/sqrt(4k^2-1) */
     }
     dstev_("V", &n, node, off, vec, &n, work, &info);
-    for (int k = 0; k < n && info == 0; k++) weight[k] = 2.0 * vec[(size_t)k * n] * vec[(size_t)k * n];
+    for (int k = 0; k < n && info == 0; k++)
+      weight[k] = 2.0 * vec[(size_t)k * n] * vec[(size_t)k * n];
   }
   free(off);
   free(vec);

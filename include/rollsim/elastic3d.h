@@ -46,9 +46,9 @@ typedef struct rs_elastic3d {
 /* Scratch space for the FFT products: one per thread applying the same rs_elastic3d
  * (the products never write through the const rs_elastic3d). */
 typedef struct rs_elastic3d_work {
-  int mx, my;            /* padded grid */
-  double *grid;          /* [my mx] real work grid */
-  void *spectrum[2];     /* [my (mx/2+1)] complex spectra (fftw_complex) */
+  int mx, my;        /* padded grid */
+  double *grid;      /* [my mx] real work grid */
+  void *spectrum[2]; /* [my (mx/2+1)] complex spectra (fftw_complex) */
 } rs_elastic3d_work;
 
 /* Coefficient tables and FFT plans for an nx x ny grid of dx x dy cells. Not thread

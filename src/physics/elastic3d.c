@@ -17,10 +17,16 @@ static long double prim_asinh_x(long double x, long double y)
 }
 
 /* y asinh(x/|y|): mixed derivative x^2/r^3. */
-static long double prim_asinh_y(long double x, long double y) { return prim_asinh_x(y, x); }
+static long double prim_asinh_y(long double x, long double y)
+{
+  return prim_asinh_x(y, x);
+}
 
 /* -r: mixed derivative x y/r^3. */
-static long double prim_minus_r(long double x, long double y) { return -hypotl(x, y); }
+static long double prim_minus_r(long double x, long double y)
+{
+  return -hypotl(x, y);
+}
 
 /* Int_{x1}^{x2} Int_{y1}^{y2} f_xy dy dx by inclusion-exclusion over the corners. */
 static long double corner_sum(long double (*f)(long double, long double), long double x1,
@@ -56,16 +62,14 @@ int rs_elastic3d_create(rs_elastic3d *el, int nx, int ny, double dx, double dy,
   el->fft = NULL;
   if (nx < 1 || ny < 1 || nx > 16384 || ny > 16384)
     return rs_msg_set(msg, RS_ERR_INPUT,
-                      "3D elastic grid: %d x %d cells (each side needs 1 to 16384 cells)", nx,
-                      ny);
+                      "3D elastic grid: %d x %d cells (each side needs 1 to 16384 cells)", nx, ny);
   if (!(dx > 0.0) || !(dy > 0.0) || !isfinite(dx) || !isfinite(dy))
-    return rs_msg_set(msg, RS_ERR_INPUT, "3D elastic grid: cell size %g x %g mm (must be > 0)",
-                      dx, dy);
+    return rs_msg_set(msg, RS_ERR_INPUT, "3D elastic grid: cell size %g x %g mm (must be > 0)", dx,
+                      dy);
   if (!(shear_modulus > 0.0) || !isfinite(shear_modulus))
     return rs_msg_set(msg, RS_ERR_INPUT, "shear modulus %g N/mm^2 (must be > 0)", shear_modulus);
   if (!(poisson_ratio > -1.0 && poisson_ratio <= 0.5))
-    return rs_msg_set(msg, RS_ERR_INPUT, "Poisson ratio %g (must be in (-1, 0.5])",
-                      poisson_ratio);
+    return rs_msg_set(msg, RS_ERR_INPUT, "Poisson ratio %g (must be in (-1, 0.5])", poisson_ratio);
   el->nx = nx;
   el->ny = ny;
   el->dx = dx;
@@ -79,8 +83,10 @@ int rs_elastic3d_create(rs_elastic3d *el, int nx, int ny, double dx, double dy,
   el->zz = malloc(count * sizeof *el->zz);
   if (!el->xx || !el->xy || !el->yy || !el->zz) {
     rs_elastic3d_free(el);
-    return rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory for the 3D influence coefficients "
-                      "(%d x %d cells)", nx, ny);
+    return rs_msg_set(msg, RS_ERR_INTERNAL,
+                      "out of memory for the 3D influence coefficients "
+                      "(%d x %d cells)",
+                      nx, ny);
   }
   for (int ky = 0; ky < ny; ky++)
     for (int kx = 0; kx <= nx; kx++) {
@@ -94,8 +100,8 @@ int rs_elastic3d_create(rs_elastic3d *el, int nx, int ny, double dx, double dy,
     }
   if (!(el->fft = rs_elastic3d_fft_create(el))) {
     rs_elastic3d_free(el);
-    return rs_msg_set(msg, RS_ERR_INTERNAL,
-                      "could not set up the 3D FFT products (%d x %d cells)", nx, ny);
+    return rs_msg_set(msg, RS_ERR_INTERNAL, "could not set up the 3D FFT products (%d x %d cells)",
+                      nx, ny);
   }
   return RS_OK;
 }
@@ -139,7 +145,8 @@ void rs_elastic3d_direct_norm(const rs_elastic3d *el, const double *pn, double *
       double s = 0.0;
       for (int jy = 0; jy < ny; jy++) {
         const double *row = el->zz + (size_t)abs(iy - jy) * (size_t)(nx + 1);
-        for (int jx = 0; jx < nx; jx++) s += row[abs(ix - jx)] * pn[jy * nx + jx];
+        for (int jx = 0; jx < nx; jx++)
+          s += row[abs(ix - jx)] * pn[jy * nx + jx];
       }
       uz[iy * nxout + ix] = s;
     }

@@ -23,9 +23,12 @@ int rs_elastic3d_fft_size(int m)
 {
   for (int s = m > 1 ? m : 1;; s++) {
     int r = s;
-    while (r % 2 == 0) r /= 2;
-    while (r % 3 == 0) r /= 3;
-    while (r % 5 == 0) r /= 5;
+    while (r % 2 == 0)
+      r /= 2;
+    while (r % 3 == 0)
+      r /= 3;
+    while (r % 5 == 0)
+      r /= 5;
     if (r == 1) return s;
   }
 }
@@ -87,7 +90,8 @@ struct rs_elastic3d_fft *rs_elastic3d_fft_create(const rs_elastic3d *el)
         grid[(size_t)qy * (size_t)f->mx + (size_t)qx] = value;
       }
     fftw_execute_dft_r2c(f->forward, grid, spec);
-    for (size_t q = 0; q < ncomplex; q++) kernel[q] = spec[q] / (double)nreal;
+    for (size_t q = 0; q < ncomplex; q++)
+      kernel[q] = spec[q] / (double)nreal;
   }
   fftw_free(grid);
   fftw_free(spec);
@@ -108,8 +112,8 @@ int rs_elastic3d_work_create(rs_elastic3d_work *work, const rs_elastic3d *el, rs
   work->spectrum[1] = fftw_alloc_complex((size_t)f->my * (size_t)f->ncx);
   if (!work->grid || !work->spectrum[0] || !work->spectrum[1]) {
     rs_elastic3d_work_free(work);
-    return rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory for the 3D FFT work (%d x %d)",
-                      f->mx, f->my);
+    return rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory for the 3D FFT work (%d x %d)", f->mx,
+                      f->my);
   }
   return RS_OK;
 }
@@ -135,8 +139,8 @@ static void transform_in(const struct rs_elastic3d_fft *f, const rs_elastic3d *e
 }
 
 /* Backward transform (destroys spec), then the first nxout columns of ny rows into u. */
-static void transform_out(const struct rs_elastic3d_fft *f, const rs_elastic3d *el,
-                          double *grid, fftw_complex *spec, double *u, int nxout)
+static void transform_out(const struct rs_elastic3d_fft *f, const rs_elastic3d *el, double *grid,
+                          fftw_complex *spec, double *u, int nxout)
 {
   fftw_execute_dft_c2r(f->backward, spec, grid);
   for (int iy = 0; iy < el->ny; iy++)
@@ -169,7 +173,8 @@ void rs_elastic3d_apply_norm(const rs_elastic3d *el, rs_elastic3d_work *work, co
   fftw_complex *s = work->spectrum[0];
   transform_in(f, el, work->grid, pn, s);
   const size_t ncomplex = (size_t)f->my * (size_t)f->ncx;
-  for (size_t q = 0; q < ncomplex; q++) s[q] *= f->kzz[q];
+  for (size_t q = 0; q < ncomplex; q++)
+    s[q] *= f->kzz[q];
   transform_out(f, el, work->grid, s, uz, nxout);
 }
 
@@ -180,6 +185,7 @@ double rs_elastic3d_norm_lower_eigenvalue(const rs_elastic3d *el)
   const struct rs_elastic3d_fft *f = el->fft;
   const size_t ncomplex = (size_t)f->my * (size_t)f->ncx;
   double low = INFINITY;
-  for (size_t q = 0; q < ncomplex; q++) low = fmin(low, creal(f->kzz[q]));
+  for (size_t q = 0; q < ncomplex; q++)
+    low = fmin(low, creal(f->kzz[q]));
   return low * (double)f->mx * (double)f->my;
 }

@@ -52,7 +52,8 @@ int rs_hertz3d(double load, double curv_x, double curv_y, double shear_modulus,
   if (!(curv_x > 0.0) || !(curv_y > 0.0) || !isfinite(curv_x) || !isfinite(curv_y))
     return rs_msg_set(msg, RS_ERR_INPUT,
                       "Hertz 3D: the gap curvatures must be positive (got A = %g, B = %g "
-                      "1/mm)", curv_x, curv_y);
+                      "1/mm)",
+                      curv_x, curv_y);
   if (!(shear_modulus > 0.0) || !(poisson_ratio > -1.0 && poisson_ratio <= 0.5))
     return rs_msg_set(msg, RS_ERR_INPUT, "Hertz 3D: G = %g N/mm^2, nu = %g out of range",
                       shear_modulus, poisson_ratio);

@@ -50,8 +50,10 @@ static double interior_slope(double left, double right)
 static double end_slope(double near, double far)
 {
   double d = 0.5 * (3.0 * near - far);
-  if (d * near <= 0.0) d = 0.0;
-  else if (near * far < 0.0 && fabs(d) > 3.0 * fabs(near)) d = 3.0 * near;
+  if (d * near <= 0.0)
+    d = 0.0;
+  else if (near * far < 0.0 && fabs(d) > 3.0 * fabs(near))
+    d = 3.0 * near;
   return d;
 }
 
@@ -88,7 +90,8 @@ int rs_kalker_coefficients(double a_over_b, double poisson_ratio, rs_kalker *c, 
   if (!(a_over_b >= 0.1 * (1.0 - 1e-12) && a_over_b <= 10.0 * (1.0 + 1e-12)))
     return rs_msg_set(msg, RS_ERR_INPUT,
                       "Kalker's coefficients: semi-axis ratio a/b = %g is outside the table "
-                      "(0.1 to 10)", a_over_b);
+                      "(0.1 to 10)",
+                      a_over_b);
   if (!(poisson_ratio >= 0.0 && poisson_ratio <= 0.5))
     return rs_msg_set(msg, RS_ERR_INPUT,
                       "Kalker's coefficients: Poisson ratio %g is outside the table (0 to 0.5)",
@@ -103,7 +106,8 @@ int rs_kalker_coefficients(double a_over_b, double poisson_ratio, rs_kalker *c, 
   for (int which = 0; which < 3; which++) {
     double at_nu[RS_KALKER_NUS], column[RS_KALKER_ROWS];
     for (int j = 0; j < RS_KALKER_NUS; j++) {
-      for (int r = 0; r < RS_KALKER_ROWS; r++) column[r] = kalker_table[r][which][j];
+      for (int r = 0; r < RS_KALKER_ROWS; r++)
+        column[r] = kalker_table[r][which][j];
       at_nu[j] = pchip(column, RS_KALKER_ROWS, row, t_row);
     }
     out[which] = pchip(at_nu, RS_KALKER_NUS, nu_node, t_nu);

@@ -32,8 +32,10 @@ static void recompute(cg_state *s, double target)
 {
   const int n = s->op->n;
   double sum = 0.0;
-  for (int i = 0; i < n; i++) sum += s->p[i];
-  for (int i = 0; i < n; i++) s->p[i] *= target / sum;
+  for (int i = 0; i < n; i++)
+    sum += s->p[i];
+  for (int i = 0; i < n; i++)
+    s->p[i] *= target / sum;
   s->op->apply(s->op->context, s->p, s->u);
   double sum_gap = 0.0;
   s->m = 0;
@@ -43,7 +45,8 @@ static void recompute(cg_state *s, double target)
       sum_gap += s->u[i] + s->h[i];
     }
   s->delta = sum_gap / s->m;
-  for (int i = 0; i < n; i++) s->r[i] = s->p[i] > 0.0 ? s->u[i] + s->h[i] - s->delta : 0.0;
+  for (int i = 0; i < n; i++)
+    s->r[i] = s->p[i] > 0.0 ? s->u[i] + s->h[i] - s->delta : 0.0;
 }
 
 int rs_normal_cg_solve(const rs_normal_operator *op, const double *gap, double load,
@@ -52,8 +55,8 @@ int rs_normal_cg_solve(const rs_normal_operator *op, const double *gap, double l
 {
   const int n = op->n;
   if (!(load > 0.0) || !isfinite(load))
-    return rs_msg_set(msg, RS_ERR_INPUT,
-                      "normal problem: the load must be positive (got %g N)", load);
+    return rs_msg_set(msg, RS_ERR_INPUT, "normal problem: the load must be positive (got %g N)",
+                      load);
   if (n < 1 || !(op->cell_area > 0.0) || !(op->lambda > 0.0))
     return rs_msg_set(msg, RS_ERR_INTERNAL,
                       "normal problem: bad operator (%d cells, cell area %g, lambda %g)", n,
@@ -72,7 +75,8 @@ int rs_normal_cg_solve(const rs_normal_operator *op, const double *gap, double l
     dir[i] = 0.0;
   }
   if (!(start_sum > 0.0) || !isfinite(start_sum))
-    for (int i = 0; i < n; i++) pn[i] = 1.0;
+    for (int i = 0; i < n; i++)
+      pn[i] = 1.0;
   const int max_iter = 4 * n + 100;
   int status = RS_OK, fresh = 1, confirming = 0, restart = 1, steps = 0;
   double rr_old = 1.0, tol_gap = 0.0;
@@ -84,7 +88,8 @@ int rs_normal_cg_solve(const rs_normal_operator *op, const double *gap, double l
     }
     /* The part of r along the constant vector belongs to delta (rounding only). */
     double sum_r = 0.0;
-    for (int i = 0; i < n; i++) sum_r += r[i];
+    for (int i = 0; i < n; i++)
+      sum_r += r[i];
     const double mean_r = sum_r / s.m;
     s.delta += mean_r;
     double rr = 0.0, pmax = 0.0;
