@@ -18,3 +18,9 @@ target_include_directories(test_nvector_fast PRIVATE ${PROJECT_SOURCE_DIR}/src)
 rs_unit_test(test_jacobian_products)
 # grid.x_range gives the same discrete problem as grid.extent with the same edges.
 rs_unit_test(test_grid_range)
+# 3D kernels: Boussinesq-Cerruti coefficients and FFT products, elliptic Hertz and the
+# 3D normal problem, Kalker's coefficients, the dimension-free CG on the 2D kernel.
+rs_unit_test(test_elastic3d)
+rs_unit_test(test_normal3d)
+rs_unit_test(test_kalker)
+rs_unit_test(test_normal_cg_2d_operator)

@@ -1,0 +1,185 @@
+/* 3D elastic products by FFT convolution (model.md §10). The linear convolution
+ * u(I) = sum_J A(I - J) p(J) on the grid equals a circular one on the padded grid
+ * mx x my (mx >= 2 nx, my >= 2 ny - 1): the kernel's offsets kx in [-(nx-1), nx] and
+ * ky in [-(ny-1), ny-1] wrap to distinct indices, and p is zero beyond the grid.
+ * Kernels are transformed once at creation (scaled by 1/(mx my), FFTW's transforms are
+ * unnormalised); the products use FFTW's new-array execute functions on the caller's
+ * work buffers, so the plans are shared and never written. */
+#include "physics/elastic3d_internal.h"
+
+#include <complex.h>
+#include <fftw3.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+struct rs_elastic3d_fft {
+  int mx, my, ncx;                     /* padded grid; ncx = mx/2 + 1 complex columns */
+  fftw_plan forward, backward;         /* r2c and c2r of my x mx (x fastest) */
+  fftw_complex *kxx, *kxy, *kyy, *kzz; /* transformed kernels [my ncx] */
+};
+
+int rs_elastic3d_fft_size(int m)
+{
+  for (int s = m > 1 ? m : 1;; s++) {
+    int r = s;
+    while (r % 2 == 0) r /= 2;
+    while (r % 3 == 0) r /= 3;
+    while (r % 5 == 0) r /= 5;
+    if (r == 1) return s;
+  }
+}
+
+void rs_elastic3d_fft_free(struct rs_elastic3d_fft *f)
+{
+  if (!f) return;
+  if (f->forward) fftw_destroy_plan(f->forward);
+  if (f->backward) fftw_destroy_plan(f->backward);
+  fftw_free(f->kxx);
+  fftw_free(f->kxy);
+  fftw_free(f->kyy);
+  fftw_free(f->kzz);
+  free(f);
+}
+
+struct rs_elastic3d_fft *rs_elastic3d_fft_create(const rs_elastic3d *el)
+{
+  const int nx = el->nx, ny = el->ny;
+  struct rs_elastic3d_fft *f = calloc(1, sizeof *f);
+  if (!f) return NULL;
+  f->mx = rs_elastic3d_fft_size(2 * nx);
+  f->my = rs_elastic3d_fft_size(2 * ny - 1);
+  f->ncx = f->mx / 2 + 1;
+  const size_t nreal = (size_t)f->mx * (size_t)f->my, ncomplex = (size_t)f->my * (size_t)f->ncx;
+  double *grid = fftw_alloc_real(nreal);
+  fftw_complex *spec = fftw_alloc_complex(ncomplex);
+  f->kxx = fftw_alloc_complex(ncomplex);
+  f->kxy = fftw_alloc_complex(ncomplex);
+  f->kyy = fftw_alloc_complex(ncomplex);
+  f->kzz = fftw_alloc_complex(ncomplex);
+  int ok = grid && spec && f->kxx && f->kxy && f->kyy && f->kzz;
+  if (ok) {
+    f->forward = fftw_plan_dft_r2c_2d(f->my, f->mx, grid, spec, FFTW_ESTIMATE);
+    f->backward = fftw_plan_dft_c2r_2d(f->my, f->mx, spec, grid, FFTW_ESTIMATE);
+    ok = f->forward && f->backward;
+  }
+  for (int comp = 0; ok && comp < 4; comp++) {
+    static const int ci[4] = {0, 0, 1, 2}, cj[4] = {0, 1, 1, 2};
+    fftw_complex *kernel = comp == 0 ? f->kxx : comp == 1 ? f->kxy : comp == 2 ? f->kyy : f->kzz;
+    /* Index (qx, qy) holds the offset of minimal image kx in (-mx/2, mx/2], ky likewise.
+     * The products read only the offsets of the tables, which are their own minimal
+     * images (|kx| <= nx <= mx/2, |ky| <= ny-1 < my/2); the rest of the periodic grid is
+     * never read by a product, and filling it with the kernel itself (not zeros) keeps
+     * the circulant close to the half-space operator, positive definite for A_zz (see
+     * rs_elastic3d_norm_lower_eigenvalue). */
+    for (int qy = 0; qy < f->my; qy++)
+      for (int qx = 0; qx < f->mx; qx++) {
+        const int kx = 2 * qx <= f->mx ? qx : qx - f->mx, ky = 2 * qy <= f->my ? qy : qy - f->my;
+        double value;
+        if (kx <= nx && -kx <= nx && ky <= ny - 1 && -ky <= ny - 1) {
+          value = rs_elastic3d_coef(el, ci[comp], cj[comp], kx, ky);
+        } else {
+          double c[4];
+          rs_elastic3d_rect(el->dx, el->dy, kx * el->dx, ky * el->dy, el->shear_modulus,
+                            el->poisson_ratio, c);
+          value = c[comp];
+        }
+        grid[(size_t)qy * (size_t)f->mx + (size_t)qx] = value;
+      }
+    fftw_execute_dft_r2c(f->forward, grid, spec);
+    for (size_t q = 0; q < ncomplex; q++) kernel[q] = spec[q] / (double)nreal;
+  }
+  fftw_free(grid);
+  fftw_free(spec);
+  if (!ok) {
+    rs_elastic3d_fft_free(f);
+    return NULL;
+  }
+  return f;
+}
+
+int rs_elastic3d_work_create(rs_elastic3d_work *work, const rs_elastic3d *el, rs_msg *msg)
+{
+  const struct rs_elastic3d_fft *f = el->fft;
+  work->mx = f->mx;
+  work->my = f->my;
+  work->grid = fftw_alloc_real((size_t)f->mx * (size_t)f->my);
+  work->spectrum[0] = fftw_alloc_complex((size_t)f->my * (size_t)f->ncx);
+  work->spectrum[1] = fftw_alloc_complex((size_t)f->my * (size_t)f->ncx);
+  if (!work->grid || !work->spectrum[0] || !work->spectrum[1]) {
+    rs_elastic3d_work_free(work);
+    return rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory for the 3D FFT work (%d x %d)", f->mx,
+                      f->my);
+  }
+  return RS_OK;
+}
+
+void rs_elastic3d_work_free(rs_elastic3d_work *work)
+{
+  fftw_free(work->grid);
+  fftw_free(work->spectrum[0]);
+  fftw_free(work->spectrum[1]);
+  work->grid = NULL;
+  work->spectrum[0] = work->spectrum[1] = NULL;
+}
+
+/* p (nx x ny, row length nx) into the zeroed work grid, then forward transform. */
+static void transform_in(const struct rs_elastic3d_fft *f, const rs_elastic3d *el, double *grid,
+                         const double *p, fftw_complex *spec)
+{
+  memset(grid, 0, (size_t)f->mx * (size_t)f->my * sizeof *grid);
+  for (int iy = 0; iy < el->ny; iy++)
+    memcpy(grid + (size_t)iy * (size_t)f->mx, p + (size_t)iy * (size_t)el->nx,
+           (size_t)el->nx * sizeof *p);
+  fftw_execute_dft_r2c(f->forward, grid, spec);
+}
+
+/* Backward transform (destroys spec), then the first nxout columns of ny rows into u. */
+static void transform_out(const struct rs_elastic3d_fft *f, const rs_elastic3d *el, double *grid,
+                          fftw_complex *spec, double *u, int nxout)
+{
+  fftw_execute_dft_c2r(f->backward, spec, grid);
+  for (int iy = 0; iy < el->ny; iy++)
+    memcpy(u + (size_t)iy * (size_t)nxout, grid + (size_t)iy * (size_t)f->mx,
+           (size_t)nxout * sizeof *u);
+}
+
+void rs_elastic3d_apply_tang(const rs_elastic3d *el, rs_elastic3d_work *work, const double *px,
+                             const double *py, double *ux, double *uy, int nxout)
+{
+  const struct rs_elastic3d_fft *f = el->fft;
+  fftw_complex *sx = work->spectrum[0], *sy = work->spectrum[1];
+  transform_in(f, el, work->grid, px, sx);
+  transform_in(f, el, work->grid, py, sy);
+  /* (u_x, u_y)^ = [A_xx A_xy; A_xy A_yy]^ (p_x, p_y)^ per frequency */
+  const size_t ncomplex = (size_t)f->my * (size_t)f->ncx;
+  for (size_t q = 0; q < ncomplex; q++) {
+    const fftw_complex a = sx[q], b = sy[q];
+    sx[q] = f->kxx[q] * a + f->kxy[q] * b;
+    sy[q] = f->kxy[q] * a + f->kyy[q] * b;
+  }
+  transform_out(f, el, work->grid, sx, ux, nxout);
+  transform_out(f, el, work->grid, sy, uy, nxout);
+}
+
+void rs_elastic3d_apply_norm(const rs_elastic3d *el, rs_elastic3d_work *work, const double *pn,
+                             double *uz, int nxout)
+{
+  const struct rs_elastic3d_fft *f = el->fft;
+  fftw_complex *s = work->spectrum[0];
+  transform_in(f, el, work->grid, pn, s);
+  const size_t ncomplex = (size_t)f->my * (size_t)f->ncx;
+  for (size_t q = 0; q < ncomplex; q++) s[q] *= f->kzz[q];
+  transform_out(f, el, work->grid, s, uz, nxout);
+}
+
+double rs_elastic3d_norm_lower_eigenvalue(const rs_elastic3d *el)
+{
+  /* The real parts of the transform are the eigenvalues of the symmetric part of the
+   * circulant; the half-spectrum of a real kernel holds all of them. */
+  const struct rs_elastic3d_fft *f = el->fft;
+  const size_t ncomplex = (size_t)f->my * (size_t)f->ncx;
+  double low = INFINITY;
+  for (size_t q = 0; q < ncomplex; q++) low = fmin(low, creal(f->kzz[q]));
+  return low * (double)f->mx * (double)f->my;
+}
