@@ -32,14 +32,15 @@ typedef struct rs_rig_step {
  * contact.radius, rolling.velocity, rolling.creepage and simulation.end_time. */
 typedef struct rs_twin_disc {
   int on;
-  double radius_1, radius_2; /* mm */
-  double width;              /* mm */
-  double normal_force;       /* N */
-  double rpm;                /* rolling speed as revolutions per minute of disc 1 */
-  double rpm_1, rpm_2;       /* alternative: the disc speeds (constant slip) */
-  double revolutions;        /* with rpm_1/rpm_2: length of the run */
-  double recovery;           /* fraction of u_pl, u* kept per revolution, [0, 1] */
-  double average_window;     /* trailing fraction of each step averaged, (0, 1] */
+  double radius_1, radius_2;             /* mm */
+  double crown_radius_1, crown_radius_2; /* mm, crowned discs (3D contact); 0: flat */
+  double width;                          /* mm */
+  double normal_force;                   /* N */
+  double rpm;                            /* rolling speed as revolutions per minute of disc 1 */
+  double rpm_1, rpm_2;                   /* alternative: the disc speeds (constant slip) */
+  double revolutions;                    /* with rpm_1/rpm_2: length of the run */
+  double recovery;                       /* fraction of u_pl, u* kept per revolution, [0, 1] */
+  double average_window;                 /* trailing fraction of each step averaged, (0, 1] */
   size_t nsteps;
   rs_rig_step *steps;
   double revolution_time; /* s, 2 pi R1 / V (derived) */
@@ -51,16 +52,20 @@ typedef struct rs_case {
   char *title;
 
   /* contact: */
-  int dimension;          /* 2 (3 is rejected for now) */
+  int dimension;          /* 2: line contact; 3: elliptic point contact */
   rs_history normal_load; /* N/mm (2D) */
-  double radius;          /* mm, combined radius */
+  double radius;          /* mm, combined radius (3D: Rx) */
+  double radius_y;        /* mm, 3D: Ry (from contact.radius or contact.curvature) */
   rs_normal_solution normal_solution;
   double reference_length; /* mm, L of the 2D kernel */
 
   /* grid: */
-  int cells;
+  int cells;           /* along x */
+  int cells_y;         /* 3D: along y */
   double extent;       /* half-length of the potential contact area, in Hertz a */
-  int grid_from_range; /* 1: grid.x_range given (instead of grid.extent) */
+  double extent_y;     /* 3D: half-width, in Hertz b */
+  int grid_from_range; /* 1: grid.x_range (3D: and y_range) given (instead of grid.extent) */
+  double y_range[2];   /* mm, 3D */
   double x_range[2];   /* mm, outer edges of the potential contact area */
 
   /* material: */
@@ -81,11 +86,14 @@ typedef struct rs_case {
   double tau_c_min;   /* N/mm^2, default 0.1*tau_c0 */
 
   /* rolling: */
-  rs_history velocity;         /* V, mm/s */
-  rs_history creepage;         /* xi (unused when force_control) */
-  int force_control;           /* 1: rolling.tangential_force given, xi is an unknown */
-  rs_history tangential_force; /* F_x, N/mm (2D), when force_control */
-  rs_history shift_velocity;   /* mm/s, rigid tangential shift rate (a history too) */
+  rs_history velocity;           /* V, mm/s */
+  rs_history creepage;           /* xi (unused when force_control) */
+  rs_history lateral_creepage;   /* eta, 3D (unused when force_control) */
+  rs_history spin;               /* phi, 1/mm, 3D */
+  int force_control;             /* 1: rolling.tangential_force given, xi is an unknown */
+  rs_history tangential_force;   /* F_x, N/mm (2D; N in 3D), when force_control */
+  rs_history tangential_force_y; /* F_y, N (3D), when force_control */
+  rs_history shift_velocity;     /* mm/s, rigid tangential shift rate (a history too) */
 
   /* simulation: */
   rs_mode mode;

@@ -9,21 +9,25 @@
 #define ROLLSIM_ELASTIC_OP_H
 
 #include "rollsim/elastic2d.h"
+#include "rollsim/elastic3d.h"
 #include "rollsim/grid.h"
 #include "rollsim/status.h"
 
 typedef struct rs_elastic_op {
-  int dim;   /* 2: plane-strain line kernel */
+  int dim;   /* 2: plane-strain line kernel; 3: Boussinesq-Cerruti (half-spaces) */
   int ncomp; /* tangential components */
   int nx, ny;
   rs_elastic2d line; /* dim 2 */
+  rs_elastic3d surf; /* dim 3 */
 } rs_elastic_op;
 
 typedef struct rs_elastic_work {
   rs_elastic2d_work line;
+  rs_elastic3d_work surf;
 } rs_elastic_work;
 
-/* 2D: reference_length is L of the line kernel (model.md §2). */
+/* The grid's ny decides: 1 with unit width (y_lo = y_hi = 0) the 2D line kernel,
+ * otherwise 3D. 2D: reference_length is L of the line kernel (model.md §2). */
 int rs_elastic_op_create(rs_elastic_op *op, const rs_grid *g, double shear_modulus,
                          double poisson_ratio, double reference_length, rs_msg *msg);
 void rs_elastic_op_free(rs_elastic_op *op);
@@ -35,9 +39,7 @@ void rs_elastic_work_free(rs_elastic_work *w);
  * |kx| <= nx, the padded column included). mm/(N/mm^2). */
 static inline double rs_elastic_op_coef(const rs_elastic_op *op, int a, int b, int kx, int ky)
 {
-  (void)a;
-  (void)b;
-  (void)ky;
+  if (op->dim == 3) return rs_elastic3d_coef(&op->surf, a, b, kx, ky);
   return rs_elastic2d_tang(&op->line, kx);
 }
 

@@ -33,24 +33,30 @@ typedef enum { RS_SCALING_AUTO = 0, RS_SCALING_DIFFERENCE = 1, RS_SCALING_SELF =
 /* Model parameters: plain values (the driver builds them from a case). The histories
  * are copied by rs_model_create. */
 typedef struct rs_model_params {
-  int cells;           /* along x */
-  int grid_from_range; /* 1: x_range given; 0: +-extent Hertz half-widths */
-  double x_range[2];   /* mm, outer edges of the potential contact area */
-  double extent;       /* half-length in Hertz half-widths at the largest load */
-  double radius;       /* combined radius, mm: gap x^2/(2R) */
+  int dimension;           /* 2: line contact (per mm of width); 3: elliptic point contact */
+  int cells, cells_y;      /* along x; along y (3D) */
+  int grid_from_range;     /* 1: x_range (and y_range) given; 0: +-extent Hertz semi-axes */
+  double x_range[2];       /* mm, outer edges of the potential contact area */
+  double y_range[2];       /* mm (3D) */
+  double extent, extent_y; /* half-lengths in Hertz semi-axes a, b at the largest load */
+  double radius;           /* combined radius, mm: gap x^2/(2R) (3D: Rx) */
+  double radius_y;         /* 3D: Ry, gap x^2/(2Rx) + y^2/(2Ry) */
   rs_normal_solution normal_solution;
   double reference_length; /* mm, L of the 2D kernel */
   double shear_modulus, poisson_ratio;
   double layer_thickness, layer_shear_modulus; /* third-body layer: h3 (0: none), G3 */
   rs_friction friction;
   rs_plasticity plasticity;
-  rs_history load;           /* normal load, N/mm */
-  rs_history velocity;       /* V, mm/s */
-  rs_history creepage;       /* xi (not used with force control) */
-  rs_history shift_velocity; /* rigid shift rate, mm/s */
-  int force_control;         /* 1: the creepage is unknown, force prescribed */
-  rs_history force;          /* F_x, N/mm */
-  double end_time;           /* s: the grid is sized on the largest load up to it */
+  rs_history load;             /* normal load, N/mm (3D: N) */
+  rs_history velocity;         /* V, mm/s */
+  rs_history creepage;         /* xi (not used with force control) */
+  rs_history lateral_creepage; /* eta (3D; not used with force control) */
+  rs_history spin;             /* phi, 1/mm (3D) */
+  rs_history shift_velocity;   /* rigid shift rate along x, mm/s */
+  int force_control;           /* 1: the creepages are unknown, the forces prescribed */
+  rs_history force;            /* F_x, N/mm (3D: N) */
+  rs_history force_y;          /* F_y, N (3D) */
+  double end_time;             /* s: the grid is sized on the largest load up to it */
   rs_scaling scaling;
   double time_scale; /* s: sets r when there is neither rolling nor a time step */
 } rs_model_params;
@@ -64,10 +70,12 @@ typedef struct rs_model {
   double normal_load; /* the largest load of the run (it sizes the grid) */
   int load_varies;    /* the load is a history: p_n(t) from rs_model_normal_at */
   double hertz_a, hertz_p0;
-  double approach; /* delta of the normal solution at t = 0, mm */
-  double *gap;     /* undeformed gap at the cell centres [n] */
-  double *pn;      /* pressure at t = 0 [n] */
-  double *bound;   /* traction bound g = mu p_n at t = 0 [n] */
+  double hertz_b;         /* 3D: the semi-axis across the rolling direction (2D: 0) */
+  double contact_measure; /* 2a (2D) or pi a b (3D): the scale of the force rows */
+  double approach;        /* delta of the normal solution at t = 0, mm */
+  double *gap;            /* undeformed gap at the cell centres [n] */
+  double *pn;             /* pressure at t = 0 [n] */
+  double *bound;          /* traction bound g = mu p_n at t = 0 [n] */
   /* State of the material entering at the leading edge: fresh (0), or the twin-disc
    * memory when set (rollsim/rig.h; owned by the caller, updated between time steps). */
   const struct rs_rig_memory *memory;
@@ -85,14 +93,16 @@ int rs_model_regrid(const rs_model *m, int cells, rs_model *out, rs_msg *msg);
  * and nowhere else. A frozen copy (rates zero, the inflow looked up at its own t) holds
  * the inputs of one time for the steady solver's pseudo-transient. */
 typedef struct rs_inputs {
-  double t;                     /* s: their time (the inflow state is looked up there) */
-  double velocity;              /* V, mm/s */
-  double creepage;              /* xi (prescribed; with force control the unknown is used) */
-  double shift_velocity;        /* mm/s */
-  double load;                  /* normal load */
-  double force;                 /* prescribed F_x (force control) */
-  double load_rate, force_rate; /* d/dt of load and force */
-  int linear;                   /* 1: the linear part only: no rigid slip, no inflow (J v) */
+  double t;                /* s: their time (the inflow state is looked up there) */
+  double velocity;         /* V, mm/s */
+  double creepage;         /* xi (prescribed; with force control the unknown is used) */
+  double lateral_creepage; /* eta (3D; idem) */
+  double spin;             /* phi, 1/mm (3D) */
+  double shift_velocity;   /* mm/s */
+  double load;             /* normal load */
+  double force, force_y;   /* prescribed F_x, F_y (force control) */
+  double load_rate, force_rate, force_y_rate; /* d/dt of load and forces */
+  int linear; /* 1: the linear part only: no rigid slip, no inflow (J v) */
 } rs_inputs;
 void rs_model_inputs_at(const rs_model *m, double t, rs_inputs *in);
 /* Inputs held at their values: rates zero. */
@@ -128,6 +138,7 @@ typedef struct rs_work {
   const double *pn, *bound;   /* pressure and traction bound at the time of the last evaluation */
   double *pn_buf, *bound_buf; /* their storage when the load varies [n] */
   double load_cached;         /* load of pn_buf (NAN: none) */
+  double *inflow;             /* state entering at the leading edge, per row: u_pl (ncomp), u* */
   rs_msg msg;                 /* why the last evaluation failed */
 } rs_work;
 
@@ -138,8 +149,10 @@ void rs_work_free(rs_work *w);
  * a constant load; with a normal-load history the normal solution for in->load, cached. */
 int rs_model_normal_at(const rs_model *m, rs_work *w, const rs_inputs *in, rs_msg *msg);
 
-/* Creepage at (inputs, y): the prescribed one, or the unknown with force control. */
+/* Creepage at (inputs, y): the prescribed one, or the unknown with force control; the
+ * lateral creepage (3D) alike. */
 double rs_model_creepage(const rs_model *m, const rs_inputs *in, const double *y);
+double rs_model_lateral_creepage(const rs_model *m, const rs_inputs *in, const double *y);
 
 /* The semismooth scaling r (traction per slip velocity), model.md §4:
  * r = 1 / (cj * C_self + V * C_shift / dx). */
@@ -186,10 +199,12 @@ int rs_model_interpolate_state(const rs_model *from, const double *y_from, const
 /* Quantities of model.md §7 at (y, yp). Arrays of one value per cell, any may be NULL. */
 typedef struct rs_diag {
   double Fx, Fn, creepage, velocity;
-  int count[4]; /* by rs_regime */
+  double Fy, Mz, lateral_creepage, spin; /* 3D (0 in 2D) */
+  int count[4];                          /* by rs_regime */
   double frictional_power, plastic_power, elastic_energy, rigid_slip_power;
 } rs_diag;
 
+/* slip: ncomp blocks of one value per cell (relative slip v_s/V, or v_s when V = 0). */
 int rs_model_diagnostics(const rs_model *m, rs_work *w, const rs_inputs *in, const double *y,
                          const double *yp, rs_diag *d, double *slip, double *tauc,
                          signed char *regime);

@@ -6,6 +6,7 @@
 #include "io/case_internal.h"
 #include "rollsim/elastic2d.h" /* RS_PI */
 #include "rollsim/normal.h"    /* rs_hertz2d */
+#include "rollsim/normal3d.h"  /* rs_hertz3d */
 
 #include <math.h>
 #include <stdlib.h>
@@ -17,11 +18,11 @@ static void set_defaults(rs_case_input *in)
   c->dimension = 2;
   c->normal_load.kind = RS_HISTORY_CONSTANT;
   c->normal_load.value = 178.9;
-  c->radius = 500.0;
+  in->radius = (rs_case_vec){1, {500.0, 0.0}};
   c->normal_solution = RS_NORMAL_DISCRETE;
   c->reference_length = 200.0;
-  c->cells = 100;
-  c->extent = 1.05;
+  in->cells = (rs_case_vec){1, {100, 0}};
+  in->extent = (rs_case_vec){1, {1.05, 0.0}};
   c->shear_modulus = 82000.0;
   c->poisson_ratio = 0.28;
   c->mu = 0.5;
@@ -36,6 +37,9 @@ static void set_defaults(rs_case_input *in)
   c->creepage.value = -0.0004;
   c->shift_velocity.kind = RS_HISTORY_CONSTANT;
   c->shift_velocity.value = 0.0;
+  c->lateral_creepage = c->spin = c->tangential_force_y =
+      (rs_history){.kind = RS_HISTORY_CONSTANT, .value = 0.0};
+  in->force_n = 1;
   c->mode = RS_MODE_TRANSIENT;
   c->end_time = 0.0004;
   c->rolled_distance = -1.0;
@@ -259,20 +263,37 @@ static int resolve_force(const resolver *r, rs_case *c)
                          "give rolling.creepage or rolling.tangential_force, not both (with a "
                          "prescribed force the creepage is computed)");
   int status = check_history(r, "rolling.tangential_force", &c->tangential_force, c->end_time);
+  if (status == RS_OK && c->dimension == 3)
+    status = check_history(r, "rolling.tangential_force", &c->tangential_force_y, c->end_time);
   if (status != RS_OK) return status;
-  const double fmax = rs_history_max_abs(&c->tangential_force, 0.0, c->end_time);
+  const char *unit = c->dimension == 3 ? "N" : "N/mm";
+  double fmax = rs_history_max_abs(&c->tangential_force, 0.0, c->end_time), f0 = 0.0;
+  if (c->dimension == 3) { /* |F| = |(F_x, F_y)|, sampled over the run */
+    fmax = 0.0;
+    for (int k = 0; k <= 2000; k++) {
+      const double t = c->end_time * k / 2000.0;
+      fmax = fmax > hypot(rs_history_eval(&c->tangential_force, t),
+                          rs_history_eval(&c->tangential_force_y, t))
+                 ? fmax
+                 : hypot(rs_history_eval(&c->tangential_force, t),
+                         rs_history_eval(&c->tangential_force_y, t));
+    }
+    f0 = hypot(rs_history_eval(&c->tangential_force, 0.0),
+               rs_history_eval(&c->tangential_force_y, 0.0));
+  } else {
+    f0 = fabs(rs_history_eval(&c->tangential_force, 0.0));
+  }
   const double limit = c->mu * rs_history_min(&c->normal_load, 0.0, c->end_time);
   if (!(fmax < limit))
     return rs_case_error(r->d, force, "rolling.tangential_force",
-                         "reaches %g N/mm, not below the friction limit mu F_n = %g N/mm (full "
+                         "reaches %g %s, not below the friction limit mu F_n = %g %s (full "
                          "sliding: no creepage gives that force)",
-                         fmax, limit);
-  if (c->mode == RS_MODE_TRANSIENT && c->initial_state == RS_START_REST &&
-      rs_history_eval(&c->tangential_force, 0.0) != 0.0)
+                         fmax, unit, limit, unit);
+  if (c->mode == RS_MODE_TRANSIENT && c->initial_state == RS_START_REST && f0 != 0.0)
     return rs_case_error(r->d, force, "rolling.tangential_force",
-                         "is %g N/mm at t = 0, but the run starts at rest without traction: "
+                         "is %g %s at t = 0, but the run starts at rest without traction: "
                          "let it start at 0 (e.g. a ramp) or use simulation.initial_state: steady",
-                         rs_history_eval(&c->tangential_force, 0.0));
+                         f0, unit);
   return RS_OK;
 }
 
@@ -281,11 +302,36 @@ static int resolve_force(const resolver *r, rs_case *c)
 static int resolve_grid(const resolver *r, rs_case *c)
 {
   const yaml_node_t *range = given(r, "grid.x_range"), *extent = given(r, "grid.extent");
+  const yaml_node_t *yrange = given(r, "grid.y_range");
   c->grid_from_range = range != NULL;
+  if (yrange && !range)
+    return rs_case_error(r->d, yrange, "grid.y_range",
+                         "give grid.x_range and grid.y_range together (mm), or grid.extent");
   if (!range) return RS_OK;
   if (extent)
     return rs_case_error(r->d, range, "grid.x_range",
                          "give grid.extent (Hertz half-widths) or grid.x_range (mm), not both");
+  if (c->dimension == 3) {
+    if (!yrange)
+      return rs_case_error(r->d, range, "grid.y_range",
+                           "missing: a 3D grid given in mm needs grid.x_range and grid.y_range");
+    rs_hertz_ellipse hz;
+    rs_msg tmp;
+    if (rs_hertz3d(rs_history_max_abs(&c->normal_load, 0.0, c->end_time), 0.5 / c->radius,
+                   0.5 / c->radius_y, c->shear_modulus, c->poisson_ratio, &hz, &tmp) != RS_OK)
+      return rs_case_error(r->d, range, "grid.x_range", "%s", tmp.text);
+    if (c->x_range[0] > -hz.a || c->x_range[1] < hz.a)
+      return rs_case_error(r->d, range, "grid.x_range",
+                           "[%g, %g] mm does not hold the Hertz ellipse along x, [%g, %g] mm (a = "
+                           "%g mm at the largest load): the contact would be cut off",
+                           c->x_range[0], c->x_range[1], -hz.a, hz.a, hz.a);
+    if (c->y_range[0] > -hz.b || c->y_range[1] < hz.b)
+      return rs_case_error(r->d, yrange, "grid.y_range",
+                           "[%g, %g] mm does not hold the Hertz ellipse along y, [%g, %g] mm (b = "
+                           "%g mm at the largest load): the contact would be cut off",
+                           c->y_range[0], c->y_range[1], -hz.b, hz.b, hz.b);
+    return RS_OK;
+  }
   double a, p0;
   rs_hertz2d(rs_history_max_abs(&c->normal_load, 0.0, c->end_time), c->radius, c->shear_modulus,
              c->poisson_ratio, &a, &p0);
@@ -294,6 +340,76 @@ static int resolve_grid(const resolver *r, rs_case *c)
                          "[%g, %g] mm does not hold the Hertz contact [%g, %g] mm (a = %g mm at "
                          "the largest load): the contact would be cut off",
                          c->x_range[0], c->x_range[1], -a, a, a);
+  return RS_OK;
+}
+
+/* A key that is one number in 2D and a pair [x, y] in 3D (contact.radius, grid.cells,
+ * grid.extent), given with the count the dimension needs. */
+static int check_count(const resolver *r, const char *key, const rs_case_vec *v, int want)
+{
+  const yaml_node_t *n = given(r, key);
+  if (!n || v->n == want) return RS_OK;
+  return rs_case_error(r->d, n, key,
+                       want == 2 ? "a 3D contact (contact.dimension: 3) takes a list of two [x, y]"
+                                 : "a 2D contact takes one number; lists [x, y] are for "
+                                   "contact.dimension: 3");
+}
+
+/* The keys whose form depends on contact.dimension (interfaces.md v2): radius or
+ * curvature, cells, extent, ranges, the lateral creepage and spin, the force pair. */
+static int resolve_dimension(const resolver *r, rs_case_input *in)
+{
+  rs_case *c = &in->c;
+  const int three = c->dimension == 3, want = three ? 2 : 1;
+  int status;
+  if ((status = check_count(r, "contact.radius", &in->radius, want)) != RS_OK ||
+      (status = check_count(r, "grid.cells", &in->cells, want)) != RS_OK ||
+      (status = check_count(r, "grid.extent", &in->extent, want)) != RS_OK)
+    return status;
+  if (!three) {
+    static const char *const only3d[] = {"contact.curvature",        "grid.y_range",
+                                         "rolling.lateral_creepage", "rolling.spin",
+                                         "twin_disc.crown_radius_1", "twin_disc.crown_radius_2"};
+    for (size_t k = 0; k < sizeof only3d / sizeof *only3d; k++)
+      if (given(r, only3d[k]))
+        return rs_case_error(r->d, given(r, only3d[k]), only3d[k],
+                             "is for 3D contact (contact.dimension: 3)");
+    if (in->force_n == 2)
+      return rs_case_error(r->d, given(r, "rolling.tangential_force"), "rolling.tangential_force",
+                           "a 2D contact takes one force (N/mm); [Fx, Fy] is for "
+                           "contact.dimension: 3");
+    c->radius = in->radius.v[0];
+    c->cells = (int)in->cells.v[0];
+    c->extent = in->extent.v[0];
+    return RS_OK;
+  }
+  const yaml_node_t *rad = given(r, "contact.radius"), *cur = given(r, "contact.curvature");
+  if (rad && cur)
+    return rs_case_error(r->d, cur, "contact.curvature",
+                         "give contact.radius [Rx, Ry] (mm) or contact.curvature [A, B] (1/mm), "
+                         "not both");
+  if (cur && in->curvature.n != 2)
+    return rs_case_error(r->d, cur, "contact.curvature", "expected a list of two [A, B] (1/mm)");
+  if (!rad && !cur && !given(r, "twin_disc"))
+    return rs_case_error(r->d, given(r, "contact.dimension"), "contact.radius",
+                         "missing: a 3D contact needs contact.radius [Rx, Ry] (mm) or "
+                         "contact.curvature [A, B] (1/mm), gap h = x^2/(2Rx) + y^2/(2Ry)");
+  c->radius = cur ? 0.5 / in->curvature.v[0] : in->radius.v[0];
+  c->radius_y = cur ? 0.5 / in->curvature.v[1] : in->radius.v[1];
+  /* defaults of a 3D grid: 40 x 40 cells over +-1.1 a, +-1.1 b */
+  c->cells = given(r, "grid.cells") ? (int)in->cells.v[0] : 40;
+  c->cells_y = given(r, "grid.cells") ? (int)in->cells.v[1] : 40;
+  c->extent = given(r, "grid.extent") ? in->extent.v[0] : 1.1;
+  c->extent_y = given(r, "grid.extent") ? in->extent.v[1] : 1.1;
+  if (c->force_control || given(r, "rolling.tangential_force")) {
+    if (in->force_n != 2)
+      return rs_case_error(r->d, given(r, "rolling.tangential_force"), "rolling.tangential_force",
+                           "a 3D contact takes both components [Fx, Fy] (N)");
+    if (given(r, "rolling.lateral_creepage"))
+      return rs_case_error(r->d, given(r, "rolling.lateral_creepage"), "rolling.lateral_creepage",
+                           "give rolling.lateral_creepage or rolling.tangential_force, not both "
+                           "(with prescribed forces both creepages are computed)");
+  }
   return RS_OK;
 }
 
@@ -317,16 +433,15 @@ static int resolve(const rs_case_doc *d, rs_case_input *in, const yaml_node_t **
   resolver r = {d, where};
   rs_case *c = &in->c;
   int status;
-  if (c->dimension == 3)
-    return rs_case_error(d, given(&r, "contact.dimension"), "contact.dimension",
-                         "3D (elliptic point contact) is not implemented yet; use 2");
+  if ((status = resolve_dimension(&r, in)) != RS_OK) return status;
   if ((status = resolve_plasticity(&r, c, in->k_rel)) != RS_OK ||
       (status = resolve_twin_disc(&r, c)) != RS_OK || (status = resolve_time(&r, c)) != RS_OK)
     return status;
-  const rs_history *hs[] = {&c->normal_load, &c->velocity, &c->creepage, &c->shift_velocity};
-  const char *names[] = {"contact.normal_load", "rolling.velocity", "rolling.creepage",
-                         "rolling.shift_velocity"};
-  for (int i = 0; i < 4; i++)
+  const rs_history *hs[] = {&c->normal_load,    &c->velocity,         &c->creepage,
+                            &c->shift_velocity, &c->lateral_creepage, &c->spin};
+  const char *names[] = {"contact.normal_load",    "rolling.velocity",         "rolling.creepage",
+                         "rolling.shift_velocity", "rolling.lateral_creepage", "rolling.spin"};
+  for (int i = 0; i < 6; i++)
     if ((status = check_history(&r, names[i], hs[i], c->end_time)) != RS_OK) return status;
   if (!(rs_history_min(&c->normal_load, 0.0, c->end_time) > 0))
     return rs_case_error(d, given(&r, "contact.normal_load"), "contact.normal_load",
@@ -387,6 +502,9 @@ void rs_case_free(rs_case *c)
   rs_history_free(&c->velocity);
   rs_history_free(&c->creepage);
   rs_history_free(&c->tangential_force);
+  rs_history_free(&c->tangential_force_y);
+  rs_history_free(&c->lateral_creepage);
+  rs_history_free(&c->spin);
   free(c->rig.steps);
   rs_history_free(&c->shift_velocity);
   memset(c, 0, sizeof *c);
@@ -425,7 +543,14 @@ static void print_history(const rs_history *h, FILE *out)
 
 void rs_case_print(const rs_case *c, FILE *out)
 {
-  rs_case_input in = {*c, c->k_tau / (c->shear_modulus + c->k_tau)};
+  const int three = c->dimension == 3;
+  rs_case_input in = {.c = *c,
+                      .k_rel = c->k_tau / (c->shear_modulus + c->k_tau),
+                      .radius = {three ? 2 : 1, {c->radius, c->radius_y}},
+                      .curvature = {2, {0.5 / c->radius, three ? 0.5 / c->radius_y : 0.0}},
+                      .cells = {three ? 2 : 1, {c->cells, c->cells_y}},
+                      .extent = {three ? 2 : 1, {c->extent, c->extent_y}},
+                      .force_n = three ? 2 : 1};
   char num[32];
   for (size_t i = 0; i < rs_case_nkeys; i++) {
     const rs_case_key *k = &rs_case_keys[i];
@@ -453,7 +578,35 @@ void rs_case_print(const rs_case *c, FILE *out)
     }
     if (k->kind == RS_KEY_SECTION || k->kind == RS_KEY_OPAQUE) continue;
     if (!strcmp(k->path, "rolling.tangential_force") && !c->force_control) {
-      fprintf(out, "%s: null  # N/mm (not given: the creepage is prescribed)\n", k->path);
+      fprintf(out, "%s: null  # %s (not given: the creepage is prescribed)\n", k->path,
+              three ? "N" : "N/mm");
+      continue;
+    }
+    if (!strcmp(k->path, "rolling.tangential_force") && three) {
+      fprintf(out, "%s: [", k->path);
+      print_history(&c->tangential_force, out);
+      fprintf(out, ", ");
+      print_history(&c->tangential_force_y, out);
+      fprintf(out, "]  # N\n");
+      continue;
+    }
+    if (!three &&
+        (!strcmp(k->path, "contact.curvature") || !strcmp(k->path, "grid.y_range") ||
+         !strcmp(k->path, "rolling.lateral_creepage") || !strcmp(k->path, "rolling.spin"))) {
+      fprintf(out, "%s: null  # 3D contact only\n", k->path);
+      continue;
+    }
+    if (!strcmp(k->path, "contact.curvature")) {
+      fprintf(out, "%s: null  # 1/mm (contact.radius gives A = 1/(2 Rx), B = 1/(2 Ry))\n", k->path);
+      continue;
+    }
+    if (!strcmp(k->path, "grid.y_range")) {
+      char lo[32], hi[32];
+      if (c->grid_from_range)
+        fprintf(out, "%s: [%s, %s]  # mm\n", k->path, rs_case_fmt(c->y_range[0], lo, sizeof lo),
+                rs_case_fmt(c->y_range[1], hi, sizeof hi));
+      else
+        fprintf(out, "%s: null  # mm (not given: grid.extent)\n", k->path);
       continue;
     }
     if (!strcmp(k->path, "rolling.creepage") && c->force_control) {
@@ -482,6 +635,17 @@ void rs_case_print(const rs_case *c, FILE *out)
     case RS_KEY_NUMBER:
       fprintf(out, "%s", rs_case_fmt(*(const double *)field, num, sizeof num));
       break;
+    case RS_KEY_VECTOR: {
+      const rs_case_vec *v = field;
+      if (v->n == 1) {
+        fprintf(out, "%s", rs_case_fmt(v->v[0], num, sizeof num));
+      } else {
+        char second[32];
+        fprintf(out, "[%s, %s]", rs_case_fmt(v->v[0], num, sizeof num),
+                rs_case_fmt(v->v[1], second, sizeof second));
+      }
+      break;
+    }
     case RS_KEY_INTEGER: fprintf(out, "%d", *(const int *)field); break;
     case RS_KEY_LONG: fprintf(out, "%ld", *(const long *)field); break;
     case RS_KEY_TEXT:

@@ -74,22 +74,35 @@ typedef enum rs_case_key_kind {
   RS_KEY_HISTORY,  /* rs_history */
   RS_KEY_FIELDS,   /* unsigned mask of RS_FIELD_* */
   RS_KEY_PROTOCOL, /* rs_twin_disc steps: a list of {slip|ramp_to, revolutions} (case_rig.c) */
-  RS_KEY_RANGE     /* double[2]: [lo, hi] with lo < hi, each within the key's range */
+  RS_KEY_RANGE,    /* double[2]: [lo, hi] with lo < hi, each within the key's range */
+  RS_KEY_VECTOR    /* rs_case_vec: a number or a list of two (2D / 3D), each within range */
 } rs_case_key_kind;
 
 enum {
-  RS_KEY_LO_OPEN = 1 << 0,  /* lo excluded */
-  RS_KEY_HI_OPEN = 1 << 1,  /* hi excluded */
-  RS_KEY_NULLABLE = 1 << 2, /* null = the default */
-  RS_KEY_DERIVED = 1 << 3,  /* not stored as given (k_rel), printed from the case */
-  RS_KEY_HI_ABSURD = 1 << 4 /* hi is a sanity bound, not a physical one */
+  RS_KEY_LO_OPEN = 1 << 0,   /* lo excluded */
+  RS_KEY_HI_OPEN = 1 << 1,   /* hi excluded */
+  RS_KEY_NULLABLE = 1 << 2,  /* null = the default */
+  RS_KEY_DERIVED = 1 << 3,   /* not stored as given (k_rel), printed from the case */
+  RS_KEY_HI_ABSURD = 1 << 4, /* hi is a sanity bound, not a physical one */
+  RS_KEY_WHOLE = 1 << 5,     /* RS_KEY_VECTOR of whole numbers */
+  RS_KEY_XY = 1 << 6         /* RS_KEY_HISTORY that may be a list [x, y] of two histories (3D),
+                                the second into the rs_history after the field */
 };
 #define RS_KEY_NO_FIELD ((size_t)-1) /* accepted and checked, nothing to store (friction.law) */
 
-/* The case being built: the public case plus what is given but not stored. */
+/* A number or a list of two (keys whose value is one number in 2D and two in 3D). */
+typedef struct rs_case_vec {
+  int n; /* values given: 1 or 2 */
+  double v[2];
+} rs_case_vec;
+
+/* The case being built: the public case plus what is given but not stored as such
+ * (resolved into the case by dimension in case.c). */
 typedef struct rs_case_input {
   rs_case c;
   double k_rel;
+  rs_case_vec radius, curvature, cells, extent;
+  int force_n; /* rolling.tangential_force: 1 history, or 2 ([Fx, Fy], 3D) */
 } rs_case_input;
 
 typedef struct rs_case_key {

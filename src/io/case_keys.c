@@ -31,18 +31,20 @@ const rs_case_key rs_case_keys[] = {
     {"contact.dimension", RS_KEY_INTEGER, F(c.dimension), "", 2, 3, 0, NULL},
     {"contact.normal_load", RS_KEY_HISTORY, F(c.normal_load), "N/mm", 0, BIG, RS_KEY_HI_ABSURD,
      NULL},
-    {"contact.radius", RS_KEY_NUMBER, F(c.radius), "mm", 0, 1e9, RS_KEY_LO_OPEN | RS_KEY_HI_ABSURD,
+    {"contact.radius", RS_KEY_VECTOR, F(radius), "mm", 0, 1e9, RS_KEY_LO_OPEN | RS_KEY_HI_ABSURD,
      NULL},
+    {"contact.curvature", RS_KEY_VECTOR, F(curvature), "1/mm", 0, 1e9,
+     RS_KEY_LO_OPEN | RS_KEY_HI_ABSURD | RS_KEY_NULLABLE, NULL},
     {"contact.normal_solution", RS_KEY_CHOICE, F(c.normal_solution), "", 0, 0, 0,
      normal_solution_names},
     {"contact.reference_length", RS_KEY_NUMBER, F(c.reference_length), "mm", 0, 1e9,
      RS_KEY_LO_OPEN | RS_KEY_HI_ABSURD, NULL},
 
     {"grid", RS_KEY_SECTION, 0, "", 0, 0, 0, NULL},
-    {"grid.cells", RS_KEY_INTEGER, F(c.cells), "", 2, 100000, 0, NULL},
-    {"grid.extent", RS_KEY_NUMBER, F(c.extent), "Hertz half-widths", 1, 1000, RS_KEY_HI_ABSURD,
-     NULL},
+    {"grid.cells", RS_KEY_VECTOR, F(cells), "", 2, 100000, RS_KEY_WHOLE, NULL},
+    {"grid.extent", RS_KEY_VECTOR, F(extent), "Hertz semi-axes", 1, 1000, RS_KEY_HI_ABSURD, NULL},
     {"grid.x_range", RS_KEY_RANGE, F(c.x_range), "mm", -1e9, 1e9, RS_KEY_HI_ABSURD, NULL},
+    {"grid.y_range", RS_KEY_RANGE, F(c.y_range), "mm", -1e9, 1e9, RS_KEY_HI_ABSURD, NULL},
 
     {"material", RS_KEY_SECTION, 0, "", 0, 0, 0, NULL},
     {"material.shear_modulus", RS_KEY_NUMBER, F(c.shear_modulus), "N/mm^2", 0, BIG,
@@ -72,8 +74,12 @@ const rs_case_key rs_case_keys[] = {
     {"rolling.velocity", RS_KEY_HISTORY, F(c.velocity), "mm/s", 0, 1e9, RS_KEY_HI_ABSURD, NULL},
     {"rolling.creepage", RS_KEY_HISTORY, F(c.creepage), "", -10, 10,
      RS_KEY_HI_ABSURD | RS_KEY_NULLABLE, NULL},
-    {"rolling.tangential_force", RS_KEY_HISTORY, F(c.tangential_force), "N/mm", -BIG, BIG,
+    {"rolling.lateral_creepage", RS_KEY_HISTORY, F(c.lateral_creepage), "", -10, 10,
      RS_KEY_HI_ABSURD | RS_KEY_NULLABLE, NULL},
+    {"rolling.spin", RS_KEY_HISTORY, F(c.spin), "1/mm", -1e3, 1e3,
+     RS_KEY_HI_ABSURD | RS_KEY_NULLABLE, NULL},
+    {"rolling.tangential_force", RS_KEY_HISTORY, F(c.tangential_force), "N/mm", -BIG, BIG,
+     RS_KEY_HI_ABSURD | RS_KEY_NULLABLE | RS_KEY_XY, NULL},
     {"rolling.shift_velocity", RS_KEY_HISTORY, F(c.shift_velocity), "mm/s", -1e9, 1e9,
      RS_KEY_HI_ABSURD, NULL},
 
@@ -82,6 +88,10 @@ const rs_case_key rs_case_keys[] = {
      RS_KEY_LO_OPEN | RS_KEY_HI_ABSURD, NULL},
     {"twin_disc.radius_2", RS_KEY_NUMBER, F(c.rig.radius_2), "mm", 0, BIG,
      RS_KEY_LO_OPEN | RS_KEY_HI_ABSURD, NULL},
+    {"twin_disc.crown_radius_1", RS_KEY_NUMBER, F(c.rig.crown_radius_1), "mm", 0, BIG,
+     RS_KEY_LO_OPEN | RS_KEY_HI_ABSURD | RS_KEY_NULLABLE, NULL},
+    {"twin_disc.crown_radius_2", RS_KEY_NUMBER, F(c.rig.crown_radius_2), "mm", 0, BIG,
+     RS_KEY_LO_OPEN | RS_KEY_HI_ABSURD | RS_KEY_NULLABLE, NULL},
     {"twin_disc.width", RS_KEY_NUMBER, F(c.rig.width), "mm", 0, BIG,
      RS_KEY_LO_OPEN | RS_KEY_HI_ABSURD, NULL},
     {"twin_disc.normal_force", RS_KEY_NUMBER, F(c.rig.normal_force), "N", 0, BIG,
@@ -200,6 +210,61 @@ static int parse_range(const rs_case_doc *d, const yaml_node_t *n, const rs_case
   return RS_OK;
 }
 
+/* A number, or a list of two (3D); whole numbers when RS_KEY_WHOLE; each in range. */
+static int parse_vector(const rs_case_doc *d, const yaml_node_t *n, const rs_case_key *spec,
+                        rs_case_vec *out)
+{
+  char got[96];
+  const yaml_node_t *item[2] = {n, NULL};
+  int count = 1;
+  if (n->type == YAML_SEQUENCE_NODE) {
+    count = (int)(n->data.sequence.items.top - n->data.sequence.items.start);
+    if (count < 1 || count > 2)
+      return rs_case_error(d, n, spec->path,
+                           "expected a number (2D) or a list of two [x, y] (3D), got %s",
+                           rs_case_describe(n, got, sizeof got));
+    for (int k = 0; k < count; k++)
+      item[k] = yaml_document_get_node((yaml_document_t *)&d->doc, n->data.sequence.items.start[k]);
+  }
+  for (int k = 0; k < count; k++) {
+    int status = rs_case_number(d, item[k], spec->path, &out->v[k]);
+    if (status == RS_OK && (spec->flags & RS_KEY_WHOLE) && out->v[k] != floor(out->v[k]))
+      status = rs_case_error(d, item[k], spec->path, "expected a whole number, got %s",
+                             (const char *)item[k]->data.scalar.value);
+    if (status == RS_OK) status = rs_case_check_range(d, item[k], spec, spec->path, out->v[k]);
+    if (status != RS_OK) return status;
+  }
+  out->n = count;
+  return RS_OK;
+}
+
+/* A history, or (RS_KEY_XY) a list of two histories [x, y] (3D): the second into `second`;
+ * *count 1 or 2. */
+static int parse_history_xy(const rs_case_doc *d, const yaml_node_t *n, const rs_case_key *spec,
+                            rs_history *h, rs_history *second, int *count)
+{
+  char got[96];
+  if (!(spec->flags & RS_KEY_XY) || n->type != YAML_SEQUENCE_NODE) {
+    if (spec->flags & RS_KEY_XY) *count = 1;
+    rs_history_free(h);
+    return rs_case_history(d, n, spec->path, spec->unit, h);
+  }
+  if (n->data.sequence.items.top - n->data.sequence.items.start != 2)
+    return rs_case_error(d, n, spec->path,
+                         "expected one value (2D) or a list of two [x, y] (3D), got %s",
+                         rs_case_describe(n, got, sizeof got));
+  for (int k = 0; k < 2; k++) {
+    const yaml_node_t *item =
+        yaml_document_get_node((yaml_document_t *)&d->doc, n->data.sequence.items.start[k]);
+    rs_history *dst = k ? second : h;
+    rs_history_free(dst);
+    const int status = rs_case_history(d, item, spec->path, spec->unit, dst);
+    if (status != RS_OK) return status;
+  }
+  *count = 2;
+  return RS_OK;
+}
+
 /* Parse the value of key `spec` into `in`. */
 static int parse_value(const rs_case_doc *d, const rs_case_key *spec, const yaml_node_t *n,
                        rs_case_input *in)
@@ -232,11 +297,12 @@ static int parse_value(const rs_case_doc *d, const rs_case_key *spec, const yaml
     if (field) *(int *)field = choice;
     return RS_OK;
   case RS_KEY_HISTORY:
-    rs_history_free((rs_history *)field);
-    return rs_case_history(d, n, spec->path, spec->unit, (rs_history *)field);
+    return parse_history_xy(d, n, spec, (rs_history *)field, &in->c.tangential_force_y,
+                            &in->force_n);
   case RS_KEY_FIELDS: return parse_fields(d, n, spec->path, (unsigned *)field);
   case RS_KEY_PROTOCOL: return rs_case_protocol(d, n, spec->path, (rs_twin_disc *)field);
   case RS_KEY_RANGE: return parse_range(d, n, spec, (double *)field);
+  case RS_KEY_VECTOR: return parse_vector(d, n, spec, (rs_case_vec *)field);
   case RS_KEY_SECTION:
   case RS_KEY_OPAQUE: break;
   }

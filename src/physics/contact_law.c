@@ -34,8 +34,16 @@ static void put(rs_law_out *o, int row, int var, double v)
   o->present[row][var] = 1;
 }
 
+/* The disk projections of model.md §10 for two components: proj(z) = z min(1, b/|z|),
+ * whose generalized Jacobian outside the disk is (b/|z|)(I - z^ z^T). */
+static void disk_law(const rs_plasticity *pl, const rs_law_in *in, int jac, rs_law_out *out);
+
 void rs_contact_law(const rs_plasticity *pl, const rs_law_in *in, int jac, rs_law_out *out)
 {
+  if (in->ncomp == 2) {
+    disk_law(pl, in, jac, out);
+    return;
+  }
   const int nc = in->ncomp; /* 1: the interval projection */
   const int Rf = rs_law_row_f(0), Rpl = rs_law_row_pl(nc, 0), Rs = rs_law_row_star(nc);
   const int P = rs_law_var_p(0), VS = rs_law_var_vs(nc, 0), FL = rs_law_var_flow(nc, 0);
@@ -104,4 +112,87 @@ void rs_contact_law(const rs_plasticity *pl, const rs_law_in *in, int jac, rs_la
   const double sig = flow != 0.0 ? sign_of(flow) : sign_of(p);
   put(out, Rs, FL, -r * sig);
   put(out, Rs, DUS, r);
+}
+
+static void disk_law(const rs_plasticity *pl, const rs_law_in *in, int jac, rs_law_out *out)
+{
+  enum { NC = 2 };
+  const double r = in->r, g = in->g, tauc = rs_yield_limit(pl, in->ustar);
+  const double *p = in->p, *vs = in->vs, *m = in->flow;
+  const double mnorm = hypot(m[0], m[1]), pnorm = hypot(p[0], p[1]);
+  double z[NC], yv[NC];
+  for (int c = 0; c < NC; c++) {
+    z[c] = p[c] - r * vs[c];
+    yv[c] = p[c] + r * m[c];
+  }
+  const double zn = hypot(z[0], z[1]), yn = hypot(yv[0], yv[1]);
+  unsigned char br = 0;
+  int slip = 0, yield = 0;
+  if (!in->in_contact) {
+    br = RS_BRANCH_EXTERIOR;
+    for (int c = 0; c < NC; c++) {
+      out->R[rs_law_row_f(c)] = p[c];
+      out->R[rs_law_row_pl(NC, c)] = r * m[c];
+    }
+  } else {
+    slip = zn > g;
+    yield = yn > tauc;
+    /* both at once without hardening: the lower bound decides (see the 1-component law) */
+    if (slip && yield && !(rs_yield_slope(pl, in->ustar) > 0.0 && g > pl->tau_c0)) {
+      if (g <= tauc)
+        yield = 0;
+      else
+        slip = 0;
+    }
+    if (slip) br |= RS_BRANCH_SLIP;
+    if (yield) br |= RS_BRANCH_YIELD;
+    for (int c = 0; c < NC; c++) {
+      out->R[rs_law_row_f(c)] = slip ? p[c] - g * z[c] / zn : r * vs[c];
+      out->R[rs_law_row_pl(NC, c)] = yield ? p[c] - tauc * yv[c] / yn : -r * m[c];
+    }
+  }
+  out->R[rs_law_row_star(NC)] = r * (in->dustar - mnorm);
+  out->branch = br;
+  out->pins_p = 0;
+  if (!jac) return;
+
+  memset(out->present, 0, sizeof out->present);
+  for (int c = 0; c < NC; c++) {
+    const int Rf = rs_law_row_f(c), Rpl = rs_law_row_pl(NC, c);
+    /* friction rows */
+    if (br & RS_BRANCH_EXTERIOR) {
+      put(out, Rf, rs_law_var_p(c), 1.0);
+    } else if (br & RS_BRANCH_SLIP) {
+      /* R_f = p - g z/|z|: dR/dp = I - (g/|z|)(I - z^ z^T), dR/dv_s = r (g/|z|)(I - z^ z^T) */
+      for (int b = 0; b < NC; b++) {
+        const double t = (g / zn) * ((b == c ? 1.0 : 0.0) - z[c] * z[b] / (zn * zn));
+        put(out, Rf, rs_law_var_p(b), (b == c ? 1.0 : 0.0) - t);
+        put(out, Rf, rs_law_var_vs(NC, b), r * t);
+      }
+    } else {
+      put(out, Rf, rs_law_var_vs(NC, c), r);
+    }
+    /* plasticity rows */
+    if (br & RS_BRANCH_YIELD) {
+      /* R_pl = p - tau_c y/|y|, y = p + r m: dR/dp = I - (tau_c/|y|)(I - y^ y^T),
+       * dR/dm = -r (tau_c/|y|)(I - y^ y^T), dR/du* = -tau_c' y^ */
+      for (int b = 0; b < NC; b++) {
+        const double t = (tauc / yn) * ((b == c ? 1.0 : 0.0) - yv[c] * yv[b] / (yn * yn));
+        put(out, Rpl, rs_law_var_p(b), (b == c ? 1.0 : 0.0) - t);
+        put(out, Rpl, rs_law_var_flow(NC, b), -r * t);
+      }
+      put(out, Rpl, rs_law_var_ustar(NC), -rs_yield_slope(pl, in->ustar) * yv[c] / yn);
+    } else {
+      put(out, Rpl, rs_law_var_flow(NC, c), (br & RS_BRANCH_EXTERIOR) ? r : -r);
+    }
+  }
+  /* hardening row: d|m|/dm = m^, or the direction of p where m = 0 (model.md §9) */
+  const int Rs = rs_law_row_star(NC);
+  for (int c = 0; c < NC; c++) {
+    const double dir = mnorm > 0.0   ? m[c] / mnorm
+                       : pnorm > 0.0 ? p[c] / pnorm
+                                     : (c == 0 ? 1.0 : 0.0);
+    put(out, Rs, rs_law_var_flow(NC, c), -r * dir);
+  }
+  put(out, Rs, rs_law_var_dustar(NC), r);
 }

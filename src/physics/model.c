@@ -10,11 +10,27 @@
 
 #include "physics/model_internal.h"
 #include "rollsim/normal.h"
+#include "rollsim/normal3d.h"
 #include "rollsim/rig.h"
 
 int rs_model_pressure(const rs_model *m, rs_elastic_work *ew, double load, double *pn,
                       double *approach, rs_msg *msg)
 {
+  if (m->par.normal_solution == RS_NORMAL_HERTZ && m->par.dimension == 3) {
+    rs_hertz_ellipse hz;
+    const int status = rs_hertz3d(load, 0.5 / m->par.radius, 0.5 / m->par.radius_y,
+                                  m->par.shear_modulus, m->par.poisson_ratio, &hz, msg);
+    if (status != RS_OK) return status;
+    const rs_grid3d g = {.nx = m->grid.nx,
+                         .ny = m->grid.ny,
+                         .x0 = m->grid.x_lo,
+                         .y0 = m->grid.y_lo,
+                         .dx = m->grid.dx,
+                         .dy = m->grid.dy};
+    rs_hertz3d_pressure(&hz, &g, pn);
+    if (approach) *approach = hz.approach;
+    return RS_OK;
+  }
   if (m->par.normal_solution == RS_NORMAL_HERTZ) {
     double a, p0;
     rs_hertz2d(load, m->par.radius, m->par.shear_modulus, m->par.poisson_ratio, &a, &p0);
@@ -25,20 +41,29 @@ int rs_model_pressure(const rs_model *m, rs_elastic_work *ew, double load, doubl
   return rs_normal_solve(&m->el, ew, m->gap, load, pn, approach, msg);
 }
 
-/* Grid of `cells` cells over [x_lo, x_hi], the elastic operator, the gap, the normal
- * solution at the load of t = 0 and the traction bound. On failure the caller frees m. */
-static int build_grid(rs_model *m, int cells, double x_lo, double x_hi, rs_msg *msg)
+/* Grid of cells over [x_lo, x_hi] x [y_lo, y_hi] (2D: ny = 1, y_lo = y_hi = 0), the elastic
+ * operator, the gap, the normal solution at the load of t = 0 and the traction bound. On
+ * failure the caller frees m. */
+static int build_grid(rs_model *m, int nx, double x_lo, double x_hi, int ny, double y_lo,
+                      double y_hi, rs_msg *msg)
 {
-  int status = rs_grid_create(&m->grid, cells, x_lo, x_hi, 1, 0.0, 0.0, msg);
+  int status = rs_grid_create(&m->grid, nx, x_lo, x_hi, ny, y_lo, y_hi, msg);
   if (status != RS_OK) return status;
-  const int n = m->grid.n;
-  m->lay = rs_layout_make(n, 1, m->par.force_control ? 1 : 0);
+  const int n = m->grid.n, ncomp = m->par.dimension == 3 ? 2 : 1;
+  m->lay = rs_layout_make(n, ncomp, m->par.force_control ? ncomp : 0);
   m->gap = malloc((size_t)n * sizeof *m->gap);
   m->pn = malloc((size_t)n * sizeof *m->pn);
   m->bound = malloc((size_t)n * sizeof *m->bound);
   if (!m->gap || !m->pn || !m->bound)
     return rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory for a grid of %d cells", n);
-  rs_normal2d_profile(m->grid.x, n, m->par.radius, m->gap);
+  if (m->par.dimension == 3) { /* h = x^2/(2 Rx) + y^2/(2 Ry) */
+    for (int j = 0; j < m->grid.ny; j++)
+      for (int i = 0; i < m->grid.nx; i++)
+        m->gap[j * m->grid.nx + i] = m->grid.x[i] * m->grid.x[i] / (2.0 * m->par.radius) +
+                                     m->grid.y[j] * m->grid.y[j] / (2.0 * m->par.radius_y);
+  } else {
+    rs_normal2d_profile(m->grid.x, n, m->par.radius, m->gap);
+  }
   status = rs_elastic_op_create(&m->el, &m->grid, m->par.shear_modulus, m->par.poisson_ratio,
                                 m->par.reference_length, msg);
   rs_elastic_work ew = {0};
@@ -59,12 +84,15 @@ static int copy_params(rs_model *m, const rs_model_params *par, rs_msg *msg)
 {
   m->par = *par;
   m->par.load = m->par.velocity = m->par.creepage = m->par.shift_velocity = m->par.force =
-      (rs_history){0};
+      m->par.lateral_creepage = m->par.spin = m->par.force_y = (rs_history){0};
   if (rs_history_copy(&m->par.load, &par->load) != RS_OK ||
       rs_history_copy(&m->par.velocity, &par->velocity) != RS_OK ||
       rs_history_copy(&m->par.creepage, &par->creepage) != RS_OK ||
+      rs_history_copy(&m->par.lateral_creepage, &par->lateral_creepage) != RS_OK ||
+      rs_history_copy(&m->par.spin, &par->spin) != RS_OK ||
       rs_history_copy(&m->par.shift_velocity, &par->shift_velocity) != RS_OK ||
-      rs_history_copy(&m->par.force, &par->force) != RS_OK)
+      rs_history_copy(&m->par.force, &par->force) != RS_OK ||
+      rs_history_copy(&m->par.force_y, &par->force_y) != RS_OK)
     return rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory copying input histories");
   return RS_OK;
 }
@@ -82,13 +110,33 @@ int rs_model_create(rs_model *m, const rs_model_params *par, rs_msg *msg)
   m->load_varies = !rs_history_is_constant(&par->load);
   m->normal_load = m->load_varies ? rs_history_max_abs(&par->load, 0.0, par->end_time)
                                   : rs_history_eval(&par->load, 0.0);
-  rs_hertz2d(m->normal_load, par->radius, par->shear_modulus, par->poisson_ratio, &m->hertz_a,
-             &m->hertz_p0);
   m->layer_flex =
       par->layer_thickness > 0.0 ? par->layer_thickness / par->layer_shear_modulus : 0.0;
-  const double half = par->extent * m->hertz_a;
-  status = par->grid_from_range ? build_grid(m, par->cells, par->x_range[0], par->x_range[1], msg)
-                                : build_grid(m, par->cells, -half, half, msg);
+  if (par->dimension == 3) {
+    rs_hertz_ellipse hz;
+    status = rs_hertz3d(m->normal_load, 0.5 / par->radius, 0.5 / par->radius_y, par->shear_modulus,
+                        par->poisson_ratio, &hz, msg);
+    if (status != RS_OK) {
+      rs_model_free(m);
+      return status;
+    }
+    m->hertz_a = hz.a;
+    m->hertz_b = hz.b;
+    m->hertz_p0 = hz.p0;
+    m->contact_measure = RS_PI * hz.a * hz.b;
+    const double hx = par->extent * hz.a, hy = par->extent_y * hz.b;
+    status = par->grid_from_range ? build_grid(m, par->cells, par->x_range[0], par->x_range[1],
+                                               par->cells_y, par->y_range[0], par->y_range[1], msg)
+                                  : build_grid(m, par->cells, -hx, hx, par->cells_y, -hy, hy, msg);
+  } else {
+    rs_hertz2d(m->normal_load, par->radius, par->shear_modulus, par->poisson_ratio, &m->hertz_a,
+               &m->hertz_p0);
+    m->contact_measure = 2.0 * m->hertz_a;
+    const double half = par->extent * m->hertz_a;
+    status = par->grid_from_range
+                 ? build_grid(m, par->cells, par->x_range[0], par->x_range[1], 1, 0.0, 0.0, msg)
+                 : build_grid(m, par->cells, -half, half, 1, 0.0, 0.0, msg);
+  }
   if (status != RS_OK) rs_model_free(m);
   return status;
 }
@@ -102,9 +150,12 @@ void rs_model_free(rs_model *m)
   rs_grid_free(&m->grid);
   rs_history_free(&m->par.velocity);
   rs_history_free(&m->par.creepage);
+  rs_history_free(&m->par.lateral_creepage);
+  rs_history_free(&m->par.spin);
   rs_history_free(&m->par.shift_velocity);
   rs_history_free(&m->par.load);
   rs_history_free(&m->par.force);
+  rs_history_free(&m->par.force_y);
   memset(m, 0, sizeof *m);
 }
 
@@ -115,10 +166,19 @@ int rs_model_regrid(const rs_model *m, int cells, rs_model *out, rs_msg *msg)
   out->load_varies = m->load_varies;
   out->normal_load = m->normal_load;
   out->hertz_a = m->hertz_a;
+  out->hertz_b = m->hertz_b;
   out->hertz_p0 = m->hertz_p0;
+  out->contact_measure = m->contact_measure;
   out->layer_flex = m->layer_flex;
   out->memory = m->memory;
-  if (status == RS_OK) status = build_grid(out, cells, m->grid.x_lo, m->grid.x_hi, msg);
+  /* 3D: the cells along y in the same proportion */
+  const int cells_y = m->grid.ny == 1 ? 1
+                                      : (int)((long)m->grid.ny * cells / m->grid.nx > 0
+                                                  ? (long)m->grid.ny * cells / m->grid.nx
+                                                  : 1);
+  if (status == RS_OK)
+    status = build_grid(out, cells, m->grid.x_lo, m->grid.x_hi, cells_y, m->grid.y_lo, m->grid.y_hi,
+                        msg);
   if (status != RS_OK) rs_model_free(out);
   return status;
 }
@@ -126,26 +186,37 @@ int rs_model_regrid(const rs_model *m, int cells, rs_model *out, rs_msg *msg)
 void rs_model_inputs_at(const rs_model *m, double t, rs_inputs *in)
 {
   const rs_model_params *p = &m->par;
+  const int fc = p->force_control, three = p->dimension == 3;
   *in = (rs_inputs){.t = t,
                     .velocity = rs_history_eval(&p->velocity, t),
                     .creepage = rs_history_eval(&p->creepage, t),
+                    .lateral_creepage = three ? rs_history_eval(&p->lateral_creepage, t) : 0.0,
+                    .spin = three ? rs_history_eval(&p->spin, t) : 0.0,
                     .shift_velocity = rs_history_eval(&p->shift_velocity, t),
                     .load = rs_history_eval(&p->load, t),
-                    .force = p->force_control ? rs_history_eval(&p->force, t) : 0.0,
+                    .force = fc ? rs_history_eval(&p->force, t) : 0.0,
+                    .force_y = fc && three ? rs_history_eval(&p->force_y, t) : 0.0,
                     .load_rate = m->load_varies ? rs_history_rate(&p->load, t) : 0.0,
-                    .force_rate = p->force_control ? rs_history_rate(&p->force, t) : 0.0};
+                    .force_rate = fc ? rs_history_rate(&p->force, t) : 0.0,
+                    .force_y_rate = fc && three ? rs_history_rate(&p->force_y, t) : 0.0};
 }
 
-void rs_inputs_freeze(rs_inputs *in) { in->load_rate = in->force_rate = 0.0; }
+void rs_inputs_freeze(rs_inputs *in) { in->load_rate = in->force_rate = in->force_y_rate = 0.0; }
 
 double rs_model_next_breakpoint(const rs_model *m, double t)
 {
   const rs_model_params *p = &m->par;
-  return fmin(fmin(rs_history_next_breakpoint(&p->velocity, t),
-                   rs_history_next_breakpoint(&p->creepage, t)),
-              fmin(fmin(rs_history_next_breakpoint(&p->shift_velocity, t),
-                        rs_history_next_breakpoint(&p->load, t)),
-                   p->force_control ? rs_history_next_breakpoint(&p->force, t) : INFINITY));
+  double next = fmin(fmin(rs_history_next_breakpoint(&p->velocity, t),
+                          rs_history_next_breakpoint(&p->creepage, t)),
+                     fmin(fmin(rs_history_next_breakpoint(&p->shift_velocity, t),
+                               rs_history_next_breakpoint(&p->load, t)),
+                          p->force_control ? rs_history_next_breakpoint(&p->force, t) : INFINITY));
+  if (p->dimension == 3) {
+    next = fmin(next, fmin(rs_history_next_breakpoint(&p->lateral_creepage, t),
+                           rs_history_next_breakpoint(&p->spin, t)));
+    if (p->force_control) next = fmin(next, rs_history_next_breakpoint(&p->force_y, t));
+  }
+  return next;
 }
 
 int rs_work_create(rs_work *w, const rs_model *m)
@@ -164,9 +235,10 @@ int rs_work_create(rs_work *w, const rs_model *m)
   w->pivot = calloc(nc * n, sizeof *w->pivot);
   w->pn_buf = calloc(n, sizeof *w->pn_buf);
   w->bound_buf = calloc(n, sizeof *w->bound_buf);
+  w->inflow = calloc((nc + 1) * (size_t)m->grid.ny, sizeof *w->inflow);
   w->load_cached = NAN;
   if (!w->uel || !w->ueldot || !w->vslip || !w->dupl || !w->dustar || !w->branch || !w->law ||
-      !w->dense || !w->pivot || !w->pn_buf || !w->bound_buf ||
+      !w->dense || !w->pivot || !w->pn_buf || !w->bound_buf || !w->inflow ||
       rs_elastic_work_create(&w->ew, &m->el) != RS_OK) {
     rs_work_free(w);
     return RS_ERR_INTERNAL;
@@ -188,6 +260,7 @@ void rs_work_free(rs_work *w)
   free(w->pivot);
   free(w->pn_buf);
   free(w->bound_buf);
+  free(w->inflow);
   memset(w, 0, sizeof *w);
 }
 
@@ -215,6 +288,12 @@ double rs_model_creepage(const rs_model *m, const rs_inputs *in, const double *y
   return m->par.force_control ? y[rs_at_extra(&m->lay, 0)] : in->creepage;
 }
 
+double rs_model_lateral_creepage(const rs_model *m, const rs_inputs *in, const double *y)
+{
+  if (m->lay.ncomp < 2) return 0.0;
+  return m->par.force_control ? y[rs_at_extra(&m->lay, 1)] : in->lateral_creepage;
+}
+
 double rs_model_scaling(const rs_model *m, const rs_inputs *in, double cj)
 {
   const double self = rs_elastic_op_coef(&m->el, 0, 0, 0, 0) + m->layer_flex;
@@ -228,41 +307,58 @@ double rs_model_scaling(const rs_model *m, const rs_inputs *in, double cj)
   return 1.0 / denom;
 }
 
-/* State of the material entering the grid at the leading edge (2D: one row). */
-void rs_model_inflow(const rs_model *m, const rs_inputs *in, double *upl, double *ustar)
+void rs_model_inflow(const rs_model *m, const rs_inputs *in, double *state)
 {
-  double state[2] = {0.0, 0.0}; /* u_pl, u* of the one row (2D) */
-  if (m->memory && !in->linear) rs_rig_memory_inflow(m->memory, in->t, state);
-  *upl = state[0];
-  *ustar = state[1];
+  const int width = (m->lay.ncomp + 1) * m->grid.ny;
+  if (m->memory && !in->linear) {
+    rs_rig_memory_inflow(m->memory, in->t, state);
+  } else {
+    for (int k = 0; k < width; k++) state[k] = 0.0;
+  }
 }
 
 void rs_model_kinematics(const rs_model *m, rs_work *w, const rs_inputs *in, const double *y,
                          const double *yp)
 {
   const rs_layout *L = &m->lay;
-  const int n = L->n;
-  double upl_in, us_in;
-  rs_model_inflow(m, in, &upl_in, &us_in);
-  const double *p = y + rs_at_p(L, 0, 0), *upl = y + rs_at_upl(L, 0, 0);
-  const double *us = y + rs_at_ustar(L, 0);
-  const double c3 = m->layer_flex, V = in->velocity, a = V / m->grid.dx;
-  const double vrigid = in->linear ? (L->nextra ? V * y[rs_at_extra(L, 0)] : 0.0)
-                                   : V * rs_model_creepage(m, in, y) + in->shift_velocity;
+  const rs_grid *g = &m->grid;
+  const int n = L->n, nc = L->ncomp, nx = g->nx, ny = g->ny, px = nx + 1; /* padded row */
+  rs_model_inflow(m, in, w->inflow);
+  const double c3 = m->layer_flex, V = in->velocity, a = V / g->dx;
+  const double xi =
+      in->linear ? (L->nextra ? y[rs_at_extra(L, 0)] : 0.0) : rs_model_creepage(m, in, y);
+  const double eta = nc < 2       ? 0.0
+                     : in->linear ? (L->nextra ? y[rs_at_extra(L, 1)] : 0.0)
+                                  : rs_model_lateral_creepage(m, in, y);
+  const double phi = in->linear ? 0.0 : in->spin, shift = in->linear ? 0.0 : in->shift_velocity;
+  const double *p = y + rs_at_p(L, 0, 0), *us = y + rs_at_ustar(L, 0);
   rs_elastic_op_tang(&m->el, &w->ew, p, w->uel, 1);
   rs_elastic_op_tang(&m->el, &w->ew, yp + rs_at_p(L, 0, 0), w->ueldot, 0);
-  for (int i = 0; i < n; i++) {
-    w->uel[i] += c3 * p[i];
-    w->ueldot[i] += c3 * yp[rs_at_p(L, 0, i)];
-  }
-  for (int i = 0; i < n; i++) {
-    const int up = rs_grid_upstream(&m->grid, i);
-    const double upl_next = up >= 0 ? upl[up] : upl_in;
-    const double us_next = up >= 0 ? us[up] : us_in;
-    const double duel = w->ueldot[i] - a * (w->uel[i + 1] - w->uel[i]);
-    w->dupl[i] = yp[rs_at_upl(L, 0, i)] - a * (upl_next - upl[i]);
-    w->dustar[i] = yp[rs_at_ustar(L, i)] - a * (us_next - us[i]);
-    w->vslip[i] = vrigid + duel + w->dupl[i];
+  for (int c = 0; c < nc; c++)
+    for (int iy = 0; iy < ny; iy++)
+      for (int ix = 0; ix < nx; ix++) {
+        const int I = iy * nx + ix;
+        w->uel[(size_t)c * px * ny + iy * px + ix] += c3 * p[c * n + I];
+        w->ueldot[c * n + I] += c3 * yp[rs_at_p(L, c, I)];
+      }
+  for (int iy = 0; iy < ny; iy++) {
+    const double *in_row = w->inflow + iy * (nc + 1); /* u_pl components, then u* */
+    for (int ix = 0; ix < nx; ix++) {
+      const int I = iy * nx + ix, up = rs_grid_upstream(g, I);
+      const double us_next = up >= 0 ? us[up] : in_row[nc];
+      w->dustar[I] = yp[rs_at_ustar(L, I)] - a * (us_next - us[I]);
+      for (int c = 0; c < nc; c++) {
+        const double *upl = y + rs_at_upl(L, c, 0);
+        const double *u = w->uel + (size_t)c * px * ny + iy * px;
+        /* rigid slip V w = V (xi - phi y, eta + phi x), model.md §1 */
+        const double vrigid =
+            c == 0 ? V * (xi - phi * g->y[iy]) + shift : V * (eta + phi * g->x[ix]);
+        const double upl_next = up >= 0 ? upl[up] : in_row[c];
+        const double duel = w->ueldot[c * n + I] - a * (u[ix + 1] - u[ix]);
+        w->dupl[c * n + I] = yp[rs_at_upl(L, c, I)] - a * (upl_next - upl[I]);
+        w->vslip[c * n + I] = vrigid + duel + w->dupl[c * n + I];
+      }
+    }
   }
 }
 
@@ -310,11 +406,12 @@ int rs_model_evaluate(const rs_model *m, rs_work *w, const rs_inputs *in, const 
     }
     F[rs_at_ustar(L, i)] = o->R[rs_law_row_star(L->ncomp)];
   }
-  /* Force row, scaled to a mean traction over the contact width 2a. */
-  if (F && m->par.force_control) {
+  /* Force rows, scaled to a mean traction over the contact (2a in 2D, pi a b in 3D). */
+  for (int k = 0; F && k < L->nextra; k++) {
     double sum = 0.0;
-    for (int i = 0; i < n; i++) sum += y[rs_at_p(L, 0, i)];
-    F[rs_at_extra(L, 0)] = m->grid.area / (2.0 * m->hertz_a) * sum - in->force / (2.0 * m->hertz_a);
+    for (int i = 0; i < n; i++) sum += y[rs_at_p(L, k, i)];
+    F[rs_at_extra(L, k)] = m->grid.area / m->contact_measure * sum -
+                           (k == 0 ? in->force : in->force_y) / m->contact_measure;
   }
   return RS_OK;
 }

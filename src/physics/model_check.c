@@ -1,5 +1,6 @@
 /* Reported quantities (model.md §7) and the check of steady states (rollsim/model.h). */
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -10,17 +11,20 @@ int rs_model_diagnostics(const rs_model *m, rs_work *w, const rs_inputs *in, con
                          signed char *regime)
 {
   const rs_layout *L = &m->lay;
-  const int n = L->n;
-  const double V = in->velocity, xi = rs_model_creepage(m, in, y), dA = m->grid.area;
-  const double vrigid = V * xi + in->shift_velocity;
+  const rs_grid *g = &m->grid;
+  const int n = L->n, nc = L->ncomp, px = g->nx + 1;
+  const double V = in->velocity, xi = rs_model_creepage(m, in, y), dA = g->area;
+  const double eta = rs_model_lateral_creepage(m, in, y), phi = nc > 1 ? in->spin : 0.0;
   /* Branches with the steady scaling (any r > 0 gives the same regimes at a solution). */
   const int status = rs_model_residual(m, w, in, y, yp, 0.0, NULL);
   if (status != RS_OK) return status;
   memset(d, 0, sizeof *d);
   d->creepage = xi;
+  d->lateral_creepage = eta;
+  d->spin = phi;
   d->velocity = V;
   for (int i = 0; i < n; i++) {
-    const double p = y[rs_at_p(L, 0, i)];
+    const int ix = i % g->nx, iy = i / g->nx;
     rs_regime reg = RS_ADHESION;
     if (w->branch[i] & RS_BRANCH_EXTERIOR)
       reg = RS_EXTERIOR;
@@ -29,13 +33,23 @@ int rs_model_diagnostics(const rs_model *m, rs_work *w, const rs_inputs *in, con
     else if (w->branch[i] & RS_BRANCH_YIELD)
       reg = RS_PLASTIC;
     d->count[reg]++;
-    d->Fx += p * dA;
     d->Fn += w->pn[i] * dA;
-    d->frictional_power -= p * w->vslip[i] * dA;
-    d->plastic_power += p * w->dupl[i] * dA;
-    d->elastic_energy += 0.5 * p * w->uel[i] * dA;
-    d->rigid_slip_power -= p * vrigid * dA;
-    if (slip) slip[i] = V > 0.0 ? w->vslip[i] / V : w->vslip[i];
+    for (int c = 0; c < nc; c++) {
+      const double p = y[rs_at_p(L, c, i)];
+      /* rigid slip V w = V (xi - phi y, eta + phi x) (+ the shift along x) */
+      const double vrigid =
+          c == 0 ? V * (xi - phi * g->y[iy]) + in->shift_velocity : V * (eta + phi * g->x[ix]);
+      if (c == 0)
+        d->Fx += p * dA;
+      else
+        d->Fy += p * dA;
+      d->frictional_power -= p * w->vslip[c * n + i] * dA;
+      d->plastic_power += p * w->dupl[c * n + i] * dA;
+      d->elastic_energy += 0.5 * p * w->uel[(size_t)c * px * g->ny + iy * px + ix] * dA;
+      d->rigid_slip_power -= p * vrigid * dA;
+      if (slip) slip[c * n + i] = V > 0.0 ? w->vslip[c * n + i] / V : w->vslip[c * n + i];
+    }
+    if (nc > 1) d->Mz += (g->x[ix] * y[rs_at_p(L, 1, i)] - g->y[iy] * y[rs_at_p(L, 0, i)]) * dA;
     if (tauc) tauc[i] = rs_model_yield_limit(m, y[rs_at_ustar(L, i)]);
     if (regime) regime[i] = (signed char)reg;
   }
@@ -46,51 +60,73 @@ int rs_model_diagnostics(const rs_model *m, rs_work *w, const rs_inputs *in, con
 static int refuse(rs_msg *msg, const rs_model *m, int i, const char *what, double p, double other,
                   const char *other_name, const char *unit)
 {
+  char where[64] = "";
+  if (m->lay.ncomp > 1) snprintf(where, sizeof where, ", y = %.4g mm", m->grid.y[i / m->grid.nx]);
   return rs_msg_set(msg, RS_ERR_SOLVER,
-                    "steady solution refused: cell %d (x = %.4g mm): %s (p_x = %.6g N/mm^2, %s = "
-                    "%.6g %s)",
-                    i, m->grid.x[i % m->grid.nx], what, p, other_name, other, unit);
+                    "steady solution refused: cell %d (x = %.4g mm%s): %s (p_x = %.6g N/mm^2, %s "
+                    "= %.6g %s)",
+                    i, m->grid.x[i % m->grid.nx], where, what, p, other_name, other, unit);
 }
 
 /* The paper's conditions (eqs. 7-10) cell by cell on the kinematics in w (of a steady
- * evaluation), rates in traction units through the steady scaling r. */
+ * evaluation), rates in traction units through the steady scaling r. Directions (3D):
+ * slip opposite to p and flow along p to an angle of 1e-6 (a converged solution has
+ * them exact up to the Newton tolerance). */
 static int check_cells(const rs_model *m, const rs_work *w, const double *y, double tol,
                        rs_msg *msg)
 {
   const rs_layout *L = &m->lay;
-  const int n = L->n;
+  const int n = L->n, nc = L->ncomp;
   const double r = w->r;
   for (int i = 0; i < n; i++) {
-    const double p = y[rs_at_p(L, 0, i)], g = w->bound[i];
+    double p[RS_MAX_COMP], vs[RS_MAX_COMP], flow[RS_MAX_COMP];
+    double pn2 = 0.0, vs2 = 0.0, fl2 = 0.0, pv = 0.0, pf = 0.0;
+    for (int c = 0; c < nc; c++) {
+      p[c] = y[rs_at_p(L, c, i)];
+      vs[c] = w->vslip[c * n + i];
+      flow[c] = w->dupl[c * n + i];
+      pn2 += p[c] * p[c];
+      vs2 += vs[c] * vs[c];
+      fl2 += flow[c] * flow[c];
+      pv += p[c] * vs[c];
+      pf += p[c] * flow[c];
+    }
+    const double pa = sqrt(pn2), va = sqrt(vs2), fa = sqrt(fl2), g = w->bound[i];
     const double tauc = rs_model_yield_limit(m, y[rs_at_ustar(L, i)]);
-    const double vs = w->vslip[i], flow = w->dupl[i];
+    const double px = p[0], cos_tol = nc > 1 ? 1e-6 : 0.0;
     if (!(w->pn[i] > 0.0)) {
-      if (fabs(p) > tol)
-        return refuse(msg, m, i, "traction outside the contact", p, w->pn[i], "p_n", "N/mm^2");
-      if (r * fabs(flow) > tol)
-        return refuse(msg, m, i, "plastic flow outside the contact", p, flow, "Du_pl/Dt", "mm/s");
+      if (pa > tol)
+        return refuse(msg, m, i, "traction outside the contact", px, w->pn[i], "p_n", "N/mm^2");
+      if (r * fa > tol)
+        return refuse(msg, m, i, "plastic flow outside the contact", px, flow[0], "Du_pl/Dt",
+                      "mm/s");
       continue;
     }
-    if (fabs(p) > g + tol)
-      return refuse(msg, m, i, "traction above the bound g = mu p_n", p, g, "g", "N/mm^2");
-    if (fabs(p) > tauc + tol)
-      return refuse(msg, m, i, "traction above the yield limit", p, tauc, "tau_c", "N/mm^2");
-    if (r * fabs(vs) > tol) { /* slipping: at the bound, the slip opposite to p */
-      if (fabs(p) < g - tol)
-        return refuse(msg, m, i, "slip below the traction bound", p, vs, "v_s", "mm/s");
-      if (p * vs > 0.0)
-        return refuse(msg, m, i, "slip along the traction (negative frictional power)", p, vs,
-                      "v_s", "mm/s");
+    if (pa > g + tol)
+      return refuse(msg, m, i, "traction above the bound g = mu p_n", px, g, "g", "N/mm^2");
+    if (pa > tauc + tol)
+      return refuse(msg, m, i, "traction above the yield limit", px, tauc, "tau_c", "N/mm^2");
+    if (r * va > tol) { /* slipping: at the bound, the slip opposite to p */
+      if (pa < g - tol)
+        return refuse(msg, m, i, "slip below the traction bound", px, vs[0], "v_s", "mm/s");
+      if (pv > -(1.0 - cos_tol) * pa * va)
+        return refuse(msg, m, i,
+                      nc == 1 ? "slip along the traction (negative frictional power)"
+                              : "slip not opposite to the traction",
+                      px, vs[0], "v_s", "mm/s");
     }
-    if (r * fabs(flow) > tol) { /* flowing: at the yield limit, the flow parallel to p */
-      if (fabs(p) < tauc - tol)
-        return refuse(msg, m, i, "plastic flow below the yield limit", p, flow, "Du_pl/Dt", "mm/s");
-      if (p * flow < 0.0)
-        return refuse(msg, m, i, "plastic flow opposite to the traction (negative plastic power)",
-                      p, flow, "Du_pl/Dt", "mm/s");
+    if (r * fa > tol) { /* flowing: at the yield limit, the flow parallel to p */
+      if (pa < tauc - tol)
+        return refuse(msg, m, i, "plastic flow below the yield limit", px, flow[0], "Du_pl/Dt",
+                      "mm/s");
+      if (pf < (1.0 - cos_tol) * pa * fa)
+        return refuse(msg, m, i,
+                      nc == 1 ? "plastic flow opposite to the traction (negative plastic power)"
+                              : "plastic flow not along the traction",
+                      px, flow[0], "Du_pl/Dt", "mm/s");
     }
-    if (r * fabs(w->dustar[i] - fabs(flow)) > tol)
-      return refuse(msg, m, i, "u* does not grow with |Du_pl/Dt|", p, w->dustar[i], "Du*/Dt",
+    if (r * fabs(w->dustar[i] - fa) > tol)
+      return refuse(msg, m, i, "u* does not grow with |Du_pl/Dt|", px, w->dustar[i], "Du*/Dt",
                     "mm/s");
   }
   return RS_OK;

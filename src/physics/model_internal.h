@@ -17,9 +17,10 @@
 void rs_model_kinematics(const rs_model *m, rs_work *w, const rs_inputs *in, const double *y,
                          const double *yp);
 
-/* State (u_pl, u*) of the material entering at the leading edge: fresh (0), or the
- * twin-disc memory at in->t; none in the linear part. */
-void rs_model_inflow(const rs_model *m, const rs_inputs *in, double *upl, double *ustar);
+/* State of the material entering at the leading edge, per row of the grid (u_pl
+ * components, then u*: (ncomp + 1) ny values): fresh (0), or the twin-disc memory at
+ * in->t; none in the linear part. */
+void rs_model_inflow(const rs_model *m, const rs_inputs *in, double *state);
 
 /* Pressure for a load: the discrete normal solution or the Hertz pressure, as the
  * parameters say (approach may be NULL). */

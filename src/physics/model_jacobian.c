@@ -194,7 +194,7 @@ int rs_model_jacobian(const rs_model *m, rs_work *w, const rs_inputs *in, const 
     for (int i = 0; i < n; i++) put_row(m, &w->law[i], rs_law_row_pl(nc, c), i, in, cj, band, 0, J);
   for (int i = 0; i < n; i++) put_row(m, &w->law[i], rs_law_row_star(nc), i, in, cj, band, 0, J);
   /* Force rows: (dA sum p_k - F_k)/(2a). */
-  const double force_row = m->grid.area / (2.0 * m->hertz_a);
+  const double force_row = m->grid.area / m->contact_measure;
   for (int k = 0; k < L->nextra; k++) {
     for (int j = 0; j < n; j++) csr_put(J, rs_at_p(L, k, j), force_row);
     csr_put(J, rs_at_extra(L, k), 0.0); /* structural: the pattern of the bordered system */
@@ -233,7 +233,7 @@ int rs_model_jv(const rs_model *m, const rs_work *w, rs_work *wlin, const rs_inp
       Jv[row] = sum;
     }
   }
-  const double force_row = m->grid.area / (2.0 * m->hertz_a);
+  const double force_row = m->grid.area / m->contact_measure;
   for (int k = 0; k < L->nextra; k++) {
     double sum = 0.0;
     for (int j = 0; j < n; j++) sum += v[rs_at_p(L, k, j)];

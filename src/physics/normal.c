@@ -4,6 +4,7 @@
  * and add cells that penetrate, until neither happens. Large grids use the
  * conjugate-gradient method of normal_cg.c instead (same solution). */
 #include "rollsim/normal.h"
+#include "rollsim/normal3d.h"
 
 #include "physics/normal_methods.h"
 
@@ -151,5 +152,7 @@ int rs_normal2d_solve(const rs_elastic2d *el, rs_elastic2d_work *w, const double
 int rs_normal_solve(const rs_elastic_op *op, rs_elastic_work *w, const double *h, double load,
                     double *pn, double *delta, rs_msg *msg)
 {
+  if (op->dim == 3)
+    return rs_normal3d_solve(&op->surf, &w->surf, h, load, NULL, pn, delta, NULL, msg);
   return rs_normal2d_solve(&op->line, &w->line, h, load, pn, delta, NULL, msg);
 }

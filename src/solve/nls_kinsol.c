@@ -14,6 +14,7 @@ typedef struct nls_content {
   const rs_model *m;
   rs_work *w;
   rs_linsys *ls;
+  rs_krylov *kry; /* Newton-Krylov instead of ls (NULL: direct) */
   rs_nls_host host;
   int max_iters;
   SUNNonlinSolSysFn sysfn;
@@ -33,14 +34,10 @@ static int kin_residual(N_Vector ycor, N_Vector f, void *data)
   return flag < 0 ? -1 : (flag > 0 ? 1 : 0); /* > 0 recoverable: KINSOL/IDA try again */
 }
 
-static int kin_jacobian(N_Vector ycor, N_Vector f, SUNMatrix J, void *data, N_Vector t1,
-                        N_Vector t2)
+/* The point of the Newton iteration: y = ypred + ycor, y' = yppred + cj ycor into the
+ * buffers; its time and cj. */
+static void newton_point(nls_content *c, N_Vector ycor, double *tcur_out, double *cj_out)
 {
-  (void)f;
-  (void)J;
-  (void)t1;
-  (void)t2;
-  nls_content *c = data;
   sunrealtype tcur, cj;
   N_Vector ypred, yppred, yn, ypn, res;
   void *udata;
@@ -51,10 +48,59 @@ static int kin_jacobian(N_Vector ycor, N_Vector f, SUNMatrix J, void *data, N_Ve
     c->ybuf[i] = yv[i] + dc[i];
     c->ypbuf[i] = ypv[i] + cj * dc[i];
   }
+  *tcur_out = tcur;
+  *cj_out = cj;
+}
+
+static int kin_jacobian(N_Vector ycor, N_Vector f, SUNMatrix J, void *data, N_Vector t1,
+                        N_Vector t2)
+{
+  (void)f;
+  (void)J;
+  (void)t1;
+  (void)t2;
+  nls_content *c = data;
+  double tcur, cj;
+  newton_point(c, ycor, &tcur, &cj);
   return rs_linsys_assemble(c->ls, c->m, c->w, c->host.inputs_at(c->host.ctx, tcur), c->ybuf,
                             c->ypbuf, cj) == RS_OK
              ? 0
              : -1;
+}
+
+/* Newton-Krylov (c->kry): the near-field preconditioner at the Newton point, the
+ * model's exact J v, and the preconditioner's solve. */
+static int krylov_psetup(N_Vector ycor, N_Vector uscale, N_Vector fval, N_Vector fscale, void *data)
+{
+  (void)uscale;
+  (void)fval;
+  (void)fscale;
+  nls_content *c = data;
+  double tcur, cj;
+  newton_point(c, ycor, &tcur, &cj);
+  const int status =
+      rs_krylov_setup(c->kry, c->host.inputs_at(c->host.ctx, tcur), c->ybuf, c->ypbuf, cj);
+  if (status == RS_ERR_SOLVER && !rs_krylov_error(c->kry)[0]) return 1; /* KLU: recoverable */
+  return status == RS_OK ? 0 : -1;
+}
+
+static int krylov_psolve(N_Vector u, N_Vector uscale, N_Vector fval, N_Vector fscale, N_Vector v,
+                         void *data)
+{
+  (void)u;
+  (void)uscale;
+  (void)fval;
+  (void)fscale;
+  nls_content *c = data;
+  return rs_krylov_psolve(c->kry, N_VGetArrayPointer(v)) == RS_OK ? 0 : 1;
+}
+
+static int krylov_times(N_Vector v, N_Vector Jv, N_Vector u, sunbooleantype *new_u, void *data)
+{
+  (void)u;
+  (void)new_u;
+  nls_content *c = data;
+  return rs_krylov_times(c->kry, N_VGetArrayPointer(v), N_VGetArrayPointer(Jv)) == RS_OK ? 0 : -1;
 }
 
 static SUNNonlinearSolver_Type nls_gettype(SUNNonlinearSolver nls)
@@ -176,8 +222,8 @@ static int nls_getnumconvfails(SUNNonlinearSolver nls, long *fails)
 }
 
 SUNNonlinearSolver rs_nls_kinsol_create(const rs_model *m, rs_work *w, rs_linsys *ls,
-                                        rs_nls_host host, int max_iters, N_Vector tmpl,
-                                        SUNContext ctx)
+                                        rs_krylov *kry, SUNLinearSolver gmres, rs_nls_host host,
+                                        int max_iters, N_Vector tmpl, SUNContext ctx)
 {
   SUNNonlinearSolver nls = SUNNonlinSolNewEmpty(ctx);
   if (!nls) return NULL;
@@ -205,10 +251,20 @@ SUNNonlinearSolver rs_nls_kinsol_create(const rs_model *m, rs_work *w, rs_linsys
   c->kmem = KINCreate(ctx);
   if (!c->uscale || !c->fscale || !c->ybuf || !c->ypbuf || !c->kmem) goto fail;
   /* each set-up call on its own (the caller reports a NULL solver) */
-  if (KINInit(c->kmem, kin_residual, tmpl) != 0 || KINSetUserData(c->kmem, c) != 0 ||
-      KINSetLinearSolver(c->kmem, rs_linsys_solver(ls), rs_linsys_matrix(ls)) != 0 ||
-      KINSetJacFn(c->kmem, kin_jacobian) != 0 || KINSetMaxSetupCalls(c->kmem, 1) != 0 ||
-      KINSetMaxNewtonStep(c->kmem, 1e12) != 0 || KINSetNumMaxIters(c->kmem, c->max_iters) != 0 ||
+  if (KINInit(c->kmem, kin_residual, tmpl) != 0 || KINSetUserData(c->kmem, c) != 0) goto fail;
+  if (kry) {
+    c->kry = kry;
+    if (KINSetLinearSolver(c->kmem, gmres, NULL) != 0 ||
+        KINSetJacTimesVecFn(c->kmem, krylov_times) != 0 ||
+        KINSetPreconditioner(c->kmem, krylov_psetup, krylov_psolve) != 0 ||
+        KINSetEtaForm(c->kmem, KIN_ETACONSTANT) != 0 || KINSetEtaConstValue(c->kmem, 1e-6) != 0)
+      goto fail;
+  } else if (KINSetLinearSolver(c->kmem, rs_linsys_solver(ls), rs_linsys_matrix(ls)) != 0 ||
+             KINSetJacFn(c->kmem, kin_jacobian) != 0) {
+    goto fail;
+  }
+  if (KINSetMaxSetupCalls(c->kmem, 1) != 0 || KINSetMaxNewtonStep(c->kmem, 1e12) != 0 ||
+      KINSetNumMaxIters(c->kmem, c->max_iters) != 0 ||
       KINSetErrHandlerFn(c->kmem, rs_sundials_silent, NULL) != 0)
     goto fail;
   return nls;

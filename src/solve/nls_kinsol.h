@@ -9,6 +9,7 @@
 #include <sundials/sundials_nonlinearsolver.h>
 
 #include "solve/linsys.h"
+#include "solve/linsys_krylov.h"
 
 /* What the solver needs from the integrator it serves: where the DAE residual reads
  * the current cj (it sets the scaling r), and the model's inputs at a time (held ones
@@ -19,9 +20,12 @@ typedef struct rs_nls_host {
   void *ctx;
 } rs_nls_host;
 
-/* max_iters: Newton iterations per step before the step is declared failed. */
+/* The linear algebra: ls (direct: KLU or the Schur complement), or Newton-Krylov with
+ * kry's near-field preconditioner and exact products in the SPGMR solver gmres (kry
+ * non-NULL; ls then unused). max_iters: Newton iterations per step before the step is
+ * declared failed. */
 SUNNonlinearSolver rs_nls_kinsol_create(const rs_model *m, rs_work *w, rs_linsys *ls,
-                                        rs_nls_host host, int max_iters, N_Vector tmpl,
-                                        SUNContext ctx);
+                                        rs_krylov *kry, SUNLinearSolver gmres, rs_nls_host host,
+                                        int max_iters, N_Vector tmpl, SUNContext ctx);
 
 #endif

@@ -140,6 +140,11 @@ enum { KRYLOV_FROM_CELLS = 300 };
 /* Krylov: near-field half band (cells), GMRES basis size, forcing term (1e-3: fewest
  * GMRES iterations for the elastic creep curve at 850 cells; 1e-6 cost 30 % more). */
 enum { KRYLOV_BAND = 16, KRYLOV_MAXL = 60 };
+/* 3D: Newton-Krylov always (the dense elastic block is 2N x 2N); the near field is the
+ * (2 band + 1)^2 cells around each one. Measured (elastic circle, 1 Newton solve): band
+ * 1/2/3 at 44 x 44 cells 0.09/0.25/0.61 s, at 88 x 88 1.2/3.1/10.7 s (KLU's fill of a 2D
+ * stencil dominates; the GMRES iterations only double from band 3 to 1). */
+enum { KRYLOV_BAND_3D = 1 };
 #define KRYLOV_ETA_PLASTIC 1e-6
 #define KRYLOV_ETA         1e-3
 
@@ -168,8 +173,18 @@ int rs_steady_create_with(rs_steady **out, const rs_model *m, SUNContext ctx, rs
   s->fscale = N_VNew_Serial(neq, ctx);
   s->yp = calloc((size_t)neq, sizeof *s->yp);
   s->y_prev = calloc((size_t)neq, sizeof *s->y_prev);
+  /* The fast paths know the per-cell unknowns only (2D); 3D is Newton-Krylov. */
+  const int three = m->el.dim == 3;
+  if (three)
+    linear = RS_LINEAR_KRYLOV;
+  else if (L->nextra != 0)
+    linear = RS_LINEAR_KLU;
+  if (linear == RS_LINEAR_AUTO)
+    linear = n >= KRYLOV_FROM_CELLS ? RS_LINEAR_KRYLOV : RS_LINEAR_DENSE;
+  s->linear = linear;
   if (!s->u || !s->uscale || !s->fscale || !s->yp || !s->y_prev ||
-      rs_work_create(&s->work, m) != RS_OK || rs_linsys_create(&s->ls, m, s->u, ctx) != RS_OK) {
+      rs_work_create(&s->work, m) != RS_OK ||
+      (linear != RS_LINEAR_KRYLOV && rs_linsys_create(&s->ls, m, s->u, ctx) != RS_OK)) {
     rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory (steady solver, %d unknowns)", neq);
     goto fail;
   }
@@ -177,11 +192,6 @@ int rs_steady_create_with(rs_steady **out, const rs_model *m, SUNContext ctx, rs
   RS_SUN_CHECK(rs_nvector_fast_ops(s->u), msg, what);
   RS_SUN_CHECK(rs_nvector_fast_ops(s->uscale), msg, what);
   RS_SUN_CHECK(rs_nvector_fast_ops(s->fscale), msg, what);
-  /* The fast paths know the per-cell unknowns only. */
-  if (L->nextra != 0) linear = RS_LINEAR_KLU;
-  if (linear == RS_LINEAR_AUTO)
-    linear = n >= KRYLOV_FROM_CELLS ? RS_LINEAR_KRYLOV : RS_LINEAR_DENSE;
-  s->linear = linear;
   if (linear == RS_LINEAR_DENSE)
     RS_SUN_CHECK(rs_linsys_use_reduced(&s->ls, m, &s->work, ctx), msg, what);
   if (linear == RS_LINEAR_KRYLOV) {
@@ -189,7 +199,7 @@ int rs_steady_create_with(rs_steady **out, const rs_model *m, SUNContext ctx, rs
     RS_SUN_CHECK(s->gmres == NULL, msg, what);
     RS_SUN_CHECK(SUNLinSol_SPGMRSetMaxRestarts(s->gmres, 4), msg, what);
     RS_SUN_CHECK(SUNLinSol_SPGMRSetGSType(s->gmres, SUN_CLASSICAL_GS), msg, what);
-    RS_SUN_CHECK(rs_krylov_create(&s->kry, m, KRYLOV_BAND), msg, what);
+    RS_SUN_CHECK(rs_krylov_create(&s->kry, m, three ? KRYLOV_BAND_3D : KRYLOV_BAND), msg, what);
   }
 
   /* Scales: tractions by the largest bound, displacements by the displacement that

@@ -8,7 +8,10 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include <sunlinsol/sunlinsol_spgmr.h>
+
 #include "solve/linsys.h"
+#include "solve/linsys_krylov.h"
 #include "solve/nvector_fast.h"
 #include "solve/nls_kinsol.h"
 #include "rollsim/transient.h"
@@ -20,6 +23,8 @@ struct rs_transient {
   N_Vector y, yp, atol;
   SUNNonlinearSolver nls;
   rs_linsys ls;
+  SUNLinearSolver gmres; /* 3D: Newton-Krylov with kry */
+  rs_krylov kry;
   rs_work work;
   double cj; /* of the step being solved: sets the residual scaling r */
   double t;
@@ -71,6 +76,8 @@ void rs_transient_free(rs_transient *tr)
   if (!tr) return;
   if (tr->ida) IDAFree(&tr->ida);
   if (tr->nls) SUNNonlinSolFree(tr->nls);
+  if (tr->gmres) SUNLinSolFree(tr->gmres);
+  rs_krylov_free(&tr->kry);
   rs_linsys_free(&tr->ls);
   if (tr->y) N_VDestroy(tr->y);
   if (tr->yp) N_VDestroy(tr->yp);
@@ -105,8 +112,13 @@ int rs_transient_create(rs_transient **out, const rs_model *m, SUNContext ctx, d
   tr->y = N_VNew_Serial(neq, ctx);
   tr->yp = N_VNew_Serial(neq, ctx);
   tr->atol = N_VNew_Serial(neq, ctx);
+  /* Linear algebra: the Schur-complement solver (linsys_reduced.h) whenever a 2D model
+   * has the per-cell unknowns only, KLU on the whole matrix otherwise (as the steady
+   * solver does); 3D: Newton-Krylov (the dense elastic block is 2N x 2N). */
+  const int krylov = m->el.dim == 3;
+  const rs_linear linear = krylov ? RS_LINEAR_KRYLOV : L->nextra > 0 ? RS_LINEAR_KLU : o->linear;
   if (!tr->y || !tr->yp || !tr->atol || rs_work_create(&tr->work, m) != RS_OK ||
-      rs_linsys_create(&tr->ls, m, tr->y, ctx) != RS_OK) {
+      (!krylov && rs_linsys_create(&tr->ls, m, tr->y, ctx) != RS_OK)) {
     rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory (transient solver, %d unknowns)", neq);
     goto fail;
   }
@@ -133,15 +145,18 @@ int rs_transient_create(rs_transient **out, const rs_model *m, SUNContext ctx, d
       N_VGetArrayPointer(id)[rs_at_extra(L, k)] = 0.0;
     }
   }
-  /* Linear algebra: the Schur-complement solver (linsys_reduced.h) whenever the model
-   * has the per-cell unknowns only, KLU on the whole matrix otherwise (as the steady
-   * solver does). */
-  const rs_linear linear = L->nextra > 0 ? RS_LINEAR_KLU : o->linear;
-  if (linear != RS_LINEAR_KLU)
+  if (linear == RS_LINEAR_DENSE || linear == RS_LINEAR_AUTO)
     RS_SUN_CHECK(rs_linsys_use_reduced(&tr->ls, m, &tr->work, ctx), msg, what);
+  if (krylov) {
+    tr->gmres = SUNLinSol_SPGMR(tr->y, SUN_PREC_RIGHT, 60, ctx);
+    RS_SUN_CHECK(tr->gmres == NULL, msg, what);
+    RS_SUN_CHECK(SUNLinSol_SPGMRSetMaxRestarts(tr->gmres, 4), msg, what);
+    RS_SUN_CHECK(rs_krylov_create(&tr->kry, m, 1), msg, what); /* as the steady solver */
+  }
   tr->cj = 0.0;
   const rs_nls_host host = {.cj_slot = &tr->cj, .inputs_at = host_inputs, .ctx = tr};
-  tr->nls = rs_nls_kinsol_create(m, &tr->work, &tr->ls, host, o->max_newton, tr->y, ctx);
+  tr->nls = rs_nls_kinsol_create(m, &tr->work, &tr->ls, krylov ? &tr->kry : NULL, tr->gmres, host,
+                                 o->max_newton, tr->y, ctx);
   RS_SUN_CHECK(tr->nls == NULL, msg, what);
   tr->ida = IDACreate(ctx);
   RS_SUN_CHECK(tr->ida == NULL, msg, what);
@@ -260,7 +275,7 @@ void rs_transient_get_stats(const rs_transient *tr, rs_stats *st)
   st->nonlin_fails += tr->before_restart.nonlin_fails;
   st->err_test_fails += tr->before_restart.err_test_fails;
   st->res_evals += tr->before_restart.res_evals;
-  st->jac_evals = tr->ls.jac_evals;
+  st->jac_evals = tr->ls.jac_evals + tr->kry.setups;
   st->klu_analyses = rs_linsys_analyses(&tr->ls);
   st->factorizations = rs_linsys_factorizations(&tr->ls);
 }
