@@ -24,3 +24,8 @@ rs_unit_test(test_elastic3d)
 rs_unit_test(test_normal3d)
 rs_unit_test(test_kalker)
 rs_unit_test(test_normal_cg_2d_operator)
+# 3D elliptic contact in steady rolling: Kalker's linear theory, the 2D limit, symmetry,
+# plastic limits (see the file's header).
+rs_unit_test(test_3d_steady)
+# 3D elliptic contact, transient from rest to steady (IDA with Newton-Krylov).
+rs_unit_test(test_3d_transient)
