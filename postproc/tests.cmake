@@ -131,9 +131,61 @@ pp_error(pp_err_not_netcdf "" "default\\.yaml: not a netCDF file"
   export ${RS_CASES}/default.yaml --var Fx --csv ${PP_OUT}/never.csv)
 pp_error(pp_err_missing_var pp_default "pp_default\\.nc: no variable 'no_such_var'"
   export ${PP_DEFAULT} --var Fx no_such_var --csv ${PP_OUT}/never.csv)
-pp_error(pp_err_plastic_fields pp_default "pp_default\\.nc: no variable 'ustar' or 'tauc'"
+# (an elastic transient file holds ustar, part of the state for a restart, but no tauc)
+pp_error(pp_err_plastic_fields pp_default "pp_default\\.nc: no variable 'tauc'"
   plastic ${PP_DEFAULT} -o ${PP_OUT}/never.png)
 pp_error(pp_err_no_records pp_synthetic "no_records\\.nc: no records stored \\(status: failed"
   traction ${PP_SYNTH}/no_records.nc -o ${PP_OUT}/never.png)
 pp_error(pp_err_format pp_default "never\\.jpg: unsupported figure format"
   history ${PP_DEFAULT} -o ${PP_OUT}/never.jpg)
+
+# ---- sweep files: profiles per point, panels, overlays --------------------------------------------
+# The paper's Figures 7, 8 and 9, each one rollsim sweep + one plot command, as make_figures.sh
+# runs them (into the build tree); check_figures.py compares the series behind every panel (--data)
+# with the sweep files, and the series labelled "elastic" with the elastic model (no plasticity
+# block) run independently here.
+set(PP_FIG_DATA ${CMAKE_CURRENT_BINARY_DIR}/figures_data)
+add_test(NAME pp_make_figures COMMAND sh ${PP_DIR}/make_figures.sh ${RS_BIN} ${PP_OUT}/figures ${PP_FIG_DATA})
+set_tests_properties(pp_make_figures PROPERTIES FIXTURES_SETUP figures ENVIRONMENT "${PP_ENV}")
+add_test(NAME pp_figures_elastic8 COMMAND ${RS_BIN} sweep ${RS_CASES}/meierhofer.yaml --quiet
+  --set plasticity=null --set sweep.plasticity.tau_c0=null -o ${PP_OUT}/elastic8.nc)
+add_test(NAME pp_figures_elastic9 COMMAND ${RS_BIN} sweep ${RS_CASES}/creep_curves.yaml --quiet
+  --set plasticity=null --set sweep.plasticity.tau_c0=null --set sweep.plasticity.k_rel=null
+  -o ${PP_OUT}/elastic9.nc)
+set_tests_properties(pp_figures_elastic8 pp_figures_elastic9 PROPERTIES FIXTURES_SETUP figures_elastic)
+add_test(NAME pp_check_figures COMMAND ${SYSTEM_PYTHON3} ${PP_TESTS}/check_figures.py ${PP_FIG_DATA}
+  ${PP_OUT}/elastic8.nc ${PP_OUT}/elastic9.nc)
+set_tests_properties(pp_check_figures PROPERTIES FIXTURES_REQUIRED "figures;figures_elastic")
+
+# The other sweep figures draw from the same files: regimes (rows along the last key or --overlay),
+# plastic (one row per point or --overlay), --select; and their data as for the figures above.
+pp_figure(pp_fig_sweep_regimes figures sweep_regimes.png regimes ${PP_FIG_DATA}/fig8.nc)
+pp_figure(pp_fig_sweep_regimes_overlay figures sweep_regimes_k.png regimes ${PP_FIG_DATA}/fig7.nc
+  --overlay plasticity.k_rel)
+pp_figure(pp_fig_sweep_plastic figures sweep_plastic.png plastic ${PP_FIG_DATA}/fig7.nc
+  --overlay plasticity.k_rel)
+pp_figure(pp_fig_sweep_select figures sweep_select.png traction ${PP_FIG_DATA}/fig8.nc
+  --select rolling.creepage=-0.01 --select plasticity.tau_c0=200)
+add_test(NAME pp_check_sweep_views COMMAND ${PP_NUM} sweep_views ${PP_FIG_DATA} ${PP_OUT}/views)
+set_tests_properties(pp_check_sweep_views PROPERTIES FIXTURES_REQUIRED figures ENVIRONMENT "${PP_ENV}")
+
+pp_error(pp_err_overlay_key figures "fig7\\.nc: plasticity.tau_c0 is not swept in this file \\(swept keys: plasticity.k_rel\\)"
+  traction ${PP_FIG_DATA}/fig7.nc --overlay plasticity.tau_c0 -o ${PP_OUT}/never.png)
+pp_error(pp_err_overlay_run pp_default "pp_default\\.nc: --overlay applies to sweep files"
+  traction ${PP_DEFAULT} --overlay plasticity.k_rel -o ${PP_OUT}/never.png)
+pp_error(pp_err_select_bad figures "--select k_rel: expected KEY=NUMBER"
+  traction ${PP_FIG_DATA}/fig7.nc --select k_rel -o ${PP_OUT}/never.png)
+pp_error(pp_err_sweep_no_fields figures "fig9\\.nc: sweep file without the profiles px, pn"
+  traction ${PP_FIG_DATA}/fig9.nc -o ${PP_OUT}/never.png)
+pp_error(pp_err_sweep_time figures "fig7\\.nc: --time applies to time-history files"
+  traction ${PP_FIG_DATA}/fig7.nc --time 0 -o ${PP_OUT}/never.png)
+pp_error(pp_err_panel_run pp_default "--panel needs one sweep file"
+  creepcurve ${PP_DEFAULT} --panel friction.mu -o ${PP_OUT}/never.png)
+pp_error(pp_err_panel_key figures "fig9\\.nc: friction.mu is not swept in this file"
+  creepcurve ${PP_FIG_DATA}/fig9.nc --panel friction.mu -o ${PP_OUT}/never.png)
+
+# postproc/README.md lists every subcommand (and no other).
+add_test(NAME pp_readme_commands COMMAND ${PP_NUM} readme ${PP_DIR}/README.md)
+set_tests_properties(pp_readme_commands PROPERTIES ENVIRONMENT "${PP_ENV}")
+pp_error(pp_err_data_path figures "no_dir/fig7\\.csv: cannot write \\(no writable directory"
+  traction ${PP_FIG_DATA}/fig7.nc --data ${PP_OUT}/no_dir/fig7.csv -o ${PP_OUT}/never_data.png)

@@ -122,7 +122,7 @@ def trends(sweep_path, sat_path):
 
 def curves(sweep_path):
     ds = netCDF4.Dataset(sweep_path)
-    dims = list(ds.dimensions)
+    dims = list(ds["traction_coefficient"].dimensions)  # the swept keys (profiles add x)
     check("the last sweep key is rolling.creepage", ds[dims[-1]].getncattr("key") == "rolling.creepage")
     check("every sweep point converged", bool((np.asarray(ds["converged"][:]) == 1).all()))
     mu = float(case_of(ds)["friction"]["mu"])

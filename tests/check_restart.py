@@ -30,6 +30,10 @@ def agree(full_path, first_path, rst_path, tol, fields):
         fail(f"{rst_path}: status {rst.status!r}")
     if os.path.basename(first_path) not in rst.history or "restart" not in rst.history:
         fail(f"{rst_path}: history does not name the restart file: {rst.history!r}")
+    # history accumulates: the old file's lines, then one line for the restarted run
+    old_lines, new_lines = first.history.split("\n"), rst.history.split("\n")
+    if new_lines[:-1] != old_lines or f"its status was '{first.status}'" not in new_lines[-1]:
+        fail(f"{rst_path}: history is not {first_path}'s plus one line naming its status: {rst.history!r}")
     tf, t1, tr = full["time"][:], first["time"][:], rst["time"][:]
     # The restarted run starts with the record at the old run's last time, in its state.
     if tr[0] != t1[-1]:

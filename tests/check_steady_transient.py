@@ -90,7 +90,7 @@ def main():
     sweep_nc = os.path.join(outdir, "sweep.nc")
     run(rollsim, ["sweep", case, "-o", sweep_nc] + sets_args(sets))
     ds = netCDF4.Dataset(sweep_nc)
-    dims = list(ds.dimensions)
+    dims = list(ds["traction_coefficient"].dimensions)  # the swept keys (profiles add x)
     keys = [ds[d].getncattr("key") for d in dims]
     values = [np.asarray(ds[d][:], dtype=float) for d in dims]
     tc_sweep = np.asarray(ds["traction_coefficient"][:], dtype=float)

@@ -64,9 +64,10 @@ rs_restart_equivalence(force
   FIELDS px creepage)
 
 # Invalid restarts: exit 2, a message naming the problem, no output file.
-# A file without upl (default.yaml writes px, pn, slip, regime).
+# A file without upl: a steady run of default.yaml (fields px, pn, slip, regime; only
+# transient files always hold the state).
 add_test(NAME restart_nofields_first COMMAND ${RS_BIN} run ${RS_CASES}/default.yaml
-              --set simulation.rolled_distance=3 -o ${RS_RST}/nofields.nc --quiet)
+              --set simulation.mode=steady -o ${RS_RST}/nofields.nc --quiet)
 set_tests_properties(restart_nofields_first PROPERTIES FIXTURES_SETUP rst_nofields)
 add_test(NAME restart_error_missing_field COMMAND ${RS_RST_CHECK} error "has no variable 'upl'"
               ${RS_BIN} run ${RS_CASES}/default.yaml --set simulation.rolled_distance=6

@@ -50,6 +50,8 @@ typedef struct rs_case {
   char *source_path; /* the case file as given on the command line */
   char *yaml_text;   /* the case as run (after --set), as YAML text */
   char *title;
+  char *overrides; /* the --set assignments, "KEY=VALUE, KEY=VALUE" (NULL: none): the title
+                      describes the file, these what was changed on the command line */
 
   /* contact: */
   int dimension;          /* 2: line contact; 3: elliptic point contact */
@@ -114,6 +116,9 @@ typedef struct rs_case {
   /* output: */
   char *output_file;
   unsigned fields; /* RS_FIELD_* mask */
+
+  /* sweep: */
+  int has_sweep; /* the case has a sweep: block (rollsim/sweep.h) */
 } rs_case;
 
 /* Load and validate a case file. `sets` are the --set KEY=VALUE strings, applied
@@ -124,7 +129,16 @@ typedef struct rs_case {
 int rs_case_load(rs_case *c, const char *path, const char *const *sets, int nsets, rs_msg *msg);
 void rs_case_free(rs_case *c);
 
-/* Print every resolved parameter, one "key: value  # unit" line each (for `rollsim check`). */
+/* Print every resolved parameter, one "key: value  # unit" line each (for `rollsim check`).
+ * Steady cases leave out the keys of the time axis (end time, rolled distance, output
+ * interval, initial state), which do not apply to them. */
 void rs_case_print(const rs_case *c, FILE *out);
+
+/* Unit of a case key in UDUNITS-2 spelling for netCDF `units` attributes ("1" for
+ * plain numbers, counts and multiples of the Hertz half-width); NULL for an unknown key.
+ * rs_case_key_unit_note: what a "1" stands for when it is not a plain number
+ * ("in Hertz half-widths a"), else "". */
+const char *rs_case_key_units(const char *key);
+const char *rs_case_key_unit_note(const char *key);
 
 #endif

@@ -23,14 +23,18 @@ typedef struct rs_output_rig {
 } rs_output_rig;
 
 typedef struct rs_output_spec {
-  const char *path;         /* file to create (overwritten if it exists) */
-  const char *title;        /* global attribute title */
-  const char *case_text;    /* global attribute case: the full YAML as run */
-  const char *history;      /* global attribute history: e.g. the command line and date */
-  int dimension;            /* 2: force units N/mm; 3: N */
-  size_t nx;                /* number of cells */
-  const double *x;          /* cell centres, mm [nx] */
-  unsigned fields;          /* RS_FIELD_* mask (rollsim/case.h): which (time, x) fields to write */
+  const char *path;      /* file to create (overwritten if it exists) */
+  const char *title;     /* global attribute title */
+  const char *case_text; /* global attribute case: the full YAML as run */
+  const char *history;   /* global attribute history: e.g. the command line and date */
+  int dimension;         /* 2: force units N/mm; 3: N */
+  size_t nx;             /* number of cells */
+  const double *x;       /* cell centres, mm [nx] */
+  unsigned fields;       /* RS_FIELD_* mask (rollsim/case.h): which (time, x) fields to write */
+  /* The fields output.fields asked for (0: all of `fields`). Fields written beyond them
+   * (the state a restart needs) carry a `comment` saying so; the global attribute
+   * output_fields lists the requested ones. */
+  unsigned requested_fields;
   const rs_output_rig *rig; /* twin-disc summaries, or NULL */
 } rs_output_spec;
 
@@ -49,9 +53,23 @@ typedef struct rs_record {
   const signed char *regime;                         /* [nx]: 0 E, 1 H, 2 S, 3 P */
 } rs_record;
 
-/* Create the file, define everything, write x, set status = "running".
+/* Create the file, define everything, write x, set status = "running". The file is
+ * built as PATH.part and renamed to PATH once its header is complete; an existing file
+ * PATH is kept as PATH~ at that moment (rs_output_backup names it).
  * Returns RS_ERR_OUTPUT with a message naming the path on failure. */
 int rs_output_create(rs_output **out, const rs_output_spec *spec, rs_msg *msg);
+/* Where rs_output_create kept an older file of the same name (PATH~), or NULL. */
+const char *rs_output_backup(const rs_output *out);
+
+/* Continue an existing time-history file (rollsim run --restart OLD.nc --append):
+ * open it for writing, check that it is a rollsim time-history file on the grid x[nx]
+ * holding every field of `fields` (it may hold more: those are written too), append
+ * `history_line` to its history attribute (one line per command that wrote to the
+ * file) and set status "running". Records then go after the last one (rs_output_write).
+ * RS_ERR_INPUT for a file of another layout (message names the file and what differs),
+ * RS_ERR_OUTPUT for I/O errors. */
+int rs_output_open_append(rs_output **out, const char *path, size_t nx, const double *x,
+                          unsigned fields, const char *history_line, rs_msg *msg);
 /* Append one record and sync it to disk. */
 int rs_output_write(rs_output *out, const rs_record *rec, rs_msg *msg);
 /* Twin-disc: mean traction coefficient F_x/F_n and mean slip over the averaging window
@@ -79,20 +97,34 @@ typedef struct rs_sweep_output_spec {
   const char *path, *title, *case_text, *history;
   int dimension; /* units of forces: 2 -> N/mm, 3 -> N */
   int naxes;
-  const char *const *keys;     /* dotted case keys [naxes]; variable names get '_' for '.' */
+  const char *const *keys;     /* dotted case keys [naxes]; variable names get '_' for '.';
+                                  units from the key table (rs_case_key_units) */
   const int *sizes;            /* [naxes] */
   const double *const *values; /* coordinate values [naxes][sizes[a]] */
+  /* Profiles per point (output.fields): RS_FIELD_* mask, 0 for none; then every field
+   * is a variable over (swept keys..., x) with the coordinate x[nx] (mm). */
+  unsigned fields;
+  size_t nx;
+  const double *x;
 } rs_sweep_output_spec;
 
-/* The scalar results of one sweep point (NaN where the point failed). */
+/* The results of one sweep point (NaN, counts -1, where the point failed). Field
+ * arrays have nx entries; NULL writes NaN (regime -1) for that point. */
 typedef struct rs_sweep_point {
   double Fx, Fn, creepage, velocity;
   int n_exterior, n_adhesion, n_slip, n_plastic;
   double frictional_power, plastic_power, elastic_energy;
   int converged;
+  const double *px, *pn, *slip, *upl, *ustar, *tauc;
+  const signed char *regime;
 } rs_sweep_point;
 
+/* Create the sweep file (an existing file of that name is kept as PATH~, see
+ * rs_sweep_output_backup). Counts are NC_INT without a _FillValue (valid_min 0: -1 marks
+ * a failed point, netCDF's default fill one not computed), so that readers keep them as
+ * integers; doubles have _FillValue NaN. */
 int rs_sweep_output_create(rs_sweep_output **out, const rs_sweep_output_spec *spec, rs_msg *msg);
+const char *rs_sweep_output_backup(const rs_sweep_output *out);
 /* Write the point at flat index (row-major over the axes, last fastest) and sync. */
 int rs_sweep_output_write(rs_sweep_output *out, size_t index, const rs_sweep_point *pt,
                           rs_msg *msg);

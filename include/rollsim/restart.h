@@ -19,4 +19,8 @@
 int rs_restart_read(const char *path, size_t nx, const double *x, double *t_last, double *px,
                     double *upl, double *ustar, double *creepage, rs_msg *msg);
 
+/* The history and status attributes of the file at path (malloc'ed; "" when absent),
+ * for the history of a run that continues it. RS_ERR_INPUT when it cannot be read. */
+int rs_restart_read_provenance(const char *path, char **history, char **status, rs_msg *msg);
+
 #endif

@@ -10,6 +10,13 @@
 #include "rollsim/steady.h"
 #include "rollsim/status.h"
 
+/* The (x) fields of one record, n cells each, in caller-owned arrays. */
+typedef struct rs_fields {
+  int n;
+  double *px, *pn, *slip, *upl, *ustar, *tauc;
+  signed char *regime;
+} rs_fields;
+
 typedef struct rs_run_opts {
   const char *output_path; /* overrides case output.file when non-NULL */
   const char *history;     /* netCDF history attribute (command line and date) */
@@ -20,6 +27,15 @@ typedef struct rs_run_opts {
    * covers [t_last, end_time] on the same output grid k*output_interval. Steady mode:
    * the stored state is Newton's start (the result is checked like every steady one). */
   const char *restart_path;
+  /* With restart_path (transient): continue in that file instead of a new one (its
+   * records are kept, new ones appended, history gains a line, status is updated). */
+  int append;
+  /* When set (and final_fields->n is the case's number of cells): receives the fields
+   * of the last record (sweep points store them). */
+  rs_fields *final_fields;
+  /* Warn on stderr when the first steps of a transient run project a long run
+   * (rollsim/warnings in src/app; off for sweep points). */
+  int cost_warning;
   /* Set asynchronously (signal handler) to stop at the next output record. */
   volatile sig_atomic_t *interrupt_flag;
 } rs_run_opts;
@@ -38,7 +54,9 @@ typedef struct rs_run_result {
   size_t rig_nsteps;
   double *rig_step_mu, *rig_step_slip;
   double rig_revolutions;
-  double dx; /* cell size, mm */
+  double dx;           /* cell size, mm */
+  char backup[1040];   /* an older file at the output path kept under this name, or "" */
+  size_t file_records; /* records in the output file (more than records with append) */
 } rs_run_result;
 
 void rs_run_result_free(rs_run_result *res);

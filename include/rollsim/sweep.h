@@ -22,9 +22,12 @@ typedef struct rs_sweep_result {
   long refused;    /* steady solutions refused by the physical check (rs_model_check_steady) */
   long refined;    /* continuation steps halved where the regimes jumped or Newton failed */
   char file[1024];
+  char backup[1040]; /* an older file at the output path kept under this name, or "" */
 } rs_sweep_result;
 
-/* Run every point; write `path` (case output.file when NULL). Returns RS_OK,
+/* Run every point; write `path` (case output.file when NULL). With output.fields the
+ * file holds every point's profiles too, when all points share the base case's grid
+ * (else a warning on stderr and scalars only). Returns RS_OK,
  * RS_ERR_SOLVER when some points failed (their results are NaN), RS_ERR_INTERRUPTED,
  * RS_ERR_OUTPUT or RS_ERR_INPUT. */
 int rs_sweep_run(const rs_sweep *s, const char *case_path, const char *const *sets, int nsets,

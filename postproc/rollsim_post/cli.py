@@ -3,8 +3,12 @@ import argparse
 import os
 import sys
 
+import numpy as np
+
 from . import PostError, figure_format
 from . import extract
+from . import sweep
+from .record import Recorder
 from .runfile import RunFile
 
 PROG = "rollsim_post"
@@ -49,21 +53,107 @@ def _plots():
 
 # ---- subcommands ---------------------------------------------------------------------------
 
+def _selection(args):
+    """--select KEY=VALUE... as a dict (PostError for a malformed one)."""
+    out = {}
+    for item in args.select or []:
+        key, eq, value = item.partition("=")
+        try:
+            out[key] = float(value)
+        except ValueError:
+            raise PostError(f"--select {item}: expected KEY=NUMBER, e.g. plasticity.k_rel=0.6") from None
+        if not eq or not key:
+            raise PostError(f"--select {item}: expected KEY=NUMBER")
+    return out
+
+
+def _finish(args, rec):
+    if getattr(args, "data", None):
+        rec.write(args.data)
+
+
+def _sweep_only(args, run, option):
+    if getattr(args, option.replace("-", "_"), None) and not run.is_sweep():
+        raise PostError(f"{run.path}: --{option} applies to sweep files (rollsim sweep)")
+
+
+def _panels(run, args):
+    """Points of a sweep file grouped into panels (--overlay, --select)."""
+    pts = sweep.points(run, _selection(args))
+    groups = sweep.group(pts, run, args.overlay)
+    panels = []
+    for g in groups:
+        rest = [k for k in g[0].values if k != args.overlay]
+        title = g[0].label(run, rest) if args.overlay else g[0].label(run)
+        panels.append((title, g))
+    return panels
+
+
+def _series_label(run, point, key):
+    """Label of a point inside an --overlay panel: 'elastic' when the yield limit is never
+    reached (tau_c0 >= mu max p_n), else the overlay key's value."""
+    return sweep.describe(key, point.values[key], sweep.sweep_units(run, key))
+
+
 def cmd_traction(args):
     figure_format(args.output)
+    rec = Recorder()
     with RunFile(args.file) as run:
-        indices = extract.record_indices(run, args.time)
-        profiles = [extract.traction_profile(run, i, mu=args.mu) for i in indices]
-        _warn_status(run)
-        _plots().plot_traction(profiles, _title(args, run), args.output)
+        for opt in ("overlay", "select"):
+            _sweep_only(args, run, opt)
+        if run.is_sweep():
+            if args.time:
+                raise PostError(f"{run.path}: --time applies to time-history files, not sweeps")
+            sweep.require_profiles(run)
+            panels = []
+            for title, group in _panels(run, args):
+                profs = [sweep.sweep_profile(run, p, mu=args.mu) for p in group]
+                labels = ["elastic" if pr.elastic else
+                          (_series_label(run, p, args.overlay) if args.overlay else "")
+                          for p, pr in zip(group, profs)]
+                if not args.overlay and profs[0].elastic:
+                    title = f"{title} (elastic: τ_c never reached)"
+                panels.append((title, list(zip(labels, profs))))
+            _warn_status(run)
+            _plots().plot_sweep_traction(panels, _title(args, run), args.output, rec)
+        else:
+            indices = extract.record_indices(run, args.time)
+            profiles = [extract.traction_profile(run, i, mu=args.mu) for i in indices]
+            _warn_status(run)
+            _plots().plot_traction(profiles, _title(args, run), args.output, rec)
+    _finish(args, rec)
 
 
 def cmd_regimes(args):
     figure_format(args.output)
+    rec = Recorder()
     with RunFile(args.file) as run:
-        fmap, flags = extract.regime_map(run)
-        _warn_status(run)
-        _plots().plot_regimes(fmap, flags, _title(args, run), args.output)
+        for opt in ("overlay", "select"):
+            _sweep_only(args, run, opt)
+        if run.is_sweep():
+            sweep.require_profiles(run, ("regime",))
+            rows_key = args.overlay or run.sweep_key(sweep.sweep_dims(run)[-1])
+            args.overlay = rows_key
+            panels = []
+            for title, group in _panels(run, args):
+                rows = []
+                for p in group:
+                    pr = sweep.sweep_profile(run, p) if run.has("px") else None
+                    reg = sweep.field_at(run, "regime", p)
+                    prof = sweep.SweepProfile(p, 0.0, run.values("x"), None, None, None,
+                                              regime=np.where(np.isnan(reg), -1, reg).astype(int))
+                    rows.append((_series_label(run, p, rows_key) +
+                                 (" (elastic)" if pr is not None and pr.elastic else ""), prof))
+                panels.append((title, rows))
+            _warn_status(run)
+            name, unit, _ = sweep.KEY_NAMES.get(rows_key, (rows_key, "", 1))
+            _plots().plot_sweep_regimes(panels, run.regime_flags(), name, _title(args, run),
+                                        args.output, rec)
+        else:
+            fmap, flags = extract.regime_map(run)
+            _warn_status(run)
+            _plots().plot_regimes(fmap, flags, _title(args, run), args.output)
+    _finish(args, rec)
 
 
 def cmd_history(args):
@@ -77,13 +167,74 @@ def cmd_history(args):
 
 def cmd_creepcurve(args):
     figure_format(args.output)
+    rec = Recorder()
     series = extract.creep_series(args.files, labels=args.label, group_by=args.group_by)
-    _plots().plot_creepcurve(series, args.output, absolute=args.abs, title=args.title)
+    mu = None
+    if args.panel:
+        panels, mu = _creep_panels(args, series)
+    else:
+        panels = [("", series)]
+    _plots().plot_creepcurve(panels, args.output, absolute=args.abs, title=args.title,
+                             percent=args.percent, mu=mu, rec=rec)
+    _finish(args, rec)
+
+
+def _creep_panels(args, series):
+    """--panel KEY: one panel per value of the swept KEY (sweep files only). When the case has
+    plasticity, series whose yield limit is never reached are the elastic curve: labelled
+    'elastic', drawn in every panel, and their KEY values get no panel of their own."""
+    key = args.panel
+    with RunFile(args.files[0]) as run:
+        if len(args.files) != 1 or not run.is_sweep():
+            raise PostError("--panel needs one sweep file (rollsim sweep)")
+        sweep.key_dim(run, key)
+        units = sweep.sweep_units(run, key)
+        mus = {sweep.value_at(run, sweep.Point((), dict(s.values)), "friction.mu") for s in series}
+    mark = any(s.elastic for s in series) and not all(s.elastic for s in series)
+    elastic = [s for s in series if s.elastic] if mark else []
+    by_value = {}
+    for s in series:
+        if key not in s.values:
+            continue
+        if not (mark and s.elastic):
+            by_value.setdefault(s.values[key], []).append(s)
+    if elastic:
+        e = elastic[0]
+        e.label = "elastic"
+    panels = []
+    for value, group in by_value.items():
+        for s in group:
+            s.label = ", ".join(sweep.describe(k, v, "") for k, v in s.values.items() if k != key) \
+                or s.label
+        panels.append((sweep.describe(key, value, units), group + elastic[:1]))
+    if not panels:
+        raise PostError(f"{args.files[0]}: no plastic series to put in panels over {key}")
+    return panels, (mus.pop() if len(mus) == 1 else None)
 
 
 def cmd_plastic(args):
     figure_format(args.output)
+    rec = Recorder()
     with RunFile(args.file) as run:
+        for opt in ("overlay", "select"):
+            _sweep_only(args, run, opt)
+        if run.is_sweep():
+            sweep.require_profiles(run, ("ustar", "tauc"))
+            panels = []
+            for title, group in _panels(run, args):
+                lines = []
+                for p in group:
+                    prof = sweep.sweep_profile(run, p)
+                    label = "elastic" if prof.elastic else (
+                        _series_label(run, p, args.overlay) if args.overlay else title)
+                    lines.append((label, prof.x, sweep.field_at(run, "ustar", p), prof.tauc,
+                                  p.values))
+                panels.append((title if args.overlay else "", lines) if args.overlay
+                              else (title, lines))
+            _warn_status(run)
+            _plots().plot_sweep_plastic(panels, _title(args, run), args.output, rec)
+            _finish(args, rec)
+            return
         missing = [v for v in ("ustar", "tauc") if not run.has(v)]
         if missing:
             raise PostError(f"{args.file}: no variable {' or '.join(repr(m) for m in missing)}: "
@@ -129,7 +280,17 @@ def build_parser():
         s.add_argument("-o", "--output", required=True, metavar="OUT",
                        help="figure file; format from the extension: .png, .svg, .pdf")
         s.add_argument("--title", help=title_help)
+        s.add_argument("--data", metavar="CSV",
+                       help="also write the plotted series to CSV: panel, panel_title, series, "
+                            "quantity, the swept keys of the point shown, x, y")
         return s
+
+    def sweep_options(s):
+        s.add_argument("--overlay", metavar="KEY",
+                       help="sweep file: draw the points along the swept KEY in one panel "
+                            "(default: one panel per point)")
+        s.add_argument("--select", metavar="KEY=VALUE", action="append",
+                       help="sweep file: only the points whose KEY is nearest VALUE (repeatable)")
 
     s = figure("traction", "p_x, +-mu p_n and tau_c along x at chosen times",
                "p_x, the traction bound g = mu p_n (and -g) and, if stored, the yield limit "
@@ -140,11 +301,13 @@ def build_parser():
     s.add_argument("--time", type=float, nargs="+", metavar="T",
                    help="times in s; each picks the nearest stored record (default: the last)")
     s.add_argument("--mu", type=float, help="override the coefficient of friction")
+    sweep_options(s)
     s.set_defaults(func=cmd_traction)
 
     s = figure("regimes", "x-t map of the regime (E/H/S/P)",
                "x-t map of the contact regime: exterior, adhesion (H), slip, plastic.")
     s.add_argument("file", metavar="FILE")
+    sweep_options(s)
     s.set_defaults(func=cmd_regimes)
 
     s = figure("history", "F_x/F_n, creepage, velocity, regime counts, powers against time",
@@ -169,12 +332,18 @@ def build_parser():
                    help="group single-run files by this dotted case key, e.g. plasticity.k_tau")
     s.add_argument("--abs", action="store_true",
                    help="plot |creepage| and |F_x/F_n| (the paper's Figure 9 quadrant)")
+    s.add_argument("--percent", action="store_true", help="creepage in %% (100 xi)")
+    s.add_argument("--panel", metavar="KEY",
+                   help="one sweep file: one panel per value of the swept KEY (e.g. "
+                        "plasticity.tau_c0); with plasticity, points whose yield limit is never "
+                        "reached are drawn as 'elastic' in every panel")
     s.set_defaults(func=cmd_creepcurve)
 
     s = figure("plastic", "u* and tau_c over x and t",
                "Accumulated plastic deformation u* and yield limit tau_c over x and t.\n"
                "Needs ustar and tauc in the file (output.fields).")
     s.add_argument("file", metavar="FILE")
+    sweep_options(s)
     s.set_defaults(func=cmd_plastic)
 
     s = figure("rig", "twin-disc traction coefficient per protocol step and per revolution",
@@ -195,9 +364,19 @@ def build_parser():
     return p
 
 
+def _check_data_path(args):
+    """--data CSV: its directory must exist, checked before anything is drawn or written."""
+    path = getattr(args, "data", None)
+    if path:
+        folder = os.path.dirname(path) or "."
+        if not os.path.isdir(folder) or not os.access(folder, os.W_OK):
+            raise PostError(f"{path}: cannot write (no writable directory {folder})")
+
+
 def main(argv=None):
     args = build_parser().parse_args(argv)
     try:
+        _check_data_path(args)
         args.func(args)
     except PostError as e:
         print(f"{PROG}: {e}", file=sys.stderr)

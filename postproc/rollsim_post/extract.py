@@ -12,6 +12,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from . import PostError
+from . import sweep
 from .runfile import RunFile, case_value
 
 # ---- records and grids ---------------------------------------------------------------------
@@ -156,6 +157,8 @@ class CreepSeries:
     creepage: np.ndarray
     traction: np.ndarray
     sources: list = field(default_factory=list)  # one "file" or "file[i,j]" per point
+    values: dict = field(default_factory=dict)   # sweep files: the other swept keys' values
+    elastic: bool = False                        # sweep files: the yield limit is never reached
 
     def sort(self):
         order = np.argsort(self.creepage, kind="stable")
@@ -211,6 +214,8 @@ def sweep_series(run, prefix=None, var="traction_coefficient", x_key=CREEPAGE_KE
         ok = ~np.isnan(y) & ~np.isnan(creepage)
         idx = [f"{run.path}[{','.join(str(i) for i in combo + (k,))}]" for k in range(y.size)]
         s = CreepSeries(label, creepage[ok].copy(), y[ok].copy(), [s for s, k in zip(idx, ok) if k])
+        s.values = {run.sweep_key(d): float(coords[d][i]) for d, i in zip(others, combo)}
+        s.elastic = sweep.is_elastic(run, sweep.Point(tuple(combo), dict(s.values)))
         series.append(s.sort())
     return series
 

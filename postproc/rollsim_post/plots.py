@@ -9,6 +9,7 @@ import numpy as np  # noqa: E402
 
 from . import PostError, figure_format  # noqa: E402
 from .extract import regime_runs  # noqa: E402
+from .record import Recorder  # noqa: E402
 
 # Regimes by flag meaning: letter of the paper (E, H, S, P) and a colour-blind-safe colour
 # (Okabe-Ito palette). Exterior is left unshaded in profiles.
@@ -60,15 +61,17 @@ def _regime_legend(flags, present=None, skip=("exterior",)):
 
 # ---- traction ------------------------------------------------------------------------------
 
-def plot_traction(profiles, title, out):
+def plot_traction(profiles, title, out, rec=None):
     """One panel per record: p_x, +-g = +-mu p_n, tau_c (on the side of the net traction), with
     the regimes shaded along x (as in Figure 7 of the local-plasticity paper)."""
+    rec = rec or Recorder()
     n = len(profiles)
     fig, axes = plt.subplots(n, 1, figsize=(7.0, 3.2 * n + 0.6), sharex=True, squeeze=False,
                              layout="constrained")
     factor, unit = time_axis([p.time for p in profiles])
     regimes_present = set()
-    for ax, p in zip(axes[:, 0], profiles):
+    for k, (ax, p) in enumerate(zip(axes[:, 0], profiles)):
+        ax.set_title(f"t = {p.time * factor:.4g} {unit} (record {p.index})", fontsize=10)
         dx = np.diff(p.x).mean() if p.x.size > 1 else 1.0
         present = set()
         if p.regime is not None:
@@ -81,16 +84,19 @@ def plot_traction(profiles, title, out):
                 present.add(v)
                 ax.axvspan(p.x[i0] - dx / 2, p.x[i1 - 1] + dx / 2, color=_regime_style(m)[1],
                            alpha=0.35, lw=0)
-        ax.plot(p.x, p.g, "--", color="#0072b2", lw=1.2, label=f"g = μ p_n (μ = {p.mu:g})")
-        ax.plot(p.x, -p.g, "--", color="#0072b2", lw=1.2, alpha=0.6, label="−g")
+        point = {"time": p.time}
+        rec.line(ax, k, p.x, p.g, "--", color="#0072b2", lw=1.2, series=f"g = μ p_n (μ = {p.mu:g})",
+                 quantity="g", point=point)
+        rec.line(ax, k, p.x, -p.g, "--", color="#0072b2", lw=1.2, alpha=0.6, series="−g",
+                 quantity="-g", point=point)
         if p.tauc is not None:
             sign = -1.0 if np.nansum(p.px) < 0 else 1.0
-            ax.plot(p.x, sign * p.tauc, "-.", color="#d55e00", lw=1.4,
-                    label="τ_c" if sign > 0 else "−τ_c")
-        ax.plot(p.x, p.px, "-", color="black", lw=1.8, label="p_x")
+            rec.line(ax, k, p.x, sign * p.tauc, "-.", color="#d55e00", lw=1.4,
+                     series="τ_c" if sign > 0 else "−τ_c", quantity="tau_c", point=point)
+        rec.line(ax, k, p.x, p.px, "-", color="black", lw=1.8, series="p_x", quantity="px",
+                 point=point)
         ax.axhline(0.0, color="0.5", lw=0.5)
         ax.set_ylabel("traction [N/mm²]")
-        ax.set_title(f"t = {p.time * factor:.4g} {unit} (record {p.index})", fontsize=10)
         ax.grid(alpha=0.25)
         regimes_present |= present
     axes[-1, 0].set_xlabel("x [mm]  (rolling: material enters at the right)")
@@ -194,23 +200,219 @@ def plot_history(data, units, mu, title, out):
 
 # ---- creep curves --------------------------------------------------------------------------
 
-def plot_creepcurve(series, out, absolute=False, title=None):
-    """Traction coefficient against creepage, one line (with markers) per series."""
-    fig, ax = plt.subplots(figsize=(7.0, 4.8), layout="constrained")
-    for s in series:
-        x, y = (np.abs(s.creepage), np.abs(s.traction)) if absolute else (s.creepage, s.traction)
-        order = np.argsort(x, kind="stable")
-        ax.plot(x[order], y[order], "o-", ms=4, label=s.label)
-    ax.set_xlabel("|creepage ξ| [1]" if absolute else "creepage ξ [1]")
-    ax.set_ylabel("|F_x / F_n| [1]" if absolute else "traction coefficient F_x / F_n [1]")
-    ax.axhline(0.0, color="0.5", lw=0.5)
-    ax.axvline(0.0, color="0.5", lw=0.5)
-    ax.grid(alpha=0.25)
-    ax.ticklabel_format(axis="x", style="sci", scilimits=(-2, 2))
-    if series:
-        ax.legend(fontsize=8)
+# Distinct colours for series (Okabe-Ito, without yellow); "elastic" is always black, dashed.
+SERIES_COLOURS = ["#0072b2", "#d55e00", "#009e73", "#cc79a7", "#e69f00", "#56b4e9", "#999999",
+                  "#882255", "#44aa99", "#332288"]
+ELASTIC_STYLE = dict(color="black", ls="--", lw=1.6)
+
+
+def _colour_map(labels):
+    """A distinct colour per label, the same in every panel."""
+    colours = {}
+    for label in labels:
+        if label not in colours:
+            colours[label] = SERIES_COLOURS[len(colours) % len(SERIES_COLOURS)]
+    return colours
+
+
+def _grid(n, width=6.4, height=3.2, max_cols=2):
+    ncols = 1 if n < 4 else max_cols
+    nrows = -(-n // ncols)
+    fig, axes = plt.subplots(nrows, ncols, figsize=(width * ncols, height * nrows + 0.9),
+                             sharex=True, sharey=True, squeeze=False)
+    flat = list(axes.ravel())
+    for ax in flat[n:]:
+        ax.set_visible(False)
+    return fig, axes, flat[:n]
+
+
+def _legend_below(fig, axes, extra=(), ncol=4, title=None):
+    """One legend under the panels with every labelled artist once (by label), and the title
+    above them: the panels are laid out (tight_layout) in the space left between the two."""
+    seen = {}
+    for ax in axes:
+        for h, lab in zip(*ax.get_legend_handles_labels()):
+            seen.setdefault(lab, h)
+    for h in extra:
+        seen.setdefault(h.get_label(), h)
+    height = fig.get_figheight()
+    rows = -(-len(seen) // ncol) if seen else 0
+    bottom = (0.22 * rows + 0.12) / height if rows else 0.0
+    top = 1.0 - (0.32 / height if title else 0.0)
     if title:
-        ax.set_title(title, fontsize=11)
+        fig.suptitle(title, fontsize=11, y=1.0 - 0.06 / height, va="top")
+    fig.tight_layout(rect=(0.0, bottom, 1.0, top))
+    if seen:
+        fig.legend(list(seen.values()), list(seen.keys()), loc="lower center", ncol=ncol,
+                   fontsize=8, frameon=False, bbox_to_anchor=(0.5, 0.0))
+
+
+def plot_creepcurve(panels, out, absolute=False, title=None, percent=False, mu=None, rec=None):
+    """Traction coefficient against creepage: one panel per entry of `panels` (title, series),
+    one line with markers per series, a distinct colour per series label (the same in every
+    panel), the elastic series black and dashed. With `percent` the creepage is in %; with
+    `absolute` |xi| and |F_x/F_n| (the quadrant of the paper's Figure 9)."""
+    rec = rec or Recorder()
+    if panels and not isinstance(panels[0], tuple):
+        panels = [("", panels)]  # a plain list of series: one panel
+    colours = _colour_map(s.label for _, series in panels for s in series
+                          if not getattr(s, "elastic", False))
+    n = len(panels)
+    fig, axes = plt.subplots(1, n, figsize=(6.6 if n == 1 else 4.6 * n, 4.6 + (0.6 if n > 1 else 0)),
+                             sharey=True, squeeze=False, layout="constrained" if n == 1 else None)
+    factor = 100.0 if percent else 1.0
+    for k, (ax, (ptitle, series)) in enumerate(zip(axes[0], panels)):
+        if ptitle:
+            ax.set_title(ptitle, fontsize=10)
+        for s in series:
+            x, y = (np.abs(s.creepage), np.abs(s.traction)) if absolute else (s.creepage, s.traction)
+            order = np.argsort(x, kind="stable")
+            style = dict(ELASTIC_STYLE) if getattr(s, "elastic", False) else \
+                dict(color=colours[s.label], lw=1.4)
+            marker = "" if getattr(s, "elastic", False) or x.size > 25 else "o-"
+            if marker:
+                style["marker"] = "o"
+            rec.line(ax, k, x[order] * factor, y[order], ms=4, series=s.label,
+                     quantity="traction_coefficient", point=getattr(s, "values", None), **style)
+        if mu is not None:
+            ax.axhline(mu if absolute else mu, color="0.4", lw=0.8, ls=":", label=f"μ = {mu:g}")
+        ax.axhline(0.0, color="0.5", lw=0.5)
+        ax.axvline(0.0, color="0.5", lw=0.5)
+        ax.grid(alpha=0.25)
+        unit = "%" if percent else "1"
+        ax.set_xlabel(f"|creepage ξ| [{unit}]" if absolute else f"creepage ξ [{unit}]")
+        if not percent:
+            ax.ticklabel_format(axis="x", style="sci", scilimits=(-2, 2))
+    axes[0, 0].set_ylabel("|F_x / F_n| [1]" if absolute else "traction coefficient F_x / F_n [1]")
+    if n == 1:
+        if any(series for _, series in panels):
+            axes[0, 0].legend(fontsize=8)
+        if title:
+            axes[0, 0].set_title(title, fontsize=11)
+    else:
+        _legend_below(fig, axes[0], ncol=min(7, len(colours) + 2), title=title)
+    save(fig, out)
+
+
+# ---- sweep files: profiles per point ------------------------------------------------------
+
+def _shade_regimes(ax, prof, present):
+    if prof.regime is None:
+        return
+    values, meanings = prof.regime_flags
+    meaning_of = dict(zip(values, meanings))
+    dx = np.diff(prof.x).mean() if prof.x.size > 1 else 1.0
+    for i0, i1, v in regime_runs(prof.regime):
+        m = meaning_of.get(v)
+        if m == "exterior" or v < 0:
+            continue
+        present.add(v)
+        ax.axvspan(prof.x[i0] - dx / 2, prof.x[i1 - 1] + dx / 2, color=_regime_style(m)[1],
+                   alpha=0.35, lw=0)
+
+
+def plot_sweep_traction(panels, title, out, rec=None):
+    """Profiles of sweep points. `panels`: list of (panel title, [(series label, SweepProfile)]).
+    One profile in a panel: p_x (black), g = mu p_n (blue, dashed), tau_c (orange, dash-dot;
+    not for an elastic point) and the regimes shaded. Several (--overlay): p_x and tau_c of each
+    in its own colour (elastic: black), g once when the points share it. g and tau_c are drawn
+    on the side of the net traction."""
+    rec = rec or Recorder()
+    fig, axes, used = _grid(len(panels))
+    present = set()
+    flags = None
+    labels = [lab for _, profs in panels for lab, p in profs if not p.elastic]
+    colours = _colour_map(labels)
+    for k, (ax, (ptitle, profs)) in enumerate(zip(used, panels)):
+        ax.set_title(ptitle, fontsize=10)
+        single = len(profs) == 1
+        sign = -1.0 if np.nansum(profs[0][1].px) < 0 else 1.0
+        same_g = all(np.array_equal(p.g, profs[0][1].g, equal_nan=True) for _, p in profs)
+        for j, (label, p) in enumerate(profs):
+            pt = p.point.values
+            if single:
+                _shade_regimes(ax, p, present)
+                flags = flags or p.regime_flags
+            if j == 0 or not same_g:
+                g_colour = "#0072b2" if single else "0.45" if same_g else colours.get(label, "black")
+                rec.line(ax, k, p.x, sign * p.g, ls="--" if same_g else ":", color=g_colour,
+                         lw=1.2, series="g = μ p_n" if same_g else f"g, {label}", quantity="g",
+                         point=pt)
+            colour = "black" if single or p.elastic else colours[label]
+            if p.tauc is not None:
+                rec.line(ax, k, p.x, sign * p.tauc, "-.", lw=1.4,
+                         color="#d55e00" if single else colour,
+                         series="τ_c" if single else f"τ_c, {label}", quantity="tau_c", point=pt)
+            rec.line(ax, k, p.x, p.px, "-", lw=1.8, color=colour,
+                     series="p_x" if single else f"p_x, {label}", quantity="px", point=pt)
+        ax.axhline(0.0, color="0.5", lw=0.5)
+        ax.grid(alpha=0.25)
+    for ax in used:
+        if ax.get_subplotspec().is_first_col():
+            ax.set_ylabel("traction [N/mm²]")
+        if ax.get_subplotspec().is_last_row() or ax is used[-1]:
+            ax.set_xlabel("x [mm]  (material enters at the right)")
+            ax.xaxis.set_tick_params(labelbottom=True)
+    extra = _regime_legend(flags, present) if flags else []
+    _legend_below(fig, used, extra, title=title)
+    save(fig, out)
+
+
+def plot_sweep_regimes(panels, flags, row_name, title, out, rec=None):
+    """Regime maps of sweep points: `panels` is a list of (panel title, rows) with rows a list of
+    (row label, SweepProfile); one row per point along the swept key `row_name`."""
+    rec = rec or Recorder()
+    values, meanings = flags
+    codes = sorted(values)
+    colours = [_regime_style(dict(zip(values, meanings))[c])[1] for c in codes]
+    cmap = ListedColormap(["white"] + colours)
+    norm = BoundaryNorm([-1.5] + [c - 0.5 for c in codes] + [codes[-1] + 0.5], cmap.N)
+    n = len(panels)
+    nrows_max = max(len(rows) for _, rows in panels)
+    fig, axes = plt.subplots(n, 1, figsize=(7.0, min(1.2 + 0.3 * nrows_max, 6.0) * n + 1.0),
+                             squeeze=False, sharex=True)
+    for k, (ax, (ptitle, rows)) in enumerate(zip(axes[:, 0], panels)):
+        x = rows[0][1].x
+        grid = np.array([r.regime for _, r in rows])
+        from .extract import cell_edges
+        ax.pcolormesh(cell_edges(x), np.arange(len(rows) + 1) - 0.5, grid, cmap=cmap, norm=norm,
+                      shading="flat")
+        ax.set_yticks(range(len(rows)), [lab for lab, _ in rows], fontsize=8)
+        ax.set_ylabel(row_name)
+        ax.set_title(ptitle, fontsize=10)
+        for lab, r in rows:
+            rec.add(k, ptitle, lab, "regime", r.point.values, x, r.regime)
+    axes[-1, 0].set_xlabel("x [mm]  (material enters at the right)")
+    _legend_below(fig, [], _regime_legend(flags, skip=()), ncol=len(codes), title=title)
+    save(fig, out)
+
+
+def plot_sweep_plastic(panels, title, out, rec=None):
+    """u* and tau_c along x for sweep points: one row of two panels per entry of `panels`
+    (title, [(label, x, ustar, tauc or None, point)]), one line per point."""
+    rec = rec or Recorder()
+    n = len(panels)
+    fig, axes = plt.subplots(n, 2, figsize=(11.0, 2.8 * n + 1.0), squeeze=False, sharex=True)
+    labels = [lab for _, lines in panels for lab, *_ in lines]
+    colours = _colour_map(labels)
+    for k, (row, (ptitle, lines)) in enumerate(zip(axes, panels)):
+        row[0].set_title(f"{ptitle}: accumulated plastic deformation" if ptitle else
+                         "accumulated plastic deformation", fontsize=10)
+        row[1].set_title(f"{ptitle}: yield limit" if ptitle else "yield limit", fontsize=10)
+        for lab, x, ustar, tauc, point in lines:
+            c = colours[lab] if len(lines) > 1 else "black"
+            rec.line(row[0], 2 * k, x, ustar, "-", color=c, lw=1.5, series=lab, quantity="ustar",
+                     point=point)
+            if tauc is not None:
+                rec.line(row[1], 2 * k + 1, x, tauc, "-", color=c, lw=1.5, series=lab,
+                         quantity="tau_c", point=point)
+        row[0].set_ylabel("u* [mm]")
+        row[1].set_ylabel("τ_c [N/mm²]")
+        for ax in row:
+            ax.grid(alpha=0.25)
+    for ax in axes[-1]:
+        ax.set_xlabel("x [mm]  (material enters at the right)")
+    _legend_below(fig, axes[:, 0], ncol=4, title=title)
     save(fig, out)
 
 

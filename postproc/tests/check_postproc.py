@@ -8,6 +8,10 @@ Usage:
   check_postproc.py creep    FILE...               series grouping, labels and sorting
   check_postproc.py sweep    FIXTURE_DIR           sweep-file reader on the synthetic files
   check_postproc.py rig      RUN.nc                twin-disc step/revolution means vs records
+  check_postproc.py readme   README.md             the README's command table lists every subcommand
+  check_postproc.py sweep_views DATA_DIR OUTDIR    regimes/plastic/traction of rollsim sweep files
+                                                   (fig7.nc, fig8.nc): the series each draws (--data)
+                                                   == the profiles of the points they name
 
 Each check prints what it compares and exits 1 on the first failure.
 """
@@ -298,6 +302,81 @@ def check_rig(path):
     check(len(rig.rev_mu) == 6, f"expected 6 revolutions, got {len(rig.rev_mu)}")
 
 
+def plotted(args, out_png, out_csv):
+    """Run a figure command with --data; the recorded rows grouped by (panel, series, quantity)."""
+    proc = subprocess.run(CLI + args + ["-o", out_png, "--data", out_csv], capture_output=True, text=True)
+    check(proc.returncode == 0, f"{' '.join(args)}: exit {proc.returncode}: {proc.stderr}")
+    groups = {}
+    with open(out_csv) as f:
+        r = csv.reader(f)
+        head = next(r)
+        keys = head[4:-2]
+        for row in r:
+            key = (int(row[0]), row[2], row[3])
+            g = groups.setdefault(key, {"title": row[1], "x": [], "y": [],
+                                        "point": {k: float(v) for k, v in zip(keys, row[4:-2]) if v}})
+            g["x"].append(float(row[-2]))
+            g["y"].append(float(row[-1]))
+    return groups
+
+
+def point_index(ds, point):
+    """Index tuple of a sweep point (coordinates compared exactly: the CSV holds repr())."""
+    idx = []
+    for d in ds["traction_coefficient"].dimensions:
+        coord = np.asarray(ds[d][:])
+        hits = np.nonzero(coord == point[ds[d].key])[0]
+        check(hits.size == 1, f"{d} = {point.get(ds[d].key)} not a coordinate value")
+        idx.append(int(hits[0]))
+    return tuple(idx)
+
+
+def check_sweep_views(data, out):
+    os.makedirs(out, exist_ok=True)
+    f7, f8 = netCDF4.Dataset(os.path.join(data, "fig7.nc")), netCDF4.Dataset(os.path.join(data, "fig8.nc"))
+    x = np.asarray(f7["x"][:])
+    # regimes: rows along the last swept key (creepage), one panel per tau_c0.
+    g = plotted(["regimes", os.path.join(data, "fig8.nc")], f"{out}/reg8.png", f"{out}/reg8.csv")
+    check(len({p for p, _, _ in g}) == 2 and len(g) == 4, f"regimes fig8: {sorted(g)}")
+    for (panel, series, quantity), row in g.items():
+        i = point_index(f8, row["point"])
+        check(quantity == "regime" and np.array_equal(row["y"], np.asarray(f8["regime"][i], float)),
+              f"regimes fig8 {series}: regime row != file")
+        check(("elastic" in series) == (row["point"]["plasticity.tau_c0"] == 1e9),
+              f"regimes fig8 {series}: 'elastic' must mark exactly tau_c0 = 1e9")
+    # plastic, overlaid along k_rel: one panel pair, u* and tau_c of every k_rel.
+    g = plotted(["plastic", os.path.join(data, "fig7.nc"), "--overlay", "plasticity.k_rel"],
+                f"{out}/pl7.png", f"{out}/pl7.csv")
+    check(len(g) == 8, f"plastic fig7: {sorted(g)}")
+    for (panel, series, quantity), row in g.items():
+        i = point_index(f7, row["point"])
+        var = {"ustar": "ustar", "tau_c": "tauc"}[quantity]
+        check(np.array_equal(row["x"], x) and np.array_equal(row["y"], np.asarray(f7[var][i])),
+              f"plastic fig7 {series} {quantity} != file")
+    # traction --select: the one point asked for.
+    g = plotted(["traction", os.path.join(data, "fig8.nc"), "--select", "rolling.creepage=-0.0100001",
+                 "--select", "plasticity.tau_c0=190"], f"{out}/sel.png", f"{out}/sel.csv")
+    pts = {tuple(sorted(r["point"].items())) for r in g.values()}
+    check(pts == {(("plasticity.tau_c0", 200.0), ("rolling.creepage", -0.01))},
+          f"--select picked {pts}, want the nearest point tau_c0 = 200, xi = -0.01")
+    px = next(r for (p, s, q), r in g.items() if q == "px")
+    check(np.array_equal(px["y"], np.asarray(f8["px"][point_index(f8, px["point"])])), "--select: p_x != file")
+    print(f"OK: sweep regimes, plastic overlay and --select draw the file's profiles ({data})")
+
+
+def check_readme(path):
+    from rollsim_post import cli
+    parser = cli.build_parser()
+    sub = next(a for a in parser._actions if a.__class__.__name__ == "_SubParsersAction")
+    text = open(path).read()
+    table = set(__import__("re").findall(r"^\| `([a-z]+) ", text, __import__("re").M))
+    missing = sorted(set(sub.choices) - table)
+    check(not missing, f"{path}: subcommands missing from the table: {missing}")
+    extra = sorted(table - set(sub.choices))
+    check(not extra, f"{path}: the table names commands that do not exist: {extra}")
+    print(f"OK: {path} lists every subcommand: {', '.join(sorted(sub.choices))}")
+
+
 def main(argv):
     if len(argv) < 2:
         sys.exit(__doc__)
@@ -314,6 +393,10 @@ def main(argv):
         check_sweep(*args)
     elif cmd == "rig" and len(args) == 1:
         check_rig(*args)
+    elif cmd == "readme" and len(args) == 1:
+        check_readme(*args)
+    elif cmd == "sweep_views" and len(args) == 2:
+        check_sweep_views(*args)
     else:
         sys.exit(__doc__)
     return 0

@@ -1,5 +1,5 @@
-/* rollsim command line (interfaces.md "Command line"):
- *   rollsim run CASE.yaml [-o OUT.nc] [--restart OLD.nc] [--set KEY=VALUE]... [--quiet]
+/* rollsim command line (interfaces.md "Command line"; each command's help: app/help.c):
+ *   rollsim run CASE.yaml [-o OUT.nc] [--restart OLD.nc [--append]] [--set KEY=VALUE]... [--quiet]
  *   rollsim check CASE.yaml [--set KEY=VALUE]...
  *   rollsim sweep CASE.yaml [-o OUT.nc] [--set ...]
  *   rollsim --help | --version
@@ -10,12 +10,14 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <time.h>
 #include <unistd.h>
 
 #include "rollsim/case.h"
 #include "rollsim/run.h"
 #include "rollsim/sweep.h"
+#include "app/cli.h"
 
 #ifndef RS_VERSION
 #define RS_VERSION "unknown"
@@ -30,31 +32,21 @@ static void on_signal(int sig)
   interrupted = 1;
 }
 
-static void usage(FILE *f)
+static void usage(FILE *f) { rs_cli_help(NULL, f); }
+
+/* Whether two paths name the same existing file. */
+static int same_file(const char *a, const char *b)
 {
-  fprintf(
-      f,
-      "usage: rollsim run CASE.yaml [-o OUT.nc] [--restart OLD.nc] [--set KEY=VALUE]... [--quiet]\n"
-      "       rollsim check CASE.yaml [--set KEY=VALUE]...\n"
-      "       rollsim sweep CASE.yaml [-o OUT.nc] [--set KEY=VALUE]...\n"
-      "       rollsim --help | --version\n"
-      "\n"
-      "Transient 2D wheel-rail rolling contact with local plasticity (Kalker's theory\n"
-      "extended with a yield limit; SUNDIALS IDA/KINSOL, KLU, netCDF output).\n"
-      "\n"
-      "  run     solve the case, write the netCDF file (case output.file or -o), print a summary\n"
-      "  check   validate the case and print every resolved and derived parameter; run nothing\n"
-      "  sweep   run the case's sweep: block into one netCDF file\n"
-      "  -o FILE        output file (overrides output.file)\n"
-      "  --restart OLD.nc  (run, transient) continue from the last record of an earlier run's\n"
-      "                 file: its state (fields px, upl, ustar) and time, up to the case's end\n"
-      "                 time, into a new file; same grid and output times as the old run.\n"
-      "                 (run, steady) start Newton from that state instead of from rest\n"
-      "  --set KEY=VAL  override a case key by its dotted path, e.g. --set grid.cells=200\n"
-      "  --quiet        no progress bar\n"
-      "\n"
-      "Units: mm, N, s, N/mm^2. Exit codes: 0 ok, 2 invalid input, 3 solver failure,\n"
-      "4 interrupted, 1 internal/output error.\n");
+  struct stat sa, sb;
+  return stat(a, &sa) == 0 && stat(b, &sb) == 0 && sa.st_dev == sb.st_dev && sa.st_ino == sb.st_ino;
+}
+
+/* The summary's first lines: the case's title and, under it, what --set changed (which
+ * the title may not say). */
+static void print_title(const rs_case *c, const char *case_path)
+{
+  printf("%s\n", c->title && *c->title ? c->title : case_path);
+  if (c->overrides) printf("  with --set %s\n", c->overrides);
 }
 
 static int exit_code(int status)
@@ -71,11 +63,11 @@ static int exit_code(int status)
 /* The parsed command line. */
 typedef struct cli_args {
   const char *cmd, *case_path, *out_path, *restart_path;
-  int quiet, nsets;
+  int quiet, append, nsets;
   const char **sets; /* the --set KEY=VALUE strings [nsets] (owned array) */
 } cli_args;
 
-/* argv after the command: options and the case file. RS_OK or RS_ERR_INPUT (message
+/* argv after the command: options and the case file. RS_OK, or RS_ERR_INPUT (message
  * printed). */
 static int parse_args(int argc, char **argv, cli_args *a)
 {
@@ -110,6 +102,13 @@ static int parse_args(int argc, char **argv, cli_args *a)
       a->sets[a->nsets++] = argv[i];
     } else if (!strncmp(arg, "--set=", 6)) {
       a->sets[a->nsets++] = arg + 6;
+    } else if (!strcmp(arg, "--append")) {
+      if (strcmp(a->cmd, "run")) {
+        fprintf(stderr, "rollsim %s: --append applies to 'rollsim run --restart OLD.nc' only\n",
+                a->cmd);
+        return RS_ERR_INPUT;
+      }
+      a->append = 1;
     } else if (!strcmp(arg, "--quiet") || !strcmp(arg, "-q")) {
       a->quiet = 1;
     } else if (arg[0] == '-' && arg[1] != '\0') {
@@ -126,6 +125,16 @@ static int parse_args(int argc, char **argv, cli_args *a)
     fprintf(stderr, "rollsim %s: missing CASE.yaml\n", a->cmd);
     return RS_ERR_INPUT;
   }
+  if (a->append && !a->restart_path) {
+    fprintf(stderr,
+            "rollsim run: --append continues the file given by --restart OLD.nc: give it\n");
+    return RS_ERR_INPUT;
+  }
+  if (a->append && a->out_path && !same_file(a->out_path, a->restart_path)) {
+    fprintf(stderr, "rollsim run: --append writes into %s (the --restart file); leave out -o %s\n",
+            a->restart_path, a->out_path);
+    return RS_ERR_INPUT;
+  }
   for (int k = 0; k < a->nsets; k++)
     if (!strchr(a->sets[k], '=')) {
       fprintf(stderr, "rollsim: --set %s: expected KEY=VALUE\n", a->sets[k]);
@@ -134,31 +143,27 @@ static int parse_args(int argc, char **argv, cli_args *a)
   return RS_OK;
 }
 
-/* rollsim check: the resolved case and the derived parameters. */
-static int cmd_check(const rs_case *c, const cli_args *a)
+/* rollsim check: the resolved case, the derived parameters and the sweep block. */
+static int cmd_check(const rs_case *c, const cli_args *a, const rs_sweep *sw)
 {
   rs_msg msg = {{0}};
   rs_case_print(c, stdout);
-  const int status = rs_run_print_derived(c, stdout, &msg);
+  int status = rs_run_print_derived(c, stdout, &msg);
   if (status != RS_OK) fprintf(stderr, "%s: %s\n", a->case_path, msg.text);
+  if (status == RS_OK && sw->naxes > 0) rs_cli_print_sweep(stdout, sw);
   return status == RS_ERR_SOLVER ? RS_ERR_INPUT : status;
 }
 
 /* rollsim sweep: every point of the case's sweep: block into one file. */
-static int cmd_sweep(const cli_args *a, const rs_run_opts *o)
+static int cmd_sweep(const rs_case *c, const cli_args *a, const rs_sweep *sw, const rs_run_opts *o)
 {
   rs_msg msg = {{0}};
-  rs_sweep sw;
-  int status = rs_sweep_load(&sw, a->case_path, a->sets, a->nsets, &msg);
-  if (status != RS_OK) {
-    fprintf(stderr, "%s\n", msg.text);
-    return status;
-  }
+  print_title(c, a->case_path);
   rs_sweep_result sres;
-  status = rs_sweep_run(&sw, a->case_path, a->sets, a->nsets, o, &sres, &msg);
+  const int status = rs_sweep_run(sw, a->case_path, a->sets, a->nsets, o, &sres, &msg);
   if (status != RS_OK) fprintf(stderr, "rollsim: %s: %s\n", a->case_path, msg.text);
   printf("sweep over");
-  for (int k = 0; k < sw.naxes; k++) printf(" %s (%d)", sw.axes[k].key, sw.axes[k].n);
+  for (int k = 0; k < sw->naxes; k++) printf(" %s (%d)", sw->axes[k].key, sw->axes[k].n);
   printf(": %zu points solved, %zu failed, Newton iterations %ld, wall time %.3f s\n",
          sres.points_done, sres.points_failed, sres.newton_iters, sres.wall_seconds);
   printf("  steady points: linear solves %ld, Jacobian evaluations %ld, continuation steps "
@@ -168,19 +173,24 @@ static int cmd_sweep(const cli_args *a, const rs_run_opts *o)
     printf("  steady check: %ld Newton solutions refused as not physical (recomputed by "
            "rolling the material)\n",
            sres.refused);
-  printf("  output: %s\n", sres.file);
-  rs_sweep_free(&sw);
+  printf("  output: %s%s%s%s\n", sres.file, *sres.backup ? " (the previous file kept as " : "",
+         sres.backup, *sres.backup ? ")" : "");
   return status;
 }
 
 /* The summary of one run on stdout. */
-static void print_summary(const rs_case *c, const rs_run_result *res, int status)
+static void print_summary(const rs_case *c, const cli_args *a, const rs_run_result *res, int status)
 {
   const rs_diag *d = &res->final;
+  const int three = c->dimension == 3;
+  const char *fu = three ? "N" : "N/mm";
   const double ratio = d->Fn > 0 ? d->Fx / (res->mu * d->Fn) : 0.0;
-  printf("%s\n", c->title && *c->title ? c->title : c->source_path);
-  printf("  F_x/(mu F_n) = %.6f   (F_x = %.6g N/mm, F_n = %.6g N/mm, mu = %g) at t = %.6g s\n",
-         ratio, d->Fx, d->Fn, res->mu, res->time);
+  print_title(c, a->case_path);
+  printf("  F_x/(mu F_n) = %.6f   (F_x = %.6g %s, F_n = %.6g %s, mu = %g) at t = %.6g s\n", ratio,
+         d->Fx, fu, d->Fn, fu, res->mu, res->time);
+  if (three)
+    printf("  F_y = %.6g N, M_z = %.6g N mm   (xi = %.6g, eta = %.6g, phi = %.6g 1/mm)\n", d->Fy,
+           d->Mz, d->creepage, d->lateral_creepage, d->spin);
   printf("  cells E/H/S/P = %d/%d/%d/%d\n", d->count[RS_EXTERIOR], d->count[RS_ADHESION],
          d->count[RS_SLIP], d->count[RS_PLASTIC]);
   const rs_stats *st = &res->stats;
@@ -211,8 +221,13 @@ static void print_summary(const rs_case *c, const rs_run_result *res, int status
       printf("  %13zu %10.4f   %.6f\n", j + 1, 100.0 * res->rig_step_slip[j], res->rig_step_mu[j]);
   }
   printf("  wall time %.3f s\n", res->wall_seconds);
-  printf("  output: %s (%zu records)%s\n", res->file, res->records,
-         status == RS_OK ? "" : " -- incomplete, see status attribute");
+  if (a->append)
+    printf("  output: %s (%zu records, %zu of them appended)%s\n", res->file, res->file_records,
+           res->records, status == RS_OK ? "" : " -- incomplete, see status attribute");
+  else
+    printf("  output: %s (%zu records)%s\n", res->file, res->records,
+           status == RS_OK ? "" : " -- incomplete, see status attribute");
+  if (*res->backup) printf("  the previous %s was kept as %s\n", res->file, res->backup);
 }
 
 /* rollsim run: one case. */
@@ -222,7 +237,7 @@ static int cmd_run(const rs_case *c, const cli_args *a, const rs_run_opts *o)
   rs_run_result res;
   const int status = rs_run(c, o, &res, &msg);
   if (status != RS_OK) fprintf(stderr, "rollsim: %s: %s\n", a->case_path, msg.text);
-  if (res.records > 0) print_summary(c, &res, status);
+  if (res.records > 0) print_summary(c, a, &res, status);
   rs_run_result_free(&res);
   return status;
 }
@@ -252,6 +267,19 @@ static void history_text(int argc, char **argv, char *history, size_t size)
     len += snprintf(history + len, size - (size_t)len, " %s", argv[i]);
 }
 
+/* rollsim help [CMD]: the overview or one command's help. */
+static int cmd_help(int argc, char **argv)
+{
+  const char *topic = argc > 2 && strcmp(argv[2], "--help") && strcmp(argv[2], "-h") ? argv[2]
+                      : argc > 2                                                     ? "help"
+                                                                                     : NULL;
+  if (topic && rs_cli_help(topic, stdout) != 0) {
+    fprintf(stderr, "rollsim help: unknown command '%s'\n", topic);
+    return 2;
+  }
+  return topic ? 0 : rs_cli_help(NULL, stdout);
+}
+
 int main(int argc, char **argv)
 {
   if (argc < 2) {
@@ -267,13 +295,20 @@ int main(int argc, char **argv)
     return 0;
   }
   cli_args a = {.cmd = argv[1]};
-  if (strcmp(a.cmd, "run") && strcmp(a.cmd, "check") && strcmp(a.cmd, "sweep")) {
+  if (!strcmp(a.cmd, "help")) return cmd_help(argc, argv);
+  if (!rs_cli_is_command(a.cmd)) {
     fprintf(stderr, "rollsim: unknown command '%s'\n", a.cmd);
     usage(stderr);
     return 2;
   }
+  for (int i = 2; i < argc; i++) /* rollsim CMD ... --help: that command's help, nothing run */
+    if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
+      rs_cli_help(a.cmd, stdout);
+      return 0;
+    }
   int status = parse_args(argc, argv, &a);
   rs_case c;
+  rs_sweep sw = {0};
   rs_msg msg = {{0}};
   if (status == RS_OK && (status = rs_case_load(&c, a.case_path, a.sets, a.nsets, &msg)) != RS_OK)
     fprintf(stderr, "%s\n", msg.text);
@@ -281,19 +316,35 @@ int main(int argc, char **argv)
     free(a.sets);
     return exit_code(status);
   }
-  if (!strcmp(a.cmd, "check")) {
-    status = cmd_check(&c, &a);
-  } else {
+  if (c.has_sweep && strcmp(a.cmd, "run")) { /* check and sweep: the sweep block is input too */
+    if ((status = rs_sweep_load(&sw, a.case_path, a.sets, a.nsets, &msg)) != RS_OK)
+      fprintf(stderr, "%s\n", msg.text);
+  } else if (!strcmp(a.cmd, "sweep")) {
+    fprintf(stderr, "%s: the case has no sweep: block (use rollsim run)\n", a.case_path);
+    status = RS_ERR_INPUT;
+  }
+  if (status == RS_OK) {
+    if (sw.naxes > 0)
+      rs_warn_sweep(&c, &sw, stderr);
+    else
+      rs_warn_case(&c, stderr);
+  }
+  if (status == RS_OK && !strcmp(a.cmd, "check")) {
+    status = cmd_check(&c, &a, &sw);
+  } else if (status == RS_OK) {
     install_signal_handlers();
     char history[2048];
     history_text(argc, argv, history, sizeof history);
     const rs_run_opts o = {.output_path = a.out_path,
                            .history = history,
                            .restart_path = a.restart_path,
+                           .append = a.append,
+                           .cost_warning = 1,
                            .progress = !a.quiet && isatty(STDERR_FILENO),
                            .interrupt_flag = &interrupted};
-    status = !strcmp(a.cmd, "sweep") ? cmd_sweep(&a, &o) : cmd_run(&c, &a, &o);
+    status = !strcmp(a.cmd, "sweep") ? cmd_sweep(&c, &a, &sw, &o) : cmd_run(&c, &a, &o);
   }
+  rs_sweep_free(&sw);
   rs_case_free(&c);
   free(a.sets);
   return exit_code(status);

@@ -14,6 +14,7 @@
 #include "base/util.h"
 #include "rollsim/output.h"
 #include "rollsim/restart.h"
+#include "app/cli.h"
 
 typedef struct run_state {
   const rs_case *c;
@@ -23,6 +24,7 @@ typedef struct run_state {
   double *y, *yp, *slip, *tauc;
   signed char *regime;
   rs_output *out;
+  rs_fields *final; /* copies of the last record's fields, or NULL */
 } run_state;
 
 void rs_run_result_free(rs_run_result *res)
@@ -40,6 +42,7 @@ static int write_record(run_state *s, double t, rs_diag *d, rs_msg *msg)
   rs_model_inputs_at(&s->m, t, &in);
   int status = rs_model_diagnostics(&s->m, &s->w, &in, s->y, s->yp, d, s->slip, s->tauc, s->regime);
   if (status != RS_OK) return rs_msg_set(msg, status, "%s", s->w.msg.text);
+  if (s->final) rs_fields_copy(s->final, s->m.grid.n, s->y, s->w.pn, s->slip, s->tauc, s->regime);
   rs_record rec = {.time = t,
                    .Fx = d->Fx,
                    .Fn = d->Fn,
@@ -118,6 +121,8 @@ static int run_transient(run_state *s, const rs_run_opts *o, rs_run_result *res,
   const double t_end = c->end_time;
   const long nrec = (long)ceil(t_end / c->output_interval - 1e-9);
   double t = t0, bp = topts.t_stop;
+  rs_cost_watch cost;
+  rs_cost_watch_init(&cost, c, s->m.grid.n, t0, started);
   long k = (long)floor(t0 / c->output_interval + 1e-9) + 1; /* first output time after t0 */
   while (status == RS_OK && k <= nrec) {
     const double t_out = k == nrec ? t_end : k * c->output_interval;
@@ -151,6 +156,7 @@ static int run_transient(run_state *s, const rs_run_opts *o, rs_run_result *res,
       if (status == RS_OK) status = rs_transient_restart(tr, t, s->y, s->yp, bp, msg);
     }
     rs_transient_get_stats(tr, &res->stats);
+    if (o->cost_warning) rs_cost_watch_update(&cost, t, res->stats.steps, stderr);
     if (o->progress) progress(t, t_end, res->stats.steps, started);
     if (status == RS_OK && o->interrupt_flag && *o->interrupt_flag)
       status = rs_msg_set(msg, RS_ERR_INTERRUPTED, "interrupted at t = %.6g s", t);
@@ -169,10 +175,12 @@ static int read_restart(run_state *s, const rs_run_opts *o, const char *out_path
   /* Writing the continuation over the file it starts from would destroy the old
    * records (the output file is created by renaming over its path). */
   struct stat st_old, st_new;
-  if (!o->no_output && stat(o->restart_path, &st_old) == 0 && stat(out_path, &st_new) == 0 &&
-      st_old.st_dev == st_new.st_dev && st_old.st_ino == st_new.st_ino)
+  if (!o->no_output && !o->append && stat(o->restart_path, &st_old) == 0 &&
+      stat(out_path, &st_new) == 0 && st_old.st_dev == st_new.st_dev &&
+      st_old.st_ino == st_new.st_ino)
     return rs_msg_set(msg, RS_ERR_INPUT,
-                      "--restart %s: it is also the output file; choose another one with -o",
+                      "--restart %s: it is also the output file; choose another one with -o, "
+                      "or add --append to continue in it",
                       o->restart_path);
   const rs_layout *L = &s->m.lay;
   int status =
@@ -190,6 +198,37 @@ static int read_restart(run_state *s, const rs_run_opts *o, const char *out_path
                       "the case ends at t = %.9g s (raise simulation.rolled_distance or "
                       "simulation.end_time)",
                       o->restart_path, *t0, c->end_time);
+  return RS_OK;
+}
+
+/* The history of a run that continues OLD.nc: OLD's history, then this command with
+ * where it started and how OLD had ended (its status); for --append the line alone
+ * (rs_output_open_append adds it to the file's history). */
+static int restart_history(const rs_run_opts *o, const rs_case *c, double t0, char **history,
+                           rs_msg *msg)
+{
+  char *old_history = NULL, *old_status = NULL;
+  int status = rs_restart_read_provenance(o->restart_path, &old_history, &old_status, msg);
+  if (status != RS_OK) return status;
+  const char *base = o->history ? o->history : "";
+  const size_t len =
+      strlen(old_history) + strlen(base) + strlen(o->restart_path) + strlen(old_status) + 160;
+  if (!(*history = malloc(len))) {
+    free(old_history);
+    free(old_status);
+    return rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory");
+  }
+  const int keep_old = !o->append && c->mode == RS_MODE_TRANSIENT && *old_history;
+  int k = snprintf(*history, len, "%s%s%s%s", keep_old ? old_history : "", keep_old ? "\n" : "",
+                   base, *base ? " " : "");
+  if (c->mode == RS_MODE_STEADY)
+    snprintf(*history + k, len - (size_t)k, "(steady solve started from the last record of %s)",
+             o->restart_path);
+  else
+    snprintf(*history + k, len - (size_t)k, "(%s %s at t = %.9g s; its status was '%s')",
+             o->append ? "continued in" : "restart from", o->restart_path, t0, old_status);
+  free(old_history);
+  free(old_status);
   return RS_OK;
 }
 
@@ -217,11 +256,19 @@ int rs_run(const rs_case *c, const rs_run_opts *o, rs_run_result *res, rs_msg *m
     free_state(&s);
     return rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory for %d cells", n);
   }
-  const char *path = o->output_path ? o->output_path : c->output_file;
+  const char *path = o->append && o->restart_path ? o->restart_path
+                     : o->output_path             ? o->output_path
+                                                  : c->output_file;
   snprintf(res->file, sizeof res->file, "%s", path);
   /* Twin-disc rig mode: the circumferential memory and the per-step results. */
   rs_rig_run rig_run, *rig = NULL;
   rs_output_rig rig_spec = {0};
+  if (o->append && (!o->restart_path || c->mode != RS_MODE_TRANSIENT || o->no_output)) {
+    free_state(&s);
+    return rs_msg_set(msg, RS_ERR_INPUT,
+                      "--append continues a transient run in its file: give --restart OLD.nc "
+                      "and simulation.mode: transient");
+  }
   if (c->rig.on) {
     if (o->restart_path) {
       free_state(&s);
@@ -244,23 +291,18 @@ int rs_run(const rs_case *c, const rs_run_opts *o, rs_run_result *res, rs_msg *m
   char *history = NULL; /* the history attribute, naming the restart file */
   if (o->restart_path) {
     status = read_restart(&s, o, path, &t0, msg);
-    const char *base = o->history ? o->history : "";
-    const size_t len = strlen(base) + strlen(o->restart_path) + 96;
-    if (status == RS_OK && !(history = malloc(len)))
-      status = rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory");
+    if (status == RS_OK) status = restart_history(o, c, t0, &history, msg);
     if (status != RS_OK) {
       free_state(&s);
       return status;
     }
-    if (c->mode == RS_MODE_STEADY)
-      snprintf(history, len, "%s%s(steady solve started from the last record of %s)", base,
-               *base ? " " : "", o->restart_path);
-    else
-      snprintf(history, len, "%s%s(restart from %s at t = %.9g s)", base, *base ? " " : "",
-               o->restart_path, t0);
   }
-  /* The yield limit is infinite without plasticity: not written then. */
-  const unsigned fields = c->has_plasticity ? c->fields : (c->fields & ~(unsigned)RS_FIELD_TAUC);
+  /* The yield limit is infinite without plasticity: not written then. A transient file
+   * always holds the state a restart needs (px, upl, ustar; the creepage is a scalar),
+   * whatever output.fields asks for (twin-disc runs cannot be restarted). */
+  const unsigned asked = c->has_plasticity ? c->fields : (c->fields & ~(unsigned)RS_FIELD_TAUC);
+  const unsigned state = RS_FIELD_PX | RS_FIELD_UPL | RS_FIELD_USTAR;
+  const unsigned fields = c->mode == RS_MODE_TRANSIENT && !rig ? asked | state : asked;
   rs_output_spec spec = {.path = path,
                          .title = c->title ? c->title : "",
                          .case_text = c->yaml_text ? c->yaml_text : "",
@@ -271,9 +313,18 @@ int rs_run(const rs_case *c, const rs_run_opts *o, rs_run_result *res, rs_msg *m
                          .nx = (size_t)n,
                          .x = s.m.grid.x,
                          .fields = fields,
+                         .requested_fields = asked,
                          .rig = rig ? &rig_spec : NULL};
-  status = o->no_output ? RS_OK : rs_output_create(&s.out, &spec, msg);
+  if (o->no_output)
+    status = RS_OK;
+  else if (o->append)
+    status = rs_output_open_append(&s.out, path, (size_t)n, s.m.grid.x, fields, history, msg);
+  else
+    status = rs_output_create(&s.out, &spec, msg);
+  if (status == RS_OK && s.out && rs_output_backup(s.out))
+    snprintf(res->backup, sizeof res->backup, "%s", rs_output_backup(s.out));
   free(history);
+  s.final = o->final_fields && o->final_fields->n == n ? o->final_fields : NULL;
   if (status != RS_OK) {
     if (rig) rs_rig_run_free(rig);
     free_state(&s);
@@ -297,8 +348,12 @@ int rs_run(const rs_case *c, const rs_run_opts *o, rs_run_result *res, rs_msg *m
     status = rs_model_consistent_rates(&s.m, &s.w, &in, s.y, s.yp, msg);
   }
   if (status == RS_OK) {
+    /* Appending: the file's last record already holds this state. */
+    rs_output *file = s.out;
+    if (o->append) s.out = NULL;
     status = write_record(&s, t0, &res->final, msg);
-    res->records = status == RS_OK;
+    s.out = file;
+    res->records = status == RS_OK && !o->append;
     res->time = t0;
   }
   if (status == RS_OK && c->mode == RS_MODE_TRANSIENT) {
@@ -314,6 +369,7 @@ int rs_run(const rs_case *c, const rs_run_opts *o, rs_run_result *res, rs_msg *m
   else
     snprintf(why, sizeof why, "failed: %s", msg->text);
   rs_msg tmp;
+  res->file_records = rs_output_records(s.out);
   if (s.out && status != RS_ERR_OUTPUT) rs_output_set_status(s.out, why, &tmp);
   int close_status = rs_output_close(s.out, status == RS_OK ? msg : &tmp);
   if (status == RS_OK) status = close_status;
@@ -348,7 +404,7 @@ int rs_run_print_derived(const rs_case *c, FILE *out, rs_msg *msg)
   const double V = in.velocity;
   fprintf(out, "solver.r_steady: %.6g  # N s/mm^3, semismooth scaling at t = 0\n",
           V > 0.0 ? rs_model_scaling(&m, &in, 0.0) : 0.0);
-  if (V > 0.0)
+  if (V > 0.0 && c->mode == RS_MODE_TRANSIENT)
     fprintf(out, "simulation.rolled_distance_total: %.6g  # mm (%.4g contact lengths)\n",
             V * c->end_time, V * c->end_time / (2.0 * m.hertz_a));
   if (c->rig.on)

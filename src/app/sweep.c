@@ -14,6 +14,7 @@
 #include "rollsim/steady.h"
 #include "rollsim/sweep.h"
 #include "base/util.h"
+#include "app/cli.h"
 
 static void fill_point(rs_sweep_point *pt, const rs_diag *d)
 {
@@ -143,8 +144,8 @@ static int continue_to(steady_chain *ch, const char *key, double x, double *y, i
  * model and solver of the previous point are reused (continuation in the rolling
  * input `key`) when reuse. */
 static int steady_point(const rs_case *c, steady_chain *ch, double **y, int *ny, int warm,
-                        int reuse, const char *key, double x, rs_diag *d, rs_stats *sum,
-                        rs_msg *msg)
+                        int reuse, const char *key, double x, rs_diag *d, rs_fields *f,
+                        rs_stats *sum, rs_msg *msg)
 {
   int status = RS_OK;
   const int chained =
@@ -183,10 +184,21 @@ static int steady_point(const rs_case *c, steady_chain *ch, double **y, int *ny,
       ch->nsolved = reuse ? 1 : 0; /* a chain starts only along a rolling input */
     }
   }
+  /* the point's profiles (output.fields; 2D sweep files) */
+  const int keep = f && f->n == ch->m.grid.n && ch->m.lay.ncomp == 1;
   if (status == RS_OK) {
     rs_inputs in;
     rs_model_inputs_at(&ch->m, 0.0, &in);
-    status = rs_model_diagnostics(&ch->m, &ch->w, &in, *y, ch->yp, d, NULL, NULL, NULL);
+    status = rs_model_diagnostics(&ch->m, &ch->w, &in, *y, ch->yp, d, keep ? f->slip : NULL,
+                                  keep ? f->tauc : NULL, keep ? f->regime : NULL);
+  }
+  if (status == RS_OK && keep) {
+    const rs_layout *L = &ch->m.lay;
+    const size_t bytes = (size_t)ch->m.grid.n * sizeof(double);
+    memcpy(f->px, *y + rs_at_p(L, 0, 0), bytes);
+    memcpy(f->upl, *y + rs_at_upl(L, 0, 0), bytes);
+    memcpy(f->ustar, *y + rs_at_ustar(L, 0), bytes);
+    memcpy(f->pn, ch->w.pn, bytes);
   }
   sum->nonlin_iters += stats.nonlin_iters;
   sum->lin_solves += stats.lin_solves;
@@ -206,6 +218,9 @@ int rs_sweep_run(const rs_sweep *s, const char *case_path, const char *const *se
   if (status != RS_OK) return status;
   const char *path = o->output_path ? o->output_path : base.output_file;
   snprintf(res->file, sizeof res->file, "%s", path);
+  double *grid_x = NULL; /* the common grid of the points' profiles, or NULL */
+  int grid_n = 0;
+  rs_fields buf = {0};
 
   const char **keys = calloc((size_t)s->naxes, sizeof *keys);
   int *sizes = calloc((size_t)s->naxes, sizeof *sizes);
@@ -222,7 +237,29 @@ int rs_sweep_run(const rs_sweep *s, const char *case_path, const char *const *se
     values[a] = s->axes[a].values;
   }
   for (int i = 0; i < nsets; i++) all[i] = sets[i];
+  /* Profiles (output.fields) when every point has the base case's grid. */
+  const unsigned fields =
+      base.has_plasticity ? base.fields : base.fields & ~(unsigned)RS_FIELD_TAUC;
+  if (fields) {
+    char why[512];
+    int common = 0;
+    status = rs_sweep_common_grid(s, case_path, sets, nsets, &common, &grid_x, &grid_n, why,
+                                  sizeof why, msg);
+    if (status != RS_OK) goto done;
+    if (!common)
+      fprintf(stderr,
+              "rollsim sweep: warning: output.fields not stored: %s, and the profiles "
+              "of a sweep file share one x axis (output.fields: [] silences this)\n",
+              why);
+    else if (rs_fields_alloc(&buf, grid_n) != RS_OK) {
+      status = rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory");
+      goto done;
+    }
+  }
   rs_sweep_output_spec spec = {.path = path,
+                               .fields = grid_x ? fields : 0,
+                               .nx = (size_t)grid_n,
+                               .x = grid_x,
                                .title = base.title,
                                .case_text = base.yaml_text,
                                .history = o->history,
@@ -234,6 +271,8 @@ int rs_sweep_run(const rs_sweep *s, const char *case_path, const char *const *se
   rs_sweep_output *out = NULL;
   status = rs_sweep_output_create(&out, &spec, msg);
   if (status != RS_OK) goto done;
+  if (rs_sweep_output_backup(out))
+    snprintf(res->backup, sizeof res->backup, "%s", rs_sweep_output_backup(out));
 
   double *y = NULL;
   int ny = 0;
@@ -265,11 +304,14 @@ int rs_sweep_run(const rs_sweep *s, const char *case_path, const char *const *se
       if (c.mode == RS_MODE_STEADY) {
         const char *key = s->axes[s->naxes - 1].key;
         ps = steady_point(&c, &chain, &y, &ny, last_index > 0, rolling_key(key), key,
-                          s->axes[s->naxes - 1].values[last_index], &d, &steady_sum, &point_msg);
+                          s->axes[s->naxes - 1].values[last_index], &d, grid_x ? &buf : NULL,
+                          &steady_sum, &point_msg);
       } else {
         rs_run_opts po = *o;
         po.no_output = 1;
         po.progress = 0;
+        po.cost_warning = 0;
+        po.final_fields = grid_x ? &buf : NULL;
         rs_run_result rr;
         ps = rs_run(&c, &po, &rr, &point_msg);
         d = rr.final;
@@ -280,6 +322,26 @@ int rs_sweep_run(const rs_sweep *s, const char *case_path, const char *const *se
     }
     if (ps == RS_OK) {
       fill_point(&pt, &d);
+      if (grid_x)
+        pt = (rs_sweep_point){.Fx = pt.Fx,
+                              .Fn = pt.Fn,
+                              .creepage = pt.creepage,
+                              .velocity = pt.velocity,
+                              .n_exterior = pt.n_exterior,
+                              .n_adhesion = pt.n_adhesion,
+                              .n_slip = pt.n_slip,
+                              .n_plastic = pt.n_plastic,
+                              .frictional_power = pt.frictional_power,
+                              .plastic_power = pt.plastic_power,
+                              .elastic_energy = pt.elastic_energy,
+                              .converged = 1,
+                              .px = buf.px,
+                              .pn = buf.pn,
+                              .slip = buf.slip,
+                              .upl = buf.upl,
+                              .ustar = buf.ustar,
+                              .tauc = buf.tauc,
+                              .regime = buf.regime};
       res->points_done++;
     } else if (ps == RS_ERR_SOLVER) {
       pt.Fx = pt.Fn = pt.creepage = pt.velocity = NAN;
@@ -329,6 +391,8 @@ int rs_sweep_run(const rs_sweep *s, const char *case_path, const char *const *se
   if (status == RS_OK) status = cs;
 done:
   res->wall_seconds = rs_wall_clock() - started;
+  free(grid_x);
+  rs_fields_free(&buf);
   free(keys);
   free(sizes);
   free(values);

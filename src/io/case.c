@@ -461,7 +461,20 @@ static int resolve(const rs_case_doc *d, rs_case_input *in, const yaml_node_t **
     return rs_msg_set(d->msg, RS_ERR_INTERNAL, "out of memory");
   if (!c->title && !(c->title = strdup("")))
     return rs_msg_set(d->msg, RS_ERR_INTERNAL, "out of memory");
+  c->has_sweep = given(&r, "sweep") != NULL;
   return RS_OK;
+}
+
+/* "KEY=VALUE, KEY=VALUE" of the --set assignments. */
+static char *join_sets(const char *const *sets, int nsets)
+{
+  size_t len = 1;
+  for (int i = 0; i < nsets; i++) len += strlen(sets[i]) + 2;
+  char *text = malloc(len);
+  if (!text) return NULL;
+  text[0] = '\0';
+  for (int i = 0; i < nsets; i++) strcat(strcat(text, i ? ", " : ""), sets[i]);
+  return text;
 }
 
 int rs_case_load(rs_case *c, const char *path, const char *const *sets, int nsets, rs_msg *msg)
@@ -480,6 +493,8 @@ int rs_case_load(rs_case *c, const char *path, const char *const *sets, int nset
   if (status == RS_OK) status = resolve(&d, &in, where);
   if (status == RS_OK && !(in.c.source_path = strdup(path)))
     status = rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory");
+  if (status == RS_OK && nsets > 0 && !(in.c.overrides = join_sets(sets, nsets)))
+    status = rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory");
   if (status == RS_OK) status = rs_case_doc_emit(&d, &in.c.yaml_text);
   if (where) rs_case_doc_free(&d);
   free(where);
@@ -497,6 +512,7 @@ void rs_case_free(rs_case *c)
   free(c->source_path);
   free(c->yaml_text);
   free(c->title);
+  free(c->overrides);
   free(c->output_file);
   rs_history_free(&c->normal_load);
   rs_history_free(&c->velocity);
@@ -541,6 +557,17 @@ static void print_history(const rs_history *h, FILE *out)
   }
 }
 
+/* Keys of the time axis: meaningless for a steady case, so `check` leaves them out. */
+static int steady_skips(const char *path)
+{
+  static const char *const time_keys[] = {"simulation.end_time", "simulation.rolled_distance",
+                                          "simulation.output_interval", "simulation.initial_state",
+                                          NULL};
+  for (int i = 0; time_keys[i]; i++)
+    if (!strcmp(path, time_keys[i])) return 1;
+  return 0;
+}
+
 void rs_case_print(const rs_case *c, FILE *out)
 {
   const int three = c->dimension == 3;
@@ -568,6 +595,12 @@ void rs_case_print(const rs_case *c, FILE *out)
     if (!strncmp(k->path, "twin_disc.", 10) && (k->flags & RS_KEY_NULLABLE) &&
         k->kind == RS_KEY_NUMBER && *(const double *)field == 0.0) {
       fprintf(out, "%s: null  # not given\n", k->path);
+      continue;
+    }
+    if (c->mode == RS_MODE_STEADY && steady_skips(k->path)) {
+      if (!strcmp(k->path, "simulation.end_time"))
+        fprintf(out, "# steady rolling: no time axis (simulation.end_time, rolled_distance, "
+                     "output_interval and initial_state do not apply)\n");
       continue;
     }
     if (k->kind == RS_KEY_PROTOCOL) {
@@ -677,5 +710,7 @@ void rs_case_print(const rs_case *c, FILE *out)
       fprintf(out, "  # 1");
     if (k->flags & RS_KEY_DERIVED) fprintf(out, " (= k_tau/(G + k_tau))");
     fputc('\n', out);
+    if (!strcmp(k->path, "title") && c->overrides)
+      fprintf(out, "# changed with --set (the title is the case file's): %s\n", c->overrides);
   }
 }

@@ -27,6 +27,7 @@ typedef struct rs_case_doc {
   char *dir;        /* its directory (tables are relative to it), "" for the cwd */
   rs_case_set_origin *sets;
   int nsets;
+  int sweep_node; /* scratch of rs_case_doc_set: the sweep: mapping while walking a key */
   rs_msg *msg;
 } rs_case_doc;
 

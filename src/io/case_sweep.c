@@ -92,6 +92,8 @@ int rs_sweep_load(rs_sweep *s, const char *path, const char *const *sets, int ns
         break;
       }
       const char *key = (const char *)k->data.scalar.value;
+      if (rs_case_is_null(v)) /* KEY: null (e.g. --set sweep.KEY=null): not swept */
+        continue;
       const int idx = rs_case_key_index(key);
       if (idx < 0 ||
           (rs_case_keys[idx].kind != RS_KEY_NUMBER && rs_case_keys[idx].kind != RS_KEY_INTEGER &&
@@ -99,19 +101,22 @@ int rs_sweep_load(rs_sweep *s, const char *path, const char *const *sets, int ns
         status = rs_case_error(&d, k, "sweep", "%s is not a numeric case key", key);
         break;
       }
-      for (int j = 0; j < i; j++)
+      for (int j = 0; j < s->naxes; j++)
         if (!strcmp(s->axes[j].key, key))
           status = rs_case_error(&d, k, "sweep", "%s is swept twice", key);
       if (status != RS_OK) break;
-      s->axes[i].key = strdup(key);
-      if (!s->axes[i].key) {
+      rs_sweep_axis *ax = &s->axes[s->naxes];
+      ax->key = strdup(key);
+      if (!ax->key) {
         status = rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory");
         break;
       }
-      s->naxes = i + 1;
-      status = read_values(&d, v, key, &s->axes[i]);
-      s->npoints *= (size_t)s->axes[i].n;
+      s->naxes++;
+      status = read_values(&d, v, key, ax);
+      s->npoints *= (size_t)ax->n;
     }
+    if (status == RS_OK && s->naxes == 0)
+      status = rs_case_error(&d, sw, "sweep", "no keys to sweep (every key is null)");
   }
   rs_case_doc_free(&d);
   if (status != RS_OK) {

@@ -247,9 +247,12 @@ int rs_case_doc_set(rs_case_doc *d, const char *assignment)
 
   /* Walk the dotted key from the root, creating missing (or null) mappings. */
   int map = 1;
+  d->sweep_node = 0;
   char part[256];
   for (const char *p = key;;) {
-    const char *dot = strchr(p, '.');
+    /* Under sweep: the keys are dotted case keys themselves (sweep.rolling.creepage is
+     * the key "rolling.creepage" of the sweep: mapping). */
+    const char *dot = map != 1 && d->sweep_node == map ? NULL : strchr(p, '.');
     size_t len = dot ? (size_t)(dot - p) : strlen(p);
     if (len >= sizeof part) return rs_msg_set(d->msg, RS_ERR_INPUT, "--set %s: key too long", key);
     memcpy(part, p, len);
@@ -284,6 +287,7 @@ int rs_case_doc_set(rs_case_doc *d, const char *assignment)
       }
       next = created;
     }
+    if (map == 1 && !strcmp(part, "sweep")) d->sweep_node = next;
     map = next;
     p = dot + 1;
   }

@@ -48,23 +48,11 @@
 #define RS_VERSION "unknown"
 #endif
 
-/* I/O block size passed to netCDF; its buffer holds at most two blocks. */
-#define RS_IO_BLOCK       ((size_t)4096)
 /* Free header space reserved beyond the case text (nc__enddef h_minfree). */
 #define RS_HEADER_RESERVE ((size_t)4096)
 
-/* (time, x) fields: interfaces.md table. The regime field is stored as NC_BYTE. */
-typedef struct field_var {
-  unsigned bit; /* RS_FIELD_* */
-  const char *name;
-  const char *units;
-  const char *long_name;
-  size_t member; /* offsetof(rs_record, array), for the double fields */
-} field_var;
-
-#define N_FIELDS     7
-#define REGIME_FIELD 6
-static const field_var field_vars[N_FIELDS] = {
+/* (time, x) fields: interfaces.md table (types in io/output_internal.h). */
+const rs_field_var rs_field_vars[RS_N_FIELDS] = {
     {RS_FIELD_PX, "px", "N/mm2", "tangential traction on body 1", offsetof(rs_record, px)},
     {RS_FIELD_PN, "pn", "N/mm2", "normal pressure", offsetof(rs_record, pn)},
     {RS_FIELD_SLIP, "slip", "1", "relative slip v_s/V (slip velocity in mm/s when V = 0)",
@@ -77,17 +65,7 @@ static const field_var field_vars[N_FIELDS] = {
 
 /* Scalars per output time (model.md §7). Units depend on the dimension: per unit width
  * in 2D. traction_coefficient is computed here (Fx/Fn). */
-typedef struct scalar_var {
-  const char *name;
-  nc_type type;  /* NC_DOUBLE or NC_INT */
-  size_t member; /* offsetof(rs_record, value); unused for traction_coefficient */
-  const char *units_2d, *units_3d;
-  const char *long_name;
-} scalar_var;
-
-#define N_SCALARS       12
-#define TRACTION_SCALAR 2
-static const scalar_var scalar_vars[N_SCALARS] = {
+const rs_scalar_var rs_scalar_vars[RS_N_SCALARS] = {
     {"Fx", NC_DOUBLE, offsetof(rs_record, Fx), "N/mm", "N", "total tangential force on body 1"},
     {"Fn", NC_DOUBLE, offsetof(rs_record, Fn), "N/mm", "N", "total normal force on body 1"},
     {"traction_coefficient", NC_DOUBLE, 0, "1", "1", "traction coefficient Fx/Fn"},
@@ -106,20 +84,6 @@ static const scalar_var scalar_vars[N_SCALARS] = {
      "plastic power dissipated"},
     {"elastic_energy", NC_DOUBLE, offsetof(rs_record, elastic_energy), "N mm/mm", "N mm",
      "elastic energy"},
-};
-
-struct rs_output {
-  int ncid;
-  char *path; /* as given; error messages name it */
-  size_t nx;
-  unsigned fields;
-  size_t records; /* records written and synced */
-  int time_id, x_id;
-  int field_id[N_FIELDS]; /* -1 when not in the mask */
-  int scalar_id[N_SCALARS];
-  int has_rig;
-  int rig_meta_id[6];
-  int step_mu_id, step_slip_id, rev_mu_id, rev_slip_id; /* twin-disc summaries */
 };
 
 /* A double variable over one dimension with units, long_name and a NaN fill value. */
@@ -247,6 +211,40 @@ void rs_output_status_text(char buf[RS_OUTPUT_STATUS_LEN], const char *status)
   }
 }
 
+int rs_output_keep_old(const char *path, char *backup, size_t len, rs_msg *msg)
+{
+  backup[0] = '\0';
+  struct stat st;
+  if (stat(path, &st) != 0 || !S_ISREG(st.st_mode)) return RS_OK;
+  if ((size_t)snprintf(backup, len, "%s~", path) >= len) {
+    backup[0] = '\0';
+    return rs_msg_set(msg, RS_ERR_OUTPUT, "output file %s: name too long", path);
+  }
+  if (rename(path, backup) != 0) {
+    const int e = errno;
+    backup[0] = '\0';
+    return rs_msg_set(msg, RS_ERR_OUTPUT,
+                      "output file %s: cannot keep the existing file as %s~: %s", path, path,
+                      strerror(e));
+  }
+  return RS_OK;
+}
+
+char *rs_output_get_text(int ncid, int varid, const char *name)
+{
+  size_t len = 0;
+  nc_type type;
+  if (nc_inq_att(ncid, varid, name, &type, &len) != NC_NOERR || type != NC_CHAR) len = 0;
+  char *text = calloc(len + 1, 1);
+  if (text && len && nc_get_att_text(ncid, varid, name, text) != NC_NOERR) text[0] = '\0';
+  return text;
+}
+
+const char *rs_output_backup(const rs_output *out)
+{
+  return out && out->backup[0] ? out->backup : NULL;
+}
+
 /* mkdir -p for the directory part of path (results/<case>.nc by default). */
 int rs_output_make_parent_dirs(const char *path, rs_msg *msg)
 {
@@ -318,28 +316,41 @@ static int define_file(rs_output *out, const rs_output_spec *spec, const char **
   /* Fields first, scalars last: the last record variable is a double (see top). */
   *what = "defining field variables";
   const int field_dims[2] = {time_dim, x_dim};
-  for (int f = 0; f < N_FIELDS; f++) {
-    const field_var *fv = &field_vars[f];
+  for (int f = 0; f < RS_N_FIELDS; f++) {
+    const rs_field_var *fv = &rs_field_vars[f];
     out->field_id[f] = -1;
     if (!(spec->fields & fv->bit)) continue;
-    const nc_type type = f == REGIME_FIELD ? NC_BYTE : NC_DOUBLE;
+    const nc_type type = f == RS_REGIME_FIELD ? NC_BYTE : NC_DOUBLE;
     int id;
     if ((err = nc_def_var(ncid, fv->name, type, 2, field_dims, &id)) ||
         (err = rs_output_put_text(ncid, id, "units", fv->units)) ||
         (err = rs_output_put_text(ncid, id, "long_name", fv->long_name)))
       return err;
-    if (f == REGIME_FIELD) {
+    if (f == RS_REGIME_FIELD) {
       static const signed char flag_values[4] = {0, 1, 2, 3};
       if ((err = nc_put_att_schar(ncid, id, "flag_values", NC_BYTE, 4, flag_values)) ||
           (err = rs_output_put_text(ncid, id, "flag_meanings", "exterior adhesion slip plastic")))
         return err;
     }
+    const unsigned asked = spec->requested_fields ? spec->requested_fields : spec->fields;
+    if (!(asked & fv->bit) &&
+        (err = rs_output_put_text(ncid, id, "comment",
+                                  "not in output.fields: stored for rollsim run --restart")))
+      return err;
     out->field_id[f] = id;
+  }
+  {
+    const unsigned asked = spec->requested_fields ? spec->requested_fields : spec->fields;
+    char names[128] = "";
+    for (int f = 0; f < RS_N_FIELDS; f++)
+      if (asked & spec->fields & rs_field_vars[f].bit)
+        strcat(strcat(names, *names ? " " : ""), rs_field_vars[f].name);
+    if ((err = rs_output_put_text(ncid, NC_GLOBAL, "output_fields", names))) return err;
   }
 
   *what = "defining scalar variables";
-  for (int s = 0; s < N_SCALARS; s++) {
-    const scalar_var *sv = &scalar_vars[s];
+  for (int s = 0; s < RS_N_SCALARS; s++) {
+    const rs_scalar_var *sv = &rs_scalar_vars[s];
     int id;
     if ((err = nc_def_var(ncid, sv->name, sv->type, 1, &time_dim, &id)) ||
         (err = rs_output_put_text(ncid, id, "units", three_d ? sv->units_3d : sv->units_2d)) ||
@@ -425,6 +436,9 @@ int rs_output_create(rs_output **outp, const rs_output_spec *spec, rs_msg *msg)
   }
   if (err != NC_NOERR) {
     status = rs_output_nc_failure(msg, spec->path, what, err);
+  } else if ((status = rs_output_keep_old(spec->path, out->backup, sizeof out->backup, msg)) !=
+             RS_OK) {
+    /* the message says why; the old file is where it was */
   } else if (rename(part, spec->path) != 0) {
     status = rs_msg_set(msg, RS_ERR_OUTPUT, "output file %s: cannot rename %s to it: %s",
                         spec->path, part, strerror(errno));
@@ -445,8 +459,8 @@ int rs_output_create(rs_output **outp, const rs_output_spec *spec, rs_msg *msg)
 /* The array of field f in rec (NULL when the caller has none). */
 static const void *field_data(const rs_record *rec, int f)
 {
-  if (f == REGIME_FIELD) return rec->regime;
-  return *(const double *const *)((const char *)rec + field_vars[f].member);
+  if (f == RS_REGIME_FIELD) return rec->regime;
+  return *(const double *const *)((const char *)rec + rs_field_vars[f].member);
 }
 
 int rs_output_write(rs_output *out, const rs_record *rec, rs_msg *msg)
@@ -458,25 +472,25 @@ int rs_output_write(rs_output *out, const rs_record *rec, rs_msg *msg)
 
   /* Refuse before writing anything: a put at index n already makes n+1 the record count
    * netCDF will write on the next sync or close. */
-  for (int f = 0; f < N_FIELDS; f++)
+  for (int f = 0; f < RS_N_FIELDS; f++)
     if (out->field_id[f] >= 0 && !field_data(rec, f))
       return rs_msg_set(msg, RS_ERR_INTERNAL, "output file %s: record %zu has no data for field %s",
-                        out->path, out->records, field_vars[f].name);
+                        out->path, out->records, rs_field_vars[f].name);
 
   if ((err = nc_put_var1_double(ncid, out->time_id, start, &rec->time))) goto fail;
 
-  for (int f = 0; f < N_FIELDS; f++) {
+  for (int f = 0; f < RS_N_FIELDS; f++) {
     if (out->field_id[f] < 0) continue;
     const void *data = field_data(rec, f);
-    err = f == REGIME_FIELD ? nc_put_vara_schar(ncid, out->field_id[f], start, count, data)
-                            : nc_put_vara_double(ncid, out->field_id[f], start, count, data);
+    err = f == RS_REGIME_FIELD ? nc_put_vara_schar(ncid, out->field_id[f], start, count, data)
+                               : nc_put_vara_double(ncid, out->field_id[f], start, count, data);
     if (err) goto fail;
   }
 
-  for (int s = 0; s < N_SCALARS; s++) {
-    const scalar_var *sv = &scalar_vars[s];
+  for (int s = 0; s < RS_N_SCALARS; s++) {
+    const rs_scalar_var *sv = &rs_scalar_vars[s];
     const char *member = (const char *)rec + sv->member;
-    if (s == TRACTION_SCALAR) {
+    if (s == RS_TRACTION_SCALAR) {
       const double mu = rec->Fn != 0.0 ? rec->Fx / rec->Fn : 0.0; /* NaN-free */
       err = nc_put_var1_double(ncid, out->scalar_id[s], start, &mu);
     } else if (sv->type == NC_INT) {

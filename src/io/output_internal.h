@@ -1,9 +1,54 @@
-/* Private helpers shared by the time-history writer (output.c) and the sweep
- * writer (output_sweep.c). */
+/* Private to the netCDF writers: the time-history writer (output.c), appending to an
+ * existing file (output_append.c) and the sweep writer (output_sweep.c). */
 #ifndef ROLLSIM_OUTPUT_INTERNAL_H
 #define ROLLSIM_OUTPUT_INTERNAL_H
 
+#include <netcdf.h>
+#include <stddef.h>
+
 #include "rollsim/output.h"
+
+/* I/O block size passed to netCDF; its buffer holds at most two blocks (output.c). */
+#define RS_IO_BLOCK ((size_t)4096)
+
+/* (time, x) fields of interfaces.md, in RS_FIELD_* bit order; regime is NC_BYTE. */
+typedef struct rs_field_var {
+  unsigned bit; /* RS_FIELD_* */
+  const char *name;
+  const char *units;
+  const char *long_name;
+  size_t member; /* offsetof(rs_record, array), for the double fields */
+} rs_field_var;
+#define RS_N_FIELDS     7
+#define RS_REGIME_FIELD 6
+extern const rs_field_var rs_field_vars[RS_N_FIELDS];
+
+/* Scalars per record (model.md §7). */
+typedef struct rs_scalar_var {
+  const char *name;
+  nc_type type;  /* NC_DOUBLE or NC_INT */
+  size_t member; /* offsetof(rs_record, value); unused for traction_coefficient */
+  const char *units_2d, *units_3d;
+  const char *long_name;
+} rs_scalar_var;
+#define RS_N_SCALARS       12
+#define RS_TRACTION_SCALAR 2
+extern const rs_scalar_var rs_scalar_vars[RS_N_SCALARS];
+
+struct rs_output {
+  int ncid;
+  char *path; /* as given; error messages name it */
+  size_t nx;
+  unsigned fields;
+  size_t records; /* records in the file (written and synced) */
+  int time_id, x_id;
+  int field_id[RS_N_FIELDS]; /* -1 when not in the file */
+  int scalar_id[RS_N_SCALARS];
+  int has_rig;
+  int rig_meta_id[6];
+  int step_mu_id, step_slip_id, rev_mu_id, rev_slip_id; /* twin-disc summaries */
+  char backup[1040]; /* where an older file of the same name was kept, or "" */
+};
 
 /* "output file PATH: WHAT: netCDF message", RS_ERR_OUTPUT. */
 int rs_output_nc_failure(rs_msg *msg, const char *path, const char *what, int err);
@@ -13,5 +58,11 @@ int rs_output_put_text(int ncid, int varid, const char *name, const char *text);
 void rs_output_status_text(char buf[RS_OUTPUT_STATUS_LEN], const char *status);
 /* mkdir -p for the directory part of path. */
 int rs_output_make_parent_dirs(const char *path, rs_msg *msg);
+/* An existing regular file at path is renamed to path~ (replacing an older path~);
+ * backup gets path~ then, else "". Nothing to do when path does not exist. */
+int rs_output_keep_old(const char *path, char *backup, size_t len, rs_msg *msg);
+/* Text of a global text attribute (malloc'ed, NUL-terminated; "" when absent), NULL
+ * when out of memory. */
+char *rs_output_get_text(int ncid, int varid, const char *name);
 
 #endif

@@ -1,9 +1,14 @@
 /* Sweep files (interfaces.md "Sweeps"): one dimension per swept key with a
  * coordinate variable holding its values (name: the dotted key with '_' for '.',
- * attribute `key` = the dotted key), and the scalar results over those
- * dimensions. Points are written as they are computed and synced, so an
- * interrupted sweep keeps what it had; points not computed read as the fill value,
- * points that failed as NaN with converged = 0. */
+ * attribute `key` = the dotted key, `units` = the key's unit from the key table),
+ * the scalar results over those dimensions and, with output.fields, the profiles of
+ * every point over (swept keys..., x). Points are written as they are computed and
+ * synced, so an interrupted sweep keeps what it had.
+ *
+ * Missing values: doubles carry _FillValue NaN (a failed point is NaN too). Integers
+ * (cell counts, converged, regime) carry no _FillValue, which would make CF readers such
+ * as xarray turn them into floats; instead valid_min (valid_range for flags) excludes the
+ * markers: -1 for a failed point, netCDF's default fill for a point not computed. */
 #define _POSIX_C_SOURCE 200809L
 #include <math.h>
 #include <netcdf.h>
@@ -12,6 +17,7 @@
 #include <string.h>
 
 #include "io/output_internal.h"
+#include "rollsim/case.h"
 #include "rollsim/output.h"
 
 enum { SW_DOUBLE, SW_INT };
@@ -35,13 +41,19 @@ static const sweep_var sweep_vars[] = {
     {"elastic_energy", "elastic energy", "E", SW_DOUBLE},
     {"converged", "1 if the point was solved, 0 if it failed", "1", SW_INT},
 };
-#define N_SWEEP_VARS (sizeof sweep_vars / sizeof sweep_vars[0])
+#define N_SWEEP_VARS  (sizeof sweep_vars / sizeof sweep_vars[0])
+#define CONVERGED_VAR (N_SWEEP_VARS - 1)
 
 struct rs_sweep_output {
   int ncid, naxes;
   char *path;
   size_t sizes[NC_MAX_VAR_DIMS];
   int varid[N_SWEEP_VARS];
+  size_t nx;
+  int field_id[RS_N_FIELDS]; /* -1: not stored */
+  double *nan_row;           /* nx NaN (fields of a failed point) */
+  signed char *flag_row;     /* nx times -1 (regime of a failed point) */
+  char backup[1040];
 };
 
 static const char *unit_of(const sweep_var *v, int dimension)
@@ -52,11 +64,75 @@ static const char *unit_of(const sweep_var *v, int dimension)
   return v->units;
 }
 
+/* The coordinate variable of one swept key. */
+static int define_axis(int ncid, const char *key, size_t size, int *dim, int *coord)
+{
+  char name[NC_MAX_NAME + 1], long_name[NC_MAX_NAME + 64];
+  snprintf(name, sizeof name, "%s", key);
+  for (char *p = name; *p; p++)
+    if (*p == '.') *p = '_';
+  const char *units = rs_case_key_units(key), *note = rs_case_key_unit_note(key);
+  snprintf(long_name, sizeof long_name, "%s%s%s%s", key, *note ? " (" : "", note, *note ? ")" : "");
+  int err = nc_def_dim(ncid, name, size, dim);
+  if (!err) err = nc_def_var(ncid, name, NC_DOUBLE, 1, dim, coord);
+  if (!err) err = rs_output_put_text(ncid, *coord, "key", key);
+  if (!err) err = rs_output_put_text(ncid, *coord, "long_name", long_name);
+  if (!err) err = rs_output_put_text(ncid, *coord, "units", units ? units : "1");
+  return err;
+}
+
+/* Profiles: dimension x with its coordinate, one variable per field over (axes..., x). */
+static int define_fields(rs_sweep_output *o, const rs_sweep_output_spec *spec, const int *dims,
+                         int *x_id)
+{
+  const int ncid = o->ncid;
+  int fdims[NC_MAX_VAR_DIMS], x_dim;
+  int err = nc_def_dim(ncid, "x", spec->nx, &x_dim);
+  if (!err) err = nc_def_var(ncid, "x", NC_DOUBLE, 1, &x_dim, x_id);
+  if (!err) err = rs_output_put_text(ncid, *x_id, "units", "mm");
+  if (!err) err = rs_output_put_text(ncid, *x_id, "long_name", "cell centre, rolling direction");
+  if (!err) err = rs_output_put_text(ncid, *x_id, "axis", "X");
+  for (int a = 0; a < spec->naxes; a++) fdims[a] = dims[a];
+  fdims[spec->naxes] = x_dim;
+  for (int f = 0; f < RS_N_FIELDS && !err; f++) {
+    const rs_field_var *fv = &rs_field_vars[f];
+    if (!(spec->fields & fv->bit)) continue;
+    const int regime = f == RS_REGIME_FIELD;
+    int id;
+    err = nc_def_var(ncid, fv->name, regime ? NC_BYTE : NC_DOUBLE, spec->naxes + 1, fdims, &id);
+    if (!err) err = rs_output_put_text(ncid, id, "units", fv->units);
+    if (!err) err = rs_output_put_text(ncid, id, "long_name", fv->long_name);
+    if (!err && regime) {
+      static const signed char flag_values[4] = {0, 1, 2, 3};
+      err = nc_put_att_schar(ncid, id, "flag_values", NC_BYTE, 4, flag_values);
+      if (!err)
+        err = rs_output_put_text(ncid, id, "flag_meanings", "exterior adhesion slip plastic");
+      if (!err)
+        err = nc_put_att_schar(ncid, id, "valid_range", NC_BYTE, 2, (const signed char[]){0, 3});
+    } else if (!err) {
+      const double fill = NAN;
+      err = nc_put_att_double(ncid, id, "_FillValue", NC_DOUBLE, 1, &fill);
+    }
+    o->field_id[f] = id;
+  }
+  return err;
+}
+
+static void free_output(rs_sweep_output *o)
+{
+  free(o->path);
+  free(o->nan_row);
+  free(o->flag_row);
+  free(o);
+}
+
 int rs_sweep_output_create(rs_sweep_output **outp, const rs_sweep_output_spec *spec, rs_msg *msg)
 {
   *outp = NULL;
-  if (spec->naxes < 1 || spec->naxes > NC_MAX_VAR_DIMS)
+  if (spec->naxes < 1 || spec->naxes + 1 > NC_MAX_VAR_DIMS)
     return rs_msg_set(msg, RS_ERR_INTERNAL, "sweep output: %d axes", spec->naxes);
+  if (spec->fields && (spec->nx == 0 || !spec->x))
+    return rs_msg_set(msg, RS_ERR_INTERNAL, "sweep output: fields without a grid");
   int status = rs_output_make_parent_dirs(spec->path, msg);
   if (status != RS_OK) return status;
   rs_sweep_output *o = calloc(1, sizeof *o);
@@ -65,37 +141,53 @@ int rs_sweep_output_create(rs_sweep_output **outp, const rs_sweep_output_spec *s
     return rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory");
   }
   o->naxes = spec->naxes;
+  o->nx = spec->fields ? spec->nx : 0;
+  for (int f = 0; f < RS_N_FIELDS; f++) o->field_id[f] = -1;
+  if (o->nx) {
+    o->nan_row = malloc(o->nx * sizeof *o->nan_row);
+    o->flag_row = malloc(o->nx);
+    if (!o->nan_row || !o->flag_row) {
+      free_output(o);
+      return rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory");
+    }
+    for (size_t i = 0; i < o->nx; i++) {
+      o->nan_row[i] = NAN;
+      o->flag_row[i] = -1;
+    }
+  }
+  status = rs_output_keep_old(spec->path, o->backup, sizeof o->backup, msg);
+  if (status != RS_OK) {
+    free_output(o);
+    return status;
+  }
   int err = nc_create(spec->path, NC_CLOBBER | NC_64BIT_OFFSET, &o->ncid);
   if (err) {
-    free(o->path);
-    free(o);
+    free_output(o);
     return rs_output_nc_failure(msg, spec->path, "cannot create", err);
   }
-  int dims[NC_MAX_VAR_DIMS], coord[NC_MAX_VAR_DIMS];
-  char name[NC_MAX_NAME + 1];
+  int dims[NC_MAX_VAR_DIMS], coord[NC_MAX_VAR_DIMS], x_id = -1;
   for (int a = 0; a < spec->naxes && !err; a++) {
-    snprintf(name, sizeof name, "%s", spec->keys[a]);
-    for (char *p = name; *p; p++)
-      if (*p == '.') *p = '_';
     o->sizes[a] = (size_t)spec->sizes[a];
-    err = nc_def_dim(o->ncid, name, o->sizes[a], &dims[a]);
-    if (!err) err = nc_def_var(o->ncid, name, NC_DOUBLE, 1, &dims[a], &coord[a]);
-    if (!err) err = rs_output_put_text(o->ncid, coord[a], "key", spec->keys[a]);
-    if (!err) err = rs_output_put_text(o->ncid, coord[a], "long_name", spec->keys[a]);
-    if (!err) err = rs_output_put_text(o->ncid, coord[a], "units", "as in the case file");
+    err = define_axis(o->ncid, spec->keys[a], o->sizes[a], &dims[a], &coord[a]);
   }
   for (size_t v = 0; v < N_SWEEP_VARS && !err; v++) {
-    err = nc_def_var(o->ncid, sweep_vars[v].name, sweep_vars[v].type == SW_INT ? NC_INT : NC_DOUBLE,
-                     spec->naxes, dims, &o->varid[v]);
+    const int is_int = sweep_vars[v].type == SW_INT;
+    err = nc_def_var(o->ncid, sweep_vars[v].name, is_int ? NC_INT : NC_DOUBLE, spec->naxes, dims,
+                     &o->varid[v]);
     if (!err) err = rs_output_put_text(o->ncid, o->varid[v], "long_name", sweep_vars[v].long_name);
     if (!err)
       err = rs_output_put_text(o->ncid, o->varid[v], "units",
                                unit_of(&sweep_vars[v], spec->dimension));
-    if (!err && sweep_vars[v].type == SW_INT) {
-      const int fill = -1;
-      err = nc_put_att_int(o->ncid, o->varid[v], "_FillValue", NC_INT, 1, &fill);
+    if (!err && is_int && v == CONVERGED_VAR)
+      err = nc_put_att_int(o->ncid, o->varid[v], "valid_range", NC_INT, 2, (const int[]){0, 1});
+    else if (!err && is_int)
+      err = nc_put_att_int(o->ncid, o->varid[v], "valid_min", NC_INT, 1, (const int[]){0});
+    else if (!err) {
+      const double fill = NAN;
+      err = nc_put_att_double(o->ncid, o->varid[v], "_FillValue", NC_DOUBLE, 1, &fill);
     }
   }
+  if (!err && o->nx) err = define_fields(o, spec, dims, &x_id);
   char status_buf[RS_OUTPUT_STATUS_LEN];
   rs_output_status_text(status_buf, "running");
   if (!err) err = rs_output_put_text(o->ncid, NC_GLOBAL, "Conventions", "CF-1.10");
@@ -109,16 +201,45 @@ int rs_sweep_output_create(rs_sweep_output **outp, const rs_sweep_output_spec *s
   if (!err) err = nc_enddef(o->ncid);
   for (int a = 0; a < spec->naxes && !err; a++)
     err = nc_put_var_double(o->ncid, coord[a], spec->values[a]);
+  if (!err && o->nx) err = nc_put_var_double(o->ncid, x_id, spec->x);
   if (!err) err = nc_sync(o->ncid);
   if (err) {
     status = rs_output_nc_failure(msg, spec->path, "cannot write the sweep layout", err);
     nc_close(o->ncid);
-    free(o->path);
-    free(o);
+    free_output(o);
     return status;
   }
   *outp = o;
   return RS_OK;
+}
+
+const char *rs_sweep_output_backup(const rs_sweep_output *o)
+{
+  return o && o->backup[0] ? o->backup : NULL;
+}
+
+/* The profiles of one point (NaN / -1 rows where the point has none). */
+static int write_fields(rs_sweep_output *o, const size_t *start, const rs_sweep_point *pt)
+{
+  size_t fstart[NC_MAX_VAR_DIMS], fcount[NC_MAX_VAR_DIMS];
+  for (int a = 0; a < o->naxes; a++) {
+    fstart[a] = start[a];
+    fcount[a] = 1;
+  }
+  fstart[o->naxes] = 0;
+  fcount[o->naxes] = o->nx;
+  const double *rows[RS_N_FIELDS - 1] = {pt->px, pt->pn, pt->slip, pt->upl, pt->ustar, pt->tauc};
+  int err = 0;
+  for (int f = 0; f < RS_N_FIELDS && !err; f++) {
+    if (o->field_id[f] < 0) continue;
+    if (f == RS_REGIME_FIELD)
+      err = nc_put_vara_schar(o->ncid, o->field_id[f], fstart, fcount,
+                              pt->regime ? pt->regime : o->flag_row);
+    else
+      err = nc_put_vara_double(o->ncid, o->field_id[f], fstart, fcount,
+                               rows[f] ? rows[f] : o->nan_row);
+  }
+  return err;
 }
 
 int rs_sweep_output_write(rs_sweep_output *o, size_t index, const rs_sweep_point *pt, rs_msg *msg)
@@ -150,6 +271,7 @@ int rs_sweep_output_write(rs_sweep_output *o, size_t index, const rs_sweep_point
   for (size_t v = 0; v < N_SWEEP_VARS && !err; v++)
     err = sweep_vars[v].type == SW_INT ? nc_put_var1_int(o->ncid, o->varid[v], start, &iv[v])
                                        : nc_put_var1_double(o->ncid, o->varid[v], start, &dv[v]);
+  if (!err && o->nx) err = write_fields(o, start, pt);
   if (!err) err = nc_sync(o->ncid);
   return err ? rs_output_nc_failure(msg, o->path, "cannot write a sweep point", err) : RS_OK;
 }
@@ -163,7 +285,6 @@ int rs_sweep_output_close(rs_sweep_output *o, const char *status, rs_msg *msg)
   int err2 = nc_close(o->ncid);
   int rc = RS_OK;
   if (err || err2) rc = rs_output_nc_failure(msg, o->path, "cannot finish", err ? err : err2);
-  free(o->path);
-  free(o);
+  free_output(o);
   return rc;
 }

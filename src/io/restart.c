@@ -3,6 +3,7 @@
  * the last record is always complete. */
 #define _POSIX_C_SOURCE 200809L
 #include "rollsim/restart.h"
+#include "io/output_internal.h"
 
 #include <math.h>
 #include <netcdf.h>
@@ -57,7 +58,8 @@ static int read_file(int ncid, const char *path, size_t nx, const double *x, dou
     if ((err = nc_inq_varid(ncid, name, &var)))
       return rs_msg_set(msg, RS_ERR_INPUT,
                         "restart file %s: has no variable '%s' (a restart needs the state "
-                        "fields px, upl and ustar: add %s to output.fields of the old run)",
+                        "fields px, upl and ustar: every transient file holds them; a steady "
+                        "run's file only what its output.fields lists: add %s there)",
                         path, name, name);
     int ndims, dims[NC_MAX_VAR_DIMS];
     if ((err = nc_inq_varndims(ncid, var, &ndims)) || ndims != 2 ||
@@ -98,4 +100,22 @@ int rs_restart_read(const char *path, size_t nx, const double *x, double *t_last
   free(xold);
   nc_close(ncid);
   return status;
+}
+
+int rs_restart_read_provenance(const char *path, char **history, char **status, rs_msg *msg)
+{
+  *history = *status = NULL;
+  int ncid;
+  int err = nc_open(path, NC_NOWRITE, &ncid);
+  if (err) return nc_fail(msg, path, "cannot open", err);
+  *history = rs_output_get_text(ncid, NC_GLOBAL, "history");
+  *status = rs_output_get_text(ncid, NC_GLOBAL, "status");
+  nc_close(ncid);
+  if (!*history || !*status) {
+    free(*history);
+    free(*status);
+    *history = *status = NULL;
+    return rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory");
+  }
+  return RS_OK;
 }

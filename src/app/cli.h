@@ -1,0 +1,78 @@
+/* Internal to the drivers (src/app): per-subcommand help, plausibility warnings, the
+ * fields of one record kept for sweep files. */
+#ifndef ROLLSIM_APP_CLI_H
+#define ROLLSIM_APP_CLI_H
+
+#include <stdio.h>
+
+#include "rollsim/case.h"
+#include "rollsim/run.h"
+#include "rollsim/sweep.h"
+
+/* ---- help.c: the subcommands and their help ---- */
+
+/* Help of subcommand `cmd` ("run", "check", "sweep", ...; NULL or "" for the overview).
+ * Returns 0, or -1 for an unknown subcommand (nothing printed then). */
+int rs_cli_help(const char *cmd, FILE *out);
+/* 1 if `cmd` is a subcommand rollsim knows. */
+int rs_cli_is_command(const char *cmd);
+/* `check` of a case with a sweep: block: the swept keys, their values and units. */
+void rs_cli_print_sweep(FILE *out, const rs_sweep *s);
+
+/* ---- warnings.c: plausible but suspicious inputs (stderr; never an error) ---- */
+
+/* Creepages that look like percentages (|xi| >= 0.05) or lie far beyond full sliding
+ * (|xi| > RS_WARN_SATURATION_FACTOR mu a/R, Carter's saturation creepage of the elastic
+ * 2D contact). `max_abs` is the largest |xi| of the run (a history's maximum, or of a
+ * sweep's values), `where` names its origin ("rolling.creepage", "sweep:
+ * rolling.creepage"). Returns the number of warnings printed. */
+#define RS_WARN_PERCENT           0.05
+#define RS_WARN_SATURATION_FACTOR 10.0
+int rs_warn_creepage(const rs_case *c, double max_abs, const char *where, FILE *err);
+/* The case's own creepage input (nothing with a prescribed tangential force). */
+int rs_warn_case(const rs_case *c, FILE *err);
+/* The swept creepages of a sweep (when rolling.creepage is swept). */
+int rs_warn_sweep(const rs_case *base, const rs_sweep *s, FILE *err);
+
+/* Cost of a transient run projected from its first steps. The rate of the first steps
+ * (wall time per simulated second: IDA steps per second times the cost of a step, which
+ * grows with the cells) is measured over a window that leaves the first half of
+ * RS_COST_PROBE_SECONDS out, from the first output record after half of it to the first
+ * after all of it (from the start when no record came in the first half). It holds while the
+ * solution changes: for the rest of the run when an input varies, but at constant inputs only until
+ * the run has settled to steady rolling (RS_COST_SETTLE_LENGTHS contact lengths 2a after its start:
+ * a start-up from rest is within 1e-4 of steady after 11.5-25 contact lengths for L = 20-2000 mm,
+ * README), after which IDA's steps grow by orders of magnitude. If the projected rest exceeds
+ * RS_COST_WARN_SECONDS: one warning with the estimate (ETA) and a hint. */
+#define RS_COST_PROBE_SECONDS  1.0
+#define RS_COST_WARN_SECONDS   120.0
+#define RS_COST_SETTLE_LENGTHS 25.0
+typedef struct rs_cost_watch {
+  const rs_case *c;
+  int cells;
+  double t0, started; /* simulated start time, wall clock at start */
+  int sampled;        /* the window's start was taken */
+  double t_a, wall_a; /* the window's start: simulated time, wall clock */
+  long steps_a;
+  int done; /* the estimate was made (warned or not) */
+} rs_cost_watch;
+void rs_cost_watch_init(rs_cost_watch *w, const rs_case *c, int cells, double t0, double started);
+/* After an output record at simulated time t with `steps` IDA steps so far. Returns 1
+ * when it warned. */
+int rs_cost_watch_update(rs_cost_watch *w, double t, long steps, FILE *err);
+
+/* ---- sweep_fields.c: fields of one point ---- */
+
+int rs_fields_alloc(rs_fields *f, int n);
+void rs_fields_free(rs_fields *f);
+void rs_fields_copy(rs_fields *f, int n, const double *y, const double *pn, const double *slip,
+                    const double *tauc, const signed char *regime);
+/* Whether every point of the sweep has the grid of the base case (*common; the profiles
+ * then share one x axis): the model of the base case and of each swept value (the other
+ * keys at the base case's values) are compared. Common: x (malloc'ed) and n hold the
+ * grid; else why says which key changes it. Returns a status (case or model errors). */
+int rs_sweep_common_grid(const rs_sweep *s, const char *case_path, const char *const *sets,
+                         int nsets, int *common, double **x, int *n, char *why, size_t why_len,
+                         rs_msg *msg);
+
+#endif

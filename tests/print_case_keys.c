@@ -1,0 +1,20 @@
+/* Prints the case-file key table (src/io/case_keys.c), one key a line:
+ *   dotted.key <TAB> kind <TAB> unit <TAB> choice,choice,...
+ * for the check that docs/case-file.md documents exactly these keys. */
+#include <stdio.h>
+
+#include "io/case_internal.h"
+
+int main(void)
+{
+  static const char *const kinds[] = {"section", "opaque", "number",  "integer", "long",
+                                      "text",    "choice", "history", "fields",  "protocol"};
+  for (size_t i = 0; i < rs_case_nkeys; i++) {
+    const rs_case_key *k = &rs_case_keys[i];
+    printf("%s\t%s\t%s\t", k->path, kinds[k->kind], k->unit);
+    const char *const *c = k->kind == RS_KEY_FIELDS ? rs_case_field_names : k->choices;
+    for (int j = 0; c && c[j]; j++) printf("%s%s", j ? "," : "", c[j]);
+    putchar('\n');
+  }
+  return 0;
+}
