@@ -9,6 +9,7 @@ from .field3d import CREEP_SYMBOLS, FORCE_SYMBOLS, arrow_cells, contact_edges
 from .plots import (ELASTIC_STYLE, SERIES_COLOURS, _regime_legend, _regime_style, plt, save,
                     time_axis)
 from .record import Recorder
+from .sweep import describe
 
 SEQUENTIAL = {"traction": "viridis", "slip": "cividis", "pressure": "Greys", "ustar": "viridis",
               "tauc": "magma", "upl": "viridis"}
@@ -31,7 +32,8 @@ def plot_map(maps, title, out, rec=None, max_arrows=25):
     aspect = (ey[-1] - ey[0]) / max(ex[-1] - ex[0], 1e-300)
     ncols, nrows = _map_grid(len(maps))
     w = 5.6
-    fig, axes = plt.subplots(nrows, ncols, figsize=(w * ncols, (w - 1.2) * aspect * nrows + 1.6),
+    fig, axes = plt.subplots(nrows, ncols,
+                             figsize=(w * ncols, ((w - 1.2) * aspect + 1.0) * nrows + 0.8),
                              squeeze=False, layout="constrained")
     flat = list(axes.ravel())
     for ax in flat[len(maps):]:
@@ -74,6 +76,8 @@ def plot_map(maps, title, out, rec=None, max_arrows=25):
             rec.add_map(k, ptitle, "arrows", "arrow_y", point, X[cells], Y[cells], v)
         # The contact edge and the ellipse.
         segs = contact_edges(m.x, m.y, m.contact)
+        # black on a white halo: visible on dark and light colours alike
+        ax.add_collection(LineCollection(segs, colors="white", linewidths=2.4))
         ax.add_collection(LineCollection(segs, colors="black", linewidths=1.0,
                                          label="contact edge (p_n > 0)"))
         if segs:
@@ -122,6 +126,8 @@ def plot_creep3d(panels, title, out, rec=None):
         ax = axes[row, col]
         colours = {}
         for s in p.series:
+            if s.values:
+                s.label = ", ".join(describe(k, v) for k, v in s.values.items())
             c = colours.setdefault(s.label, SERIES_COLOURS[len(colours) % len(SERIES_COLOURS)])
             style = dict(ELASTIC_STYLE) if len(p.series) == 1 else dict(color=c, lw=1.4)
             style["color"] = "black" if len(p.series) == 1 else c

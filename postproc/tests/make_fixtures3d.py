@@ -5,7 +5,7 @@ Usage: make_fixtures3d.py OUTDIR
 
   run3d.nc        a 3D run file: global attribute dimension = 3, dimensions time (3), y (NY), x (NX)
                   with cell-centre coordinates (a cell centred on x = y = 0); the Hertz pressure
-                  p_n = P0 sqrt(1 - x^2/A^2 - y^2/B^2) and the traction p = MU p_n (-C_k, D_k) at
+                  p_n = P0 sqrt(1 - x^2/A^2 - y^2/B^2) and the traction p = MU p_n (-C_k, D_k (1 + x/2A)) at
                   record k; regimes, u*, tau_c, slip and plastic displacement as given by the
                   functions below; scalars Fx, Fy, Mz, Fn summed from the fields.
   run3d_hertz.nc  the same with the global attributes hertz_a = A, hertz_b = B.
@@ -58,7 +58,7 @@ def fields(k):
     pn = pressure()
     inside = pn > 0.0
     px = -C[k] * MU * pn
-    py = D[k] * MU * pn
+    py = D[k] * MU * pn * (1.0 + 0.5 * X / A)   # skewed: a non-zero spin moment
     regime = np.zeros(pn.shape, dtype=np.int8)
     regime[inside & (X > 0.0)] = 1                          # adhesion at the leading half
     regime[inside & (X <= 0.0)] = 2                         # slip at the trailing half
