@@ -189,3 +189,40 @@ add_test(NAME pp_readme_commands COMMAND ${PP_NUM} readme ${PP_DIR}/README.md)
 set_tests_properties(pp_readme_commands PROPERTIES ENVIRONMENT "${PP_ENV}")
 pp_error(pp_err_data_path figures "no_dir/fig7\\.csv: cannot write \\(no writable directory"
   traction ${PP_FIG_DATA}/fig7.nc --data ${PP_OUT}/no_dir/fig7.csv -o ${PP_OUT}/never_data.png)
+
+# ---- 3D files (elliptic contact): maps, creep3d, history, export ------------------------------
+# Synthetic files with analytic content (make_fixtures3d.py: Hertz pressure on an a = 3, b = 2 mm
+# ellipse, tractions proportional to it, regimes, u*, tau_c, slip; sweeps over xi x eta and
+# mu x phi): check_post3d.py compares every number the figures draw (--data) with them.
+set(PP_SYNTH3D ${PP_OUT}/synthetic3d)
+add_test(NAME pp_make_synthetic3d
+  COMMAND ${SYSTEM_PYTHON3} ${PP_TESTS}/make_fixtures3d.py ${PP_SYNTH3D})
+set_tests_properties(pp_make_synthetic3d PROPERTIES FIXTURES_SETUP pp_synthetic3d)
+set(PP_NUM3D ${SYSTEM_PYTHON3} ${PP_TESTS}/check_post3d.py)
+foreach(what map creep history export)
+  add_test(NAME pp_3d_${what} COMMAND ${PP_NUM3D} ${what} ${PP_SYNTH3D} ${PP_OUT}/3d_${what})
+  set_tests_properties(pp_3d_${what} PROPERTIES FIXTURES_REQUIRED pp_synthetic3d
+    ENVIRONMENT "${PP_ENV}")
+endforeach()
+
+# 2D-only figures refuse 3D files and name the 3D command; 3D commands refuse 2D files.
+pp_error(pp_err_3d_traction pp_synthetic3d "run3d\\.nc: a 3D file .*use map FILE --field traction"
+  traction ${PP_SYNTH3D}/run3d.nc -o ${PP_OUT}/never.png)
+pp_error(pp_err_3d_regimes pp_synthetic3d "run3d\\.nc: a 3D file .*use map FILE --field regime"
+  regimes ${PP_SYNTH3D}/run3d.nc -o ${PP_OUT}/never.png)
+pp_error(pp_err_3d_plastic pp_synthetic3d "run3d\\.nc: a 3D file .*--field ustar"
+  plastic ${PP_SYNTH3D}/run3d.nc -o ${PP_OUT}/never.png)
+pp_error(pp_err_3d_map_2d pp_synthetic "no_records\\.nc: not a 3D file"
+  map ${PP_SYNTH}/no_records.nc -o ${PP_OUT}/never.png)
+pp_error(pp_err_3d_map_sweep pp_synthetic3d "sweep3d\\.nc: map draws 3D run files"
+  map ${PP_SYNTH3D}/sweep3d.nc -o ${PP_OUT}/never.png)
+pp_error(pp_err_3d_creep_run pp_synthetic3d "run3d\\.nc: creep3d needs a sweep file"
+  creep3d ${PP_SYNTH3D}/run3d.nc -o ${PP_OUT}/never.png)
+pp_error(pp_err_3d_creep_2d pp_synthetic "sweep_krel_creep\\.nc: not a 3D sweep file"
+  creep3d ${PP_SYNTH}/sweep_krel_creep.nc -o ${PP_OUT}/never.png)
+pp_error(pp_err_3d_creepcurve pp_synthetic3d "sweep3d_spin\\.nc: sweep file does not sweep rolling\\.creepage.*creep3d"
+  creepcurve ${PP_SYNTH3D}/sweep3d_spin.nc -o ${PP_OUT}/never.png)
+pp_error(pp_err_3d_history_sweep pp_synthetic3d "sweep3d\\.nc: a sweep file has no time histories"
+  history ${PP_SYNTH3D}/sweep3d.nc -o ${PP_OUT}/never.png)
+pp_error(pp_err_3d_field pp_synthetic3d "argument .-field: invalid choice: 'stress'"
+  map ${PP_SYNTH3D}/run3d.nc --field stress -o ${PP_OUT}/never.png)
