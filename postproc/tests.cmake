@@ -224,5 +224,5 @@ pp_error(pp_err_3d_creepcurve pp_synthetic3d "sweep3d_spin\\.nc: sweep file does
   creepcurve ${PP_SYNTH3D}/sweep3d_spin.nc -o ${PP_OUT}/never.png)
 pp_error(pp_err_3d_history_sweep pp_synthetic3d "sweep3d\\.nc: a sweep file has no time histories"
   history ${PP_SYNTH3D}/sweep3d.nc -o ${PP_OUT}/never.png)
-pp_error(pp_err_3d_field pp_synthetic3d "argument .-field: invalid choice: 'stress'"
+pp_error(pp_err_3d_field pp_synthetic3d ".-field stress: expected one of traction, slip, pressure, regime, ustar, tauc, upl"
   map ${PP_SYNTH3D}/run3d.nc --field stress -o ${PP_OUT}/never.png)

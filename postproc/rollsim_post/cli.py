@@ -179,6 +179,8 @@ def cmd_history(args):
 def cmd_map(args):
     figure_format(args.output)
     rec = Recorder()
+    if args.field not in field3d.MAP_FIELDS:
+        raise PostError(f"--field {args.field}: expected one of {', '.join(field3d.MAP_FIELDS)}")
     with RunFile(args.file) as run:
         run.require_3d("map")
         if run.is_sweep():
@@ -402,7 +404,7 @@ def build_parser():
                "the field), per arrow (arrow_x, arrow_y), the edge, the ellipse and its\n"
                "semi-axes (x = a, y = b).")
     s.add_argument("file", metavar="FILE")
-    s.add_argument("--field", default="traction", choices=list(field3d.MAP_FIELDS),
+    s.add_argument("--field", default="traction", metavar="FIELD",
                    help="what to colour: traction (|p| with arrows, default), slip (|s| with "
                         "arrows), pressure, regime, ustar, tauc, upl")
     s.add_argument("--time", type=float, nargs="+", metavar="T",
