@@ -369,7 +369,7 @@ def check_readme(path):
     parser = cli.build_parser()
     sub = next(a for a in parser._actions if a.__class__.__name__ == "_SubParsersAction")
     text = open(path).read()
-    table = set(__import__("re").findall(r"^\| `([a-z]+) ", text, __import__("re").M))
+    table = set(__import__("re").findall(r"^\| `([a-z0-9]+) ", text, __import__("re").M))
     missing = sorted(set(sub.choices) - table)
     check(not missing, f"{path}: subcommands missing from the table: {missing}")
     extra = sorted(table - set(sub.choices))
