@@ -112,6 +112,8 @@ set_tests_properties(pp_check_export pp_check_nearest pp_check_bound
 set_tests_properties(pp_check_export_plastic PROPERTIES FIXTURES_REQUIRED pp_plastic)
 set_tests_properties(pp_check_creep PROPERTIES FIXTURES_REQUIRED pp_creep)
 set_tests_properties(pp_check_sweep PROPERTIES FIXTURES_REQUIRED pp_synthetic)
+add_test(NAME pp_check_history COMMAND ${PP_NUM} history ${PP_DEFAULT} ${PP_OUT}/history_data)
+set_tests_properties(pp_check_history PROPERTIES FIXTURES_REQUIRED pp_default ENVIRONMENT "${PP_ENV}")
 add_test(NAME pp_check_rig COMMAND ${PP_NUM} rig ${PP_RIG})
 set_tests_properties(pp_check_rig PROPERTIES FIXTURES_REQUIRED pp_rig)
 

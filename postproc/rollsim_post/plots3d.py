@@ -68,7 +68,7 @@ def plot_map(maps, title, out, rec=None, max_arrows=25):
                 spacing = step * min(abs(np.diff(ex).mean()), abs(np.diff(ey).mean()))
                 ax.quiver(X[cells], Y[cells], u, v, angles="xy", scale_units="xy",
                           scale=mag / (0.9 * spacing), width=0.004, color="white",
-                          edgecolor="black", linewidth=0.4, pivot="middle")
+                          edgecolor="black", linewidth=0.4, pivot="middle", minlength=0.0)
                 ax.text(0.01, 0.01, f"longest arrow: {mag:.3g} {m.units}", fontsize=8,
                         transform=ax.transAxes, va="bottom", ha="left",
                         bbox=dict(fc="white", ec="none", alpha=0.8))
