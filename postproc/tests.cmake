@@ -216,7 +216,7 @@ pp_error(pp_err_3d_plastic pp_synthetic3d "run3d\\.nc: a 3D file .*--field ustar
   plastic ${PP_SYNTH3D}/run3d.nc -o ${PP_OUT}/never.png)
 pp_error(pp_err_3d_map_2d pp_synthetic "no_records\\.nc: not a 3D file"
   map ${PP_SYNTH}/no_records.nc -o ${PP_OUT}/never.png)
-pp_error(pp_err_3d_map_sweep pp_synthetic3d "sweep3d\\.nc: map draws 3D run files"
+pp_error(pp_err_3d_map_sweep pp_synthetic3d "sweep3d\\.nc: sweep file without the fields px, py"
   map ${PP_SYNTH3D}/sweep3d.nc -o ${PP_OUT}/never.png)
 pp_error(pp_err_3d_creep_run pp_synthetic3d "run3d\\.nc: creep3d needs a sweep file"
   creep3d ${PP_SYNTH3D}/run3d.nc -o ${PP_OUT}/never.png)
@@ -226,5 +226,9 @@ pp_error(pp_err_3d_creepcurve pp_synthetic3d "sweep3d_spin\\.nc: sweep file does
   creepcurve ${PP_SYNTH3D}/sweep3d_spin.nc -o ${PP_OUT}/never.png)
 pp_error(pp_err_3d_history_sweep pp_synthetic3d "sweep3d\\.nc: a sweep file has no time histories"
   history ${PP_SYNTH3D}/sweep3d.nc -o ${PP_OUT}/never.png)
+pp_error(pp_err_3d_map_time pp_synthetic3d "sweep3d_fields\\.nc: --time applies to time-history"
+  map ${PP_SYNTH3D}/sweep3d_fields.nc --time 0 -o ${PP_OUT}/never.png)
+pp_error(pp_err_3d_map_select pp_synthetic3d "run3d\\.nc: --select applies to sweep files"
+  map ${PP_SYNTH3D}/run3d.nc --select rolling.creepage=0 -o ${PP_OUT}/never.png)
 pp_error(pp_err_3d_field pp_synthetic3d ".-field stress: expected one of traction, slip, pressure, regime, ustar, tauc, upl"
   map ${PP_SYNTH3D}/run3d.nc --field stress -o ${PP_OUT}/never.png)

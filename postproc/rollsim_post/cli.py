@@ -176,6 +176,9 @@ def cmd_history(args):
     _finish(args, rec)
 
 
+MAX_MAP_PANELS = 12
+
+
 def cmd_map(args):
     figure_format(args.output)
     rec = Recorder()
@@ -183,10 +186,24 @@ def cmd_map(args):
         raise PostError(f"--field {args.field}: expected one of {', '.join(field3d.MAP_FIELDS)}")
     with RunFile(args.file) as run:
         run.require_3d("map")
+        _sweep_only(args, run, "select")
         if run.is_sweep():
-            raise PostError(f"{run.path}: map draws 3D run files (rollsim run), not sweeps")
-        indices = extract.record_indices(run, args.time)
-        maps = [field3d.field_map(run, args.field, i) for i in indices]
+            if args.time:
+                raise PostError(f"{run.path}: --time applies to time-history files, not sweeps")
+            colour = field3d.MAP_FIELDS[args.field][0]
+            if not all(run.has(v) for v in colour):
+                raise PostError(f"{run.path}: sweep file without the fields {', '.join(colour)}: "
+                                "run the sweep with output.fields listing them")
+            pts = sweep.points(run, _selection(args))
+            if len(pts) > MAX_MAP_PANELS:
+                raise PostError(f"{run.path}: {len(pts)} sweep points; choose at most "
+                                f"{MAX_MAP_PANELS} with --select KEY=VALUE")
+            maps = [field3d.field_map(run, args.field, p) for p in pts]
+            for m, p in zip(maps, pts):
+                m.label = p.label(run)
+        else:
+            indices = extract.record_indices(run, args.time)
+            maps = [field3d.field_map(run, args.field, i) for i in indices]
         _warn_status(run)
         from . import plots3d
         plots3d.plot_map(maps, _title(args, run), args.output, rec, max_arrows=args.arrows)
@@ -411,6 +428,9 @@ def build_parser():
                    help="times in s; each picks the nearest stored record (default: the last)")
     s.add_argument("--arrows", type=int, default=25, metavar="N",
                    help="at most N arrows along x and along y (every k-th cell; default 25)")
+    s.add_argument("--select", metavar="KEY=VALUE", action="append",
+                   help="3D sweep file with fields: only the points whose KEY is nearest VALUE "
+                        "(repeatable); one panel per point")
     s.set_defaults(func=cmd_map)
 
     s = figure("creep3d", "3D sweep: F_x, F_y, M_z against each swept creepage",

@@ -2,7 +2,8 @@
 
 A 3D run file (interfaces.md v2, "3D output") has dimensions time, y, x with coordinate variables
 x, y (cell centres, mm) and fields over (time, y, x): px, py, pn, slip_x, slip_y, upl_x, upl_y,
-ustar, tauc, regime. Nothing here draws; plots.py draws what these functions return.
+ustar, tauc, regime. A 3D sweep file with output.fields holds them over (swept keys..., y, x).
+Where a record index is taken, a sweep.Point (one sweep point) may be given instead. Nothing here draws; plots.py draws what these functions return.
 """
 import math
 from dataclasses import dataclass
@@ -47,8 +48,8 @@ class Ellipse:
 @dataclass
 class FieldMap3D:
     """One record of a 3D field: colour values (ny, nx), optional arrows, the contact cells."""
-    index: int
-    time: float
+    index: object            # record index (run file) or sweep.Point
+    time: float              # None for a sweep point
     field: str
     symbol: str
     long_name: str
@@ -61,23 +62,34 @@ class FieldMap3D:
     vx: np.ndarray = None    # (ny, nx) arrow components, or None
     vy: np.ndarray = None
     regime_flags: tuple = None
+    label: str = ""          # panel title of a sweep point
 
 
 def _filled(a, fill=np.nan):
     return np.ma.filled(np.ma.asarray(a, dtype=np.float64), fill)
 
 
-def check_field_dims(run, name):
+def _leading(index):
+    """(expected leading dimensions, index tuple) of a record index or a sweep point."""
+    if isinstance(index, (int, np.integer)):
+        return ("time",), (int(index),)
+    return tuple(index.dims), tuple(index.index)
+
+
+def check_field_dims(run, name, index=0):
     dims = run.dims(name)
-    if dims != ("time", "y", "x"):
+    lead, _ = _leading(index)
+    if dims != lead + ("y", "x"):
         raise PostError(f"{run.path}: variable '{name}' has dimensions {dims}, expected "
-                        "(time, y, x)")
+                        f"{lead + ('y', 'x')}")
 
 
 def record_field(run, name, index):
-    """Field `name` of record `index` as float64 (ny, nx); NaN where missing."""
-    check_field_dims(run, name)
-    return _filled(run.variable(name)[index, :, :])
+    """Field `name` of record `index` (or at a sweep point) as float64 (ny, nx); NaN where
+    missing."""
+    check_field_dims(run, name, index)
+    _, idx = _leading(index)
+    return _filled(run.variable(name)[idx + (slice(None), slice(None))])
 
 
 def contact_cells(run, index):
@@ -166,7 +178,8 @@ def field_map(run, field, index):
         values = comps[0]
     contact = contact_cells(run, index)
     x, y = run.values("x"), run.values("y")
-    m = FieldMap3D(index=int(index), time=float(run.variable("time")[index]), field=field,
+    time = float(run.variable("time")[index]) if isinstance(index, (int, np.integer)) else None
+    m = FieldMap3D(index=index, time=time, field=field,
                    symbol=symbol, long_name=description, units=run.units(colour[0]), x=x, y=y,
                    values=values, contact=contact)
     if field == "regime":

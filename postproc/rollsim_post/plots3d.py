@@ -38,11 +38,13 @@ def plot_map(maps, title, out, rec=None, max_arrows=25):
     flat = list(axes.ravel())
     for ax in flat[len(maps):]:
         ax.set_visible(False)
-    factor, unit = time_axis([m.time for m in maps])
+    factor, unit = time_axis([m.time for m in maps if m.time is not None])
     for k, (ax, m) in enumerate(zip(flat, maps)):
-        ptitle = f"t = {m.time * factor:.4g} {unit} (record {m.index})"
+        if m.time is None:   # a sweep point
+            ptitle, point = m.label, dict(m.index.values)
+        else:
+            ptitle, point = f"t = {m.time * factor:.4g} {unit} (record {m.index})", {"time": m.time}
         ax.set_title(ptitle, fontsize=10)
-        point = {"time": m.time}
         X, Y = np.meshgrid(m.x, m.y)
         if m.field == "regime":
             values, meanings = m.regime_flags

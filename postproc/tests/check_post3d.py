@@ -174,6 +174,22 @@ def check_map(fixdir, out):
             drawn = cell_values(rows_of(rows, field, panel), x, y)
             check(np.array_equal(drawn, fx.fields(record)[name].astype(np.float64)),
                   f"{field} map panel {panel} (--time {(0, 1.2e-4)[panel]}) == record {record}")
+    # A sweep file with fields: one panel per point (--select picks), the point's keys in the
+    # point columns.
+    sw = os.path.join(fixdir, "sweep3d_fields.nc")
+    rows = plotted(["map", sw], f"{out}/sw.png", f"{out}/sw.csv")
+    for panel, xi in enumerate(fx.XI_FIELDS):
+        prow = rows_of(rows, "traction", panel)
+        g = fx.sweep_fields(xi)
+        check(float(prow[0]["rolling.creepage"]) == xi and
+              np.array_equal(cell_values(prow, x, y), np.hypot(g["px"], g["py"])),
+              f"sweep map panel {panel}: rolling.creepage = {xi}, |p| == the point's fields")
+    rows = plotted(["map", sw, "--field", "regime", "--select", "rolling.creepage=-0.0011"],
+                   f"{out}/sw1.png", f"{out}/sw1.csv")
+    reg = rows_of(rows, "regime")
+    check({r["panel"] for r in reg} == {"0"} and float(reg[0]["rolling.creepage"]) == -0.001 and
+          np.array_equal(cell_values(reg, x, y), fx.sweep_fields(-0.001)["regime"]),
+          "--select rolling.creepage=-0.0011: one panel, the point -0.001, its regimes")
     rows = plotted(["map", run, "--field", "slip", "--arrows", "31"], f"{out}/s.png",
                    f"{out}/s.csv")
     drawn = cell_values(rows_of(rows, "slip"), x, y)

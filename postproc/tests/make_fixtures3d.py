@@ -12,6 +12,8 @@ Usage: make_fixtures3d.py OUTDIR
   sweep3d.nc      a 3D sweep file over rolling_creepage (5) x rolling_lateral_creepage (3), Fx, Fy,
                   Mz from creep_forces(); one point missing (fill value).
   sweep3d_spin.nc a 3D sweep over friction_mu (2) x rolling_spin (4).
+  sweep3d_fields.nc  a 3D sweep over rolling_creepage (XI_FIELDS) with the fields px, py, pn, regime
+                  over (rolling_creepage, y, x): sweep_fields(xi).
 
 check_post3d.py imports this module for the expected values.
 """
@@ -202,6 +204,51 @@ def write_sweep(path, axes, func):
         n[:] = np.zeros(shape, dtype=np.int32)
 
 
+XI_FIELDS = [-0.0005, -0.001, -0.002]
+
+
+def sweep_fields(xi):
+    """Fields of a sweep point: the Hertz pressure, p = MU p_n tanh(xi/0.001) (1, -0.5), regime
+    adhesion in front of x = 0 and slip behind."""
+    x, y = grid()
+    X, _ = np.meshgrid(x, y)
+    pn = pressure()
+    s = np.tanh(xi / 0.001)
+    regime = np.where(pn > 0.0, np.where(X > 0.0, 1, 2), 0).astype(np.int8)
+    return dict(px=MU * pn * s, py=-0.5 * MU * pn * s, pn=pn, regime=regime)
+
+
+def write_sweep_fields(path):
+    x, y = grid()
+    da = DX * DY
+    with netCDF4.Dataset(path, "w") as ds:
+        _globals(ds, "synthetic 3D sweep with fields")
+        d = _axis(ds, "rolling.creepage", XI_FIELDS, "1")
+        ds.createDimension("x", NX)
+        ds.createDimension("y", NY)
+        for name, values in (("x", x), ("y", y)):
+            v = ds.createVariable(name, "f8", (name,))
+            v.units = "mm"
+            v[:] = values
+        for name in ("px", "py", "pn", "regime"):
+            v = ds.createVariable(name, "i1" if name == "regime" else "f8", (d, "y", "x"))
+            v.units = FIELD_META[name][0]
+            if name == "regime":
+                v.flag_values = np.array([0, 1, 2, 3], dtype=np.int8)
+                v.flag_meanings = "exterior adhesion slip plastic"
+            for k, xi in enumerate(XI_FIELDS):
+                v[k] = sweep_fields(xi)[name]
+        for name in ("Fx", "Fy", "Fn", "traction_coefficient"):
+            v = ds.createVariable(name, "f8", (d,))
+            v.units = "1" if name == "traction_coefficient" else "N"
+            f = [sweep_fields(xi) for xi in XI_FIELDS]
+            fx, fy, fn = (np.array([g[c].sum() * da for g in f]) for c in ("px", "py", "pn"))
+            v[:] = {"Fx": fx, "Fy": fy, "Fn": fn, "traction_coefficient": fx / fn}[name]
+        v = ds.createVariable("Mz", "f8", (d,))
+        v.units = "N mm"
+        v[:] = 0.0
+
+
 def main(argv):
     if len(argv) != 2:
         print(__doc__, file=sys.stderr)
@@ -217,6 +264,7 @@ def main(argv):
     write_sweep(os.path.join(out, "sweep3d_spin.nc"),
                 [("friction.mu", MUS, "1"), ("rolling.spin", SPIN, "1/mm")],
                 lambda p, idx: creep_forces(0.0, 0.0, p["rolling.spin"], p["friction.mu"]))
+    write_sweep_fields(os.path.join(out, "sweep3d_fields.nc"))
     return 0
 
 
