@@ -15,6 +15,11 @@ SEQUENTIAL = {"traction": "viridis", "slip": "cividis", "pressure": "Greys", "us
               "tauc": "magma", "upl": "viridis"}
 
 
+def pretty_units(u):
+    """N/mm2 -> N/mm², as the 2D figures write units."""
+    return (u or "").replace("mm2", "mm²").replace("mm3", "mm³")
+
+
 def _map_grid(n):
     ncols = min(n, 2)
     nrows = -(-n // ncols)
@@ -59,7 +64,7 @@ def plot_map(maps, title, out, rec=None, max_arrows=25):
             mesh = ax.pcolormesh(ex, ey, m.values, cmap=SEQUENTIAL.get(m.field, "viridis"),
                                  shading="flat")
             bar = fig.colorbar(mesh, ax=ax, shrink=0.9)
-            bar.set_label(f"{m.symbol} [{m.units}]" if m.units else m.symbol)
+            bar.set_label(f"{m.symbol} [{pretty_units(m.units)}]" if m.units else m.symbol)
         rec.add_map(k, ptitle, m.long_name, m.field, point, X, Y, m.values)
         # Arrows of the vector field on the cells in contact.
         if m.vx is not None:
@@ -71,7 +76,7 @@ def plot_map(maps, title, out, rec=None, max_arrows=25):
                 ax.quiver(X[cells], Y[cells], u, v, angles="xy", scale_units="xy",
                           scale=mag / (0.9 * spacing), width=0.004, color="white",
                           edgecolor="black", linewidth=0.4, pivot="middle", minlength=0.0)
-                ax.text(0.01, 0.01, f"longest arrow: {mag:.3g} {m.units}", fontsize=8,
+                ax.text(0.01, 0.01, f"longest arrow: {mag:.3g} {pretty_units(m.units)}", fontsize=8,
                         transform=ax.transAxes, va="bottom", ha="left",
                         bbox=dict(fc="white", ec="none", alpha=0.8))
             rec.add_map(k, ptitle, "arrows", "arrow_x", point, X[cells], Y[cells], u)
@@ -141,7 +146,7 @@ def plot_creep3d(panels, title, out, rec=None):
         ax.axvline(0.0, color="0.5", lw=0.5)
         ax.grid(alpha=0.25)
         sym = FORCE_SYMBOLS.get(p.var, p.var)
-        ax.set_ylabel(f"{sym} [{p.units}]" if p.units else sym)
+        ax.set_ylabel(f"{sym} [{pretty_units(p.units)}]" if p.units else sym)
         ax.ticklabel_format(axis="x", style="sci", scilimits=(-2, 2))
         if row == len(names) - 1:
             ax.set_xlabel(_key_label(p.key, p.key_units))
