@@ -201,15 +201,17 @@ add_test(NAME pp_make_synthetic3d
   COMMAND ${SYSTEM_PYTHON3} ${PP_TESTS}/make_fixtures3d.py ${PP_SYNTH3D})
 set_tests_properties(pp_make_synthetic3d PROPERTIES FIXTURES_SETUP pp_synthetic3d)
 set(PP_NUM3D ${SYSTEM_PYTHON3} ${PP_TESTS}/check_post3d.py)
-foreach(what map creep history export)
+foreach(what map creep history export profile)
   add_test(NAME pp_3d_${what} COMMAND ${PP_NUM3D} ${what} ${PP_SYNTH3D} ${PP_OUT}/3d_${what})
   set_tests_properties(pp_3d_${what} PROPERTIES FIXTURES_REQUIRED pp_synthetic3d
     ENVIRONMENT "${PP_ENV}")
 endforeach()
 
 # 2D-only figures refuse 3D files and name the 3D command; 3D commands refuse 2D files.
-pp_error(pp_err_3d_traction pp_synthetic3d "run3d\\.nc: a 3D file .*use map FILE --field traction"
-  traction ${PP_SYNTH3D}/run3d.nc -o ${PP_OUT}/never.png)
+pp_error(pp_err_3d_traction pp_synthetic3d "sweep3d_fields\\.nc: a 3D file .*use map FILE --field traction"
+  traction ${PP_SYNTH3D}/sweep3d_fields.nc -o ${PP_OUT}/never.png)
+pp_error(pp_err_3d_y_2d pp_synthetic "no_records\\.nc: --y applies to 3D files"
+  traction ${PP_SYNTH}/no_records.nc --y 0 -o ${PP_OUT}/never.png)
 pp_error(pp_err_3d_regimes pp_synthetic3d "run3d\\.nc: a 3D file .*use map FILE --field regime"
   regimes ${PP_SYNTH3D}/run3d.nc -o ${PP_OUT}/never.png)
 pp_error(pp_err_3d_plastic pp_synthetic3d "run3d\\.nc: a 3D file .*--field ustar"

@@ -101,10 +101,18 @@ def cmd_traction(args):
     figure_format(args.output)
     rec = Recorder()
     with RunFile(args.file) as run:
-        run.require_2d("traction", "map FILE --field traction (|p| and arrows over x and y)")
+        if run.is_sweep():
+            run.require_2d("traction", "map FILE --field traction (|p| and arrows over x and y)")
+        elif args.y is not None and not run.is_3d():
+            raise PostError(f"{run.path}: --y applies to 3D files")
         for opt in ("overlay", "select"):
             _sweep_only(args, run, opt)
-        if run.is_sweep():
+        if run.is_3d() and not run.is_sweep():
+            indices = extract.record_indices(run, args.time)
+            profiles = [field3d.row_profile(run, i, args.y or 0.0, mu=args.mu) for i in indices]
+            _warn_status(run)
+            _plots().plot_traction(profiles, _title(args, run), args.output, rec)
+        elif run.is_sweep():
             if args.time:
                 raise PostError(f"{run.path}: --time applies to time-history files, not sweeps")
             sweep.require_profiles(run)
@@ -359,6 +367,9 @@ def build_parser():
     s.add_argument("--time", type=float, nargs="+", metavar="T",
                    help="times in s; each picks the nearest stored record (default: the last)")
     s.add_argument("--mu", type=float, help="override the coefficient of friction")
+    s.add_argument("--y", type=float, metavar="Y",
+                   help="3D file: the row of cells nearest to Y mm (default 0, the centre line); "
+                        "p_y and |p| are drawn too")
     sweep_options(s)
     s.set_defaults(func=cmd_traction)
 

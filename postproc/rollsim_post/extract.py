@@ -76,6 +76,9 @@ class TractionProfile:
     tauc: np.ndarray = None
     regime: np.ndarray = None
     regime_flags: tuple = None
+    py: np.ndarray = None    # 3D: lateral traction along the row shown
+    y: float = None          # 3D: the row's y (mm) and index
+    row: int = None
 
 
 def traction_profile(run, index, mu=None):

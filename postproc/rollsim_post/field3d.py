@@ -192,6 +192,29 @@ def field_map(run, field, index):
     return m
 
 
+def row_profile(run, index, y_wanted, mu=None):
+    """An extract.TractionProfile along x at the row of cells nearest to y_wanted (mm) at record
+    `index`: p_x, p_y, g = mu p_n, tau_c and regimes of that row."""
+    from .extract import TractionProfile
+    for name in ("px", "py", "pn"):
+        run.variable(name)
+    y = run.values("y")
+    row = int(np.argmin(np.abs(y - float(y_wanted))))
+    mu = run.mu() if mu is None else float(mu)
+    pn = record_field(run, "pn", index)[row]
+    prof = TractionProfile(index=int(index), time=float(run.variable("time")[index]), mu=mu,
+                           x=run.values("x"), px=record_field(run, "px", index)[row], pn=pn,
+                           g=mu * pn, py=record_field(run, "py", index)[row], y=float(y[row]),
+                           row=row)
+    if run.has("tauc"):
+        prof.tauc = record_field(run, "tauc", index)[row]
+    if run.has("regime"):
+        r = record_field(run, "regime", index)[row]
+        prof.regime = np.where(np.isnan(r), -1, r).astype(int)
+        prof.regime_flags = run.regime_flags()
+    return prof
+
+
 def arrow_cells(m, max_arrows):
     """Cells that get an arrow: in contact, on a lattice of every k-th cell (k chosen so at most
     `max_arrows` arrows lie along x and along y), the lattice through the centre cell."""

@@ -71,7 +71,8 @@ def plot_traction(profiles, title, out, rec=None):
     factor, unit = time_axis([p.time for p in profiles])
     regimes_present = set()
     for k, (ax, p) in enumerate(zip(axes[:, 0], profiles)):
-        ax.set_title(f"t = {p.time * factor:.4g} {unit} (record {p.index})", fontsize=10)
+        ax.set_title(f"t = {p.time * factor:.4g} {unit} (record {p.index})" +
+                     (f", y = {p.y:.4g} mm (row {p.row})" if p.y is not None else ""), fontsize=10)
         dx = np.diff(p.x).mean() if p.x.size > 1 else 1.0
         present = set()
         if p.regime is not None:
@@ -85,6 +86,8 @@ def plot_traction(profiles, title, out, rec=None):
                 ax.axvspan(p.x[i0] - dx / 2, p.x[i1 - 1] + dx / 2, color=_regime_style(m)[1],
                            alpha=0.35, lw=0)
         point = {"time": p.time}
+        if p.y is not None:
+            point["row_y"] = p.y   # (a column "y" would clash with the plotted y)
         rec.line(ax, k, p.x, p.g, "--", color="#0072b2", lw=1.2, series=f"g = μ p_n (μ = {p.mu:g})",
                  quantity="g", point=point)
         rec.line(ax, k, p.x, -p.g, "--", color="#0072b2", lw=1.2, alpha=0.6, series="−g",
@@ -95,6 +98,11 @@ def plot_traction(profiles, title, out, rec=None):
                      series="τ_c" if sign > 0 else "−τ_c", quantity="tau_c", point=point)
         rec.line(ax, k, p.x, p.px, "-", color="black", lw=1.8, series="p_x", quantity="px",
                  point=point)
+        if p.py is not None:
+            rec.line(ax, k, p.x, p.py, "-", color="#009e73", lw=1.6, series="p_y", quantity="py",
+                     point=point)
+            rec.line(ax, k, p.x, np.hypot(p.px, p.py), ":", color="0.35", lw=1.4, series="|p|",
+                     quantity="abs_p", point=point)
         ax.axhline(0.0, color="0.5", lw=0.5)
         ax.set_ylabel("traction [N/mm²]")
         ax.grid(alpha=0.25)

@@ -8,6 +8,7 @@ Usage:
   check_post3d.py creep   FIXTURE_DIR OUTDIR   creep3d: Fx, Fy, Mz per point == the sweep files
   check_post3d.py history FIXTURE_DIR OUTDIR   history of a 3D file: Fy/Fn, Mz, eta, phi
   check_post3d.py export  FIXTURE_DIR OUTDIR   export of (time, y, x) fields: long format
+  check_post3d.py profile FIXTURE_DIR OUTDIR   traction of a 3D file: the row nearest --y
   check_post3d.py real    RUN.nc OUTDIR        map of a rollsim 3D run: |p| and p_n per cell,
                                                arrow count == cells with p_n > 0, the fitted
                                                ellipse against the discrete patch
@@ -285,6 +286,35 @@ def check_export(fixdir, out):
     check(True, "every row: time, y, x (x fastest) and px, py, regime, Fy == the fixture")
 
 
+def check_profile(fixdir, out):
+    os.makedirs(out, exist_ok=True)
+    run = os.path.join(fixdir, "run3d.nc")
+    x, y = fx.grid()
+    # rows at y = 0.384 and 0.576 mm (dy = 0.192): 0.5 is nearer the second, row 15
+    rows = plotted(["traction", run, "--y", "0.5", "--time", "0", "2e-4"], f"{out}/p.png",
+                   f"{out}/p.csv")
+    row = int(np.argmin(np.abs(y - 0.5)))
+    check(row == 15, f"row nearest y = 0.5 mm: {row} (y = {y[row]:.4f})")
+    for panel, k in ((0, 0), (1, 2)):
+        f = fx.fields(k)
+        for q, expect in (("px", f["px"][row]), ("py", f["py"][row]), ("g", fx.MU * f["pn"][row]),
+                          ("abs_p", np.hypot(f["px"][row], f["py"][row])),
+                          ("tau_c", -f["tauc"][row] if f["px"].sum() < 0 else f["tauc"][row])):
+            got = rows_of(rows, q, panel)
+            gx = np.array([float(r["x"]) for r in got])
+            gy = np.array([float(r["y"]) for r in got])
+            check_quiet(np.array_equal(gx, x), f"{q}: x of the cells")
+            check_quiet(all(float(r["row_y"]) == y[row] for r in got), "row_y column")
+            check(np.array_equal(gy, expect), f"panel {panel} (record {k}): {q} along x at row "
+                  f"{row} == the fixture")
+        title = rows_of(rows, "px", panel)[0]["panel_title"]
+        check(f"row {row}" in title, f"panel title names the row: {title}")
+    # the default row is the centre line
+    rows = plotted(["traction", run], f"{out}/c.png", f"{out}/c.csv")
+    got = np.array([float(r["y"]) for r in rows_of(rows, "px")])
+    check(np.array_equal(got, fx.fields(2)["px"][fx.NY // 2]), "default --y 0: the centre row")
+
+
 # ---- a real rollsim 3D run ------------------------------------------------------------------
 
 def check_real(path, out):
@@ -335,7 +365,7 @@ def main(argv):
         return 2
     cmd, args = argv[1], argv[2:]
     {"map": check_map, "creep": check_creep, "history": check_history, "export": check_export,
-     "real": check_real}[cmd](*args)
+     "profile": check_profile, "real": check_real}[cmd](*args)
     return 0
 
 
