@@ -46,7 +46,7 @@ static double field_value(int f, int rec, int i) { return 10.0 * rec + i + 1000.
 static signed char regime_value(int rec, int i) { return (signed char)((rec + i) % 4); }
 
 typedef struct record_data {
-  double fields[6][NX];
+  double fields[6][2 * NX]; /* 3D (ny = 1): the y components of px, slip, upl behind */
   signed char regime[NX];
   rs_record rec;
 } record_data;
@@ -54,7 +54,7 @@ typedef struct record_data {
 static void make_record(record_data *d, int rec, unsigned mask)
 {
   for (int f = 0; f < 6; f++)
-    for (int i = 0; i < NX; i++) d->fields[f][i] = field_value(f, rec, i);
+    for (int i = 0; i < 2 * NX; i++) d->fields[f][i] = field_value(f, rec, i);
   for (int i = 0; i < NX; i++) d->regime[i] = regime_value(rec, i);
   rs_record *r = &d->rec;
   memset(r, 0, sizeof *r);
@@ -70,6 +70,10 @@ static void make_record(record_data *d, int rec, unsigned mask)
   r->frictional_power = 0.25 * rec;
   r->plastic_power = 0.125 * rec;
   r->elastic_energy = 0.0625 * rec;
+  r->Fy = 7.5 + rec;
+  r->Mz = -2.5 * rec;
+  r->lateral_creepage = 2e-4;
+  r->spin = 1e-5;
   r->px = mask & RS_FIELD_PX ? d->fields[0] : NULL;
   r->pn = mask & RS_FIELD_PN ? d->fields[1] : NULL;
   r->slip = mask & RS_FIELD_SLIP ? d->fields[2] : NULL;
@@ -86,8 +90,11 @@ static void write_file(const char *path, unsigned mask, int dimension, int nrec,
                        const char *final_status)
 {
   double x[NX];
+  const double y[1] = {0.0};
   for (int i = 0; i < NX; i++) x[i] = cell_x(i);
   rs_output_spec spec = {.path = path,
+                         .ny = dimension == 3 ? 1 : 0,
+                         .y = y,
                          .title = "output round trip",
                          .case_text = case_yaml,
                          .history = "test_output_roundtrip",
@@ -308,7 +315,25 @@ static void check_3d_units(const char *path)
   check_var_text(ncid, "frictional_power", "units", "N mm/s");
   check_var_text(ncid, "elastic_energy", "units", "N mm");
   check_var_text(ncid, "px", "units", "N/mm2");
+  check_var_text(ncid, "Fy", "units", "N");
+  check_var_text(ncid, "Mz", "units", "N mm");
+  check_var_text(ncid, "slip_y", "units", "1");
   check_text_att(ncid, NC_GLOBAL, "status", "interrupted");
+  /* the y components are the second halves of the record's arrays */
+  int id, ndims;
+  double v;
+  const size_t at[3] = {0, 0, 2};
+  NC(nc_inq_varid(ncid, "py", &id));
+  NC(nc_inq_varndims(ncid, id, &ndims));
+  TS_CHECK(ndims == 3, "py has %d dimensions", ndims);
+  NC(nc_get_var1_double(ncid, id, at, &v));
+  TS_CHECK(v == field_value(0, 0, NX + 2), "py(0, 0, 2) = %g", v);
+  NC(nc_inq_varid(ncid, "upl_y", &id));
+  NC(nc_get_var1_double(ncid, id, at, &v));
+  TS_CHECK(v == field_value(3, 0, NX + 2), "upl_y(0, 0, 2) = %g", v);
+  NC(nc_inq_varid(ncid, "Fy", &id));
+  NC(nc_get_var1_double(ncid, id, at, &v));
+  TS_CHECK(v == 7.5, "Fy(0) = %g", v);
   NC(nc_close(ncid));
 }
 

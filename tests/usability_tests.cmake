@@ -49,7 +49,8 @@ us_expect(warn_history --stderr "reaches \\|xi\\| = 0.06, that is 6 % creepage"
 us_expect(warn_sweep --stderr "sweep: rolling.creepage reaches \\|xi\\| = 0.5, that is 50 %"
   -- ${RS_BIN} check ${RS_CASES}/meierhofer.yaml "--set=sweep.rolling.creepage=[-0.003, -0.5]")
 # Plausible cases stay silent.
-foreach(c default carter2d carter_plast meierhofer creep_curves sine_creepage startup)
+foreach(c default carter2d carter_plast meierhofer creep_curves sine_creepage startup hertz3d_creep
+         wheel_rail_3d twin_disc_crowned)
   us_expect(warn_none_${c} --quiet-stderr -- ${RS_BIN} check ${RS_CASES}/${c}.yaml)
 endforeach()
 # A long transient: ETA and a hint, consistent with the rule in src/app/cli.h. Constant inputs

@@ -27,9 +27,11 @@ typedef struct rs_output_spec {
   const char *title;     /* global attribute title */
   const char *case_text; /* global attribute case: the full YAML as run */
   const char *history;   /* global attribute history: e.g. the command line and date */
-  int dimension;         /* 2: force units N/mm; 3: N */
-  size_t nx;             /* number of cells */
+  int dimension;         /* 2: force units N/mm; 3: N, fields over (time, y, x) */
+  size_t nx;             /* number of cells (3D: along x) */
   const double *x;       /* cell centres, mm [nx] */
+  size_t ny;             /* 3D: cells along y (2D: 0 or 1, no y dimension) */
+  const double *y;       /* 3D: cell centres along y, mm [ny] */
   unsigned fields;       /* RS_FIELD_* mask (rollsim/case.h): which (time, x) fields to write */
   /* The fields output.fields asked for (0: all of `fields`). Fields written beyond them
    * (the state a restart needs) carry a `comment` saying so; the global attribute
@@ -38,13 +40,17 @@ typedef struct rs_output_spec {
   const rs_output_rig *rig; /* twin-disc summaries, or NULL */
 } rs_output_spec;
 
-/* One record. Scalars per model.md §7; field arrays have nx entries (NULL allowed
- * for fields not in the mask). */
+/* One record. Scalars per model.md §7; field arrays have n = nx (3D: nx ny, y slowest)
+ * entries (NULL allowed for fields not in the mask). In 3D px, slip and upl hold both
+ * components, the x one in the first n entries and the y one in the next n; they are
+ * written as px/py, slip_x/slip_y and upl_x/upl_y. */
 typedef struct rs_record {
-  double time;     /* s */
-  double Fx, Fn;   /* N/mm (2D) */
-  double creepage; /* 1 */
-  double velocity; /* mm/s */
+  double time;                   /* s */
+  double Fx, Fn;                 /* N/mm (2D), N (3D) */
+  double creepage;               /* 1 */
+  double Fy, Mz;                 /* 3D: N, N mm (not written in 2D) */
+  double lateral_creepage, spin; /* 3D: 1, 1/mm */
+  double velocity;               /* mm/s */
   int n_exterior, n_adhesion, n_slip, n_plastic;
   double frictional_power;                           /* N mm/s per mm */
   double plastic_power;                              /* N mm/s per mm */
@@ -112,6 +118,7 @@ typedef struct rs_sweep_output_spec {
  * arrays have nx entries; NULL writes NaN (regime -1) for that point. */
 typedef struct rs_sweep_point {
   double Fx, Fn, creepage, velocity;
+  double Fy, Mz, lateral_creepage, spin; /* 3D only (not written in 2D) */
   int n_exterior, n_adhesion, n_slip, n_plastic;
   double frictional_power, plastic_power, elastic_energy;
   int converged;

@@ -9,15 +9,25 @@
 #include <stddef.h>
 #include "rollsim/status.h"
 
-/* Read the last record of the time-history file at path. The file's x coordinate must
- * match the new grid: nx cells and every x within 1e-12 relative (to max |x|). A file
- * whose status is still "running" (a killed run) is fine: its last complete record is
- * used. On success *t_last is that record's time (s) and px, upl, ustar [nx] its
- * state; if creepage is not NULL, the creepage of that record too (force control).
- * Returns RS_OK or RS_ERR_INPUT (missing or unreadable file, no records, a missing
- * field, a grid mismatch, non-finite values) with a message naming the file. */
-int rs_restart_read(const char *path, size_t nx, const double *x, double *t_last, double *px,
-                    double *upl, double *ustar, double *creepage, rs_msg *msg);
+/* The grid and state layout the file must match. */
+typedef struct rs_restart_grid {
+  size_t nx, ny;       /* cells along x and y (2D: ny = 1) */
+  const double *x, *y; /* cell centres, mm [nx], [ny] (2D: y unused) */
+  int ncomp;           /* tangential components: 1 (2D) or 2 (3D) */
+  int nextra;          /* prescribed-force creepages to read: 0, 1 or 2 */
+} rs_restart_grid;
+
+/* Read the last record of the time-history file at path. The file's x (and in 3D y)
+ * coordinates must match the new grid: the same counts and every centre within 1e-12
+ * relative (to the largest). A file whose status is still "running" (a killed run) is
+ * fine: its last complete record is used. On success *t_last is that record's time (s),
+ * p and upl [ncomp n] (x components first, then y: px/py, upl_x/upl_y in 3D) and ustar
+ * [n] its state, n = nx ny; extras [nextra] the creepage (and the lateral creepage) of
+ * that record (force control). Returns RS_OK or RS_ERR_INPUT (missing or unreadable
+ * file, no records, a missing field, a grid mismatch, non-finite values) with a message
+ * naming the file. */
+int rs_restart_read(const char *path, const rs_restart_grid *g, double *t_last, double *p,
+                    double *upl, double *ustar, double *extras, rs_msg *msg);
 
 /* The history and status attributes of the file at path (malloc'ed; "" when absent),
  * for the history of a run that continues it. RS_ERR_INPUT when it cannot be read. */

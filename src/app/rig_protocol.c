@@ -13,6 +13,7 @@ void rs_rig_run_free(rs_rig_run *r)
   free(r->slip_end);
   free(r->time_start);
   free(r->time_end);
+  free(r->exit_buf);
   memset(r, 0, sizeof *r);
 }
 
@@ -28,8 +29,9 @@ int rs_rig_run_create(rs_rig_run *r, const rs_case *c, const rs_model *m, rs_run
   rs_model_inputs_at(m, 0.0, &in);
   const double V = in.velocity, L = m->grid.nx * m->grid.dx;
   const double two_pi = 2.0 * RS_PI;
-  /* the exit state of the trailing cell: u_pl, u* (2D: one row) */
-  int status = rs_rig_memory_create(&r->mem, 2, (two_pi * rig->radius_1 - L) / V,
+  /* the exit state of the trailing cell of every row: u_pl (ncomp), u* */
+  const int width = (m->lay.ncomp + 1) * m->grid.ny;
+  int status = rs_rig_memory_create(&r->mem, width, (two_pi * rig->radius_1 - L) / V,
                                     (two_pi * rig->radius_2 - L) / V, rig->recovery, msg);
   if (status != RS_OK) return status;
   const size_t ns = rig->nsteps;
@@ -57,6 +59,10 @@ int rs_rig_run_create(rs_rig_run *r, const rs_case *c, const rs_model *m, rs_run
     res->rig_step_mu[j] = res->rig_step_slip[j] = NAN;
   }
   r->nrev = (size_t)ceil(revs - 1e-9);
+  if (width > 2 && !(r->exit_buf = malloc((size_t)width * sizeof *r->exit_buf))) {
+    rs_rig_run_free(r);
+    return rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory (twin-disc memory)");
+  }
   return RS_OK;
 }
 
@@ -88,7 +94,13 @@ int rs_rig_run_step(void *ctx, double t, const double *y)
   rs_rig_run *r = ctx;
   const rs_model *m = r->m;
   const rs_layout *L = &m->lay;
-  const double exit_state[2] = {y[rs_at_upl(L, 0, 0)], y[rs_at_ustar(L, 0)]}; /* trailing cell */
+  /* the trailing cell of each row (x lowest): u_pl components, then u* (rs_model_inflow) */
+  const int nc = L->ncomp, nx = m->grid.nx, ny = m->grid.ny;
+  double exit_2d[2], *exit_state = ny == 1 && nc == 1 ? exit_2d : r->exit_buf;
+  for (int iy = 0; iy < ny; iy++) {
+    for (int c = 0; c < nc; c++) exit_state[iy * (nc + 1) + c] = y[rs_at_upl(L, c, iy * nx)];
+    exit_state[iy * (nc + 1) + nc] = y[rs_at_ustar(L, iy * nx)];
+  }
   int status = rs_rig_memory_record(&r->mem, t, exit_state, &r->msg);
   if (status != RS_OK) return status;
   double fx = 0.0;

@@ -17,6 +17,7 @@ typedef struct rs_rig_run {
   rs_output *out; /* NULL until the output file is open */
   rs_run_result *res;
   double *window_start, *slip_start, *slip_end, *time_start, *time_end; /* per step */
+  double *exit_buf;       /* 3D: the exit state of every row (memory width values) */
   size_t nrev, rev, step; /* revolutions, current revolution, current step */
   double t_prev, mu_prev, slip_prev;
   double rev_mu, rev_slip, step_mu, step_slip; /* integrals so far */

@@ -12,6 +12,8 @@
 
 #include "app/rig_protocol.h"
 #include "base/util.h"
+#include "rollsim/kalker.h"
+#include "rollsim/normal3d.h"
 #include "rollsim/output.h"
 #include "rollsim/restart.h"
 #include "app/cli.h"
@@ -42,11 +44,16 @@ static int write_record(run_state *s, double t, rs_diag *d, rs_msg *msg)
   rs_model_inputs_at(&s->m, t, &in);
   int status = rs_model_diagnostics(&s->m, &s->w, &in, s->y, s->yp, d, s->slip, s->tauc, s->regime);
   if (status != RS_OK) return rs_msg_set(msg, status, "%s", s->w.msg.text);
-  if (s->final) rs_fields_copy(s->final, s->m.grid.n, s->y, s->w.pn, s->slip, s->tauc, s->regime);
+  if (s->final && L->ncomp == 1)
+    rs_fields_copy(s->final, s->m.grid.n, s->y, s->w.pn, s->slip, s->tauc, s->regime);
   rs_record rec = {.time = t,
                    .Fx = d->Fx,
                    .Fn = d->Fn,
                    .creepage = d->creepage,
+                   .Fy = d->Fy,
+                   .Mz = d->Mz,
+                   .lateral_creepage = d->lateral_creepage,
+                   .spin = d->spin,
                    .velocity = d->velocity,
                    .n_exterior = d->count[RS_EXTERIOR],
                    .n_adhesion = d->count[RS_ADHESION],
@@ -183,10 +190,15 @@ static int read_restart(run_state *s, const rs_run_opts *o, const char *out_path
                       "or add --append to continue in it",
                       o->restart_path);
   const rs_layout *L = &s->m.lay;
+  const rs_restart_grid g = {.nx = (size_t)s->m.grid.nx,
+                             .ny = (size_t)s->m.grid.ny,
+                             .x = s->m.grid.x,
+                             .y = s->m.grid.y,
+                             .ncomp = L->ncomp,
+                             .nextra = L->nextra};
   int status =
-      rs_restart_read(o->restart_path, (size_t)s->m.grid.n, s->m.grid.x, t0,
-                      s->y + rs_at_p(L, 0, 0), s->y + rs_at_upl(L, 0, 0), s->y + rs_at_ustar(L, 0),
-                      L->nextra ? s->y + rs_at_extra(L, 0) : NULL, msg);
+      rs_restart_read(o->restart_path, &g, t0, s->y + rs_at_p(L, 0, 0), s->y + rs_at_upl(L, 0, 0),
+                      s->y + rs_at_ustar(L, 0), L->nextra ? s->y + rs_at_extra(L, 0) : NULL, msg);
   if (status != RS_OK) return status;
   if (c->mode == RS_MODE_STEADY) { /* the stored state starts Newton at the case's inputs */
     *t0 = 0.0;
@@ -249,7 +261,7 @@ int rs_run(const rs_case *c, const rs_run_opts *o, rs_run_result *res, rs_msg *m
   res->dx = s.m.grid.dx;
   s.y = calloc((size_t)neq, sizeof *s.y);
   s.yp = calloc((size_t)neq, sizeof *s.yp);
-  s.slip = calloc((size_t)n, sizeof *s.slip);
+  s.slip = calloc((size_t)n * (size_t)s.m.lay.ncomp, sizeof *s.slip);
   s.tauc = calloc((size_t)n, sizeof *s.tauc);
   s.regime = calloc((size_t)n, sizeof *s.regime);
   if (!s.y || !s.yp || !s.slip || !s.tauc || !s.regime || rs_work_create(&s.w, &s.m) != RS_OK) {
@@ -310,8 +322,10 @@ int rs_run(const rs_case *c, const rs_run_opts *o, rs_run_result *res, rs_msg *m
                                     : o->history ? o->history
                                                  : "",
                          .dimension = c->dimension,
-                         .nx = (size_t)n,
+                         .nx = (size_t)s.m.grid.nx,
                          .x = s.m.grid.x,
+                         .ny = (size_t)s.m.grid.ny,
+                         .y = s.m.grid.y,
                          .fields = fields,
                          .requested_fields = asked,
                          .rig = rig ? &rig_spec : NULL};
@@ -379,6 +393,59 @@ int rs_run(const rs_case *c, const rs_run_opts *o, rs_run_result *res, rs_msg *m
   return status;
 }
 
+/* rollsim check, 3D: Hertz, the grid and Kalker's linear-theory forces at t = 0. */
+static int print_derived_3d(const rs_case *c, const rs_model *m, FILE *out, rs_msg *msg)
+{
+  int in_contact = 0;
+  double fn = 0.0, pmax = 0.0;
+  for (int i = 0; i < m->grid.n; i++) {
+    in_contact += m->pn[i] > 0.0;
+    fn += m->pn[i] * m->grid.area;
+    pmax = fmax(pmax, m->pn[i]);
+  }
+  rs_hertz_ellipse hz;
+  int status = rs_hertz3d(fn, 0.5 / c->radius, 0.5 / c->radius_y, c->shear_modulus,
+                          c->poisson_ratio, &hz, msg);
+  if (status != RS_OK) return status;
+  fprintf(out, "hertz.semi_axes: [%.6g, %.6g]  # mm, a (along x), b (along y)\n", m->hertz_a,
+          m->hertz_b);
+  fprintf(out, "hertz.peak_pressure: %.6g  # N/mm^2, p0 = 3 F_n/(2 pi a b)\n", m->hertz_p0);
+  fprintf(out, "hertz.approach: %.6g  # mm\n", hz.approach);
+  fprintf(out, "grid.cell_size: [%.6g, %.6g]  # mm (a/%.4g, b/%.4g)\n", m->grid.dx, m->grid.dy,
+          m->hertz_a / m->grid.dx, m->hertz_b / m->grid.dy);
+  fprintf(out, "grid.potential_contact: [[%.6g, %.6g], [%.6g, %.6g]]  # mm, x and y\n",
+          m->grid.x_lo, m->grid.x_hi, m->grid.y_lo, m->grid.y_hi);
+  fprintf(out, "normal.cells_in_contact: %d  # of %d\n", in_contact, m->grid.n);
+  fprintf(out, "normal.total_force: %.9g  # N\n", fn);
+  fprintf(out, "normal.max_pressure: %.6g  # N/mm^2\n", pmax);
+  rs_inputs in;
+  rs_model_inputs_at(m, 0.0, &in);
+  rs_kalker k;
+  rs_msg kmsg = {{0}};
+  if (rs_kalker_coefficients(m->hertz_a / m->hertz_b, c->poisson_ratio, &k, &kmsg) == RS_OK) {
+    double fx, fy;
+    rs_kalker_forces(&k, c->shear_modulus, m->hertz_a, m->hertz_b, in.creepage, in.lateral_creepage,
+                     in.spin, &fx, &fy);
+    fx += 0.0; /* -0 prints as 0 */
+    fy += 0.0;
+    fprintf(out,
+            "kalker.coefficients: [%.5g, %.5g, %.5g]  # C11, C22, C23 at a/b = %.4g, nu = %g\n",
+            k.c11, k.c22, k.c23, m->hertz_a / m->hertz_b, c->poisson_ratio);
+    fprintf(out,
+            "kalker.linear_forces: [%.6g, %.6g]  # N, F_x and F_y of the linear theory at t = 0 "
+            "(|F| <= mu F_n = %.6g N caps the real ones)\n",
+            fx, fy, m->par.friction.mu * fn);
+  } else {
+    fprintf(out, "kalker.coefficients: null  # %s\n", kmsg.text);
+  }
+  fprintf(out, "solver.r_steady: %.6g  # N s/mm^3, semismooth scaling at t = 0\n",
+          in.velocity > 0.0 ? rs_model_scaling(m, &in, 0.0) : 0.0);
+  if (in.velocity > 0.0 && c->mode == RS_MODE_TRANSIENT)
+    fprintf(out, "simulation.rolled_distance_total: %.6g  # mm (%.4g contact lengths)\n",
+            in.velocity * c->end_time, in.velocity * c->end_time / (2.0 * m->hertz_a));
+  return RS_OK;
+}
+
 int rs_run_print_derived(const rs_case *c, FILE *out, rs_msg *msg)
 {
   rs_model m;
@@ -391,6 +458,11 @@ int rs_run_print_derived(const rs_case *c, FILE *out, rs_msg *msg)
     fn += m.pn[i] * m.grid.area;
   }
   fprintf(out, "# derived\n");
+  if (m.lay.ncomp == 2) {
+    status = print_derived_3d(c, &m, out, msg);
+    rs_model_free(&m);
+    return status;
+  }
   fprintf(out, "hertz.half_width: %.6g  # mm, a = sqrt(4 q R (1-nu)/(pi G))\n", m.hertz_a);
   fprintf(out, "hertz.peak_pressure: %.6g  # N/mm^2, p0 = 2 q/(pi a)\n", m.hertz_p0);
   fprintf(out, "grid.dx: %.6g  # mm (a/%.4g)\n", m.grid.dx, m.hertz_a / m.grid.dx);

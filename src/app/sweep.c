@@ -21,6 +21,10 @@ static void fill_point(rs_sweep_point *pt, const rs_diag *d)
   pt->Fx = d->Fx;
   pt->Fn = d->Fn;
   pt->creepage = d->creepage;
+  pt->Fy = d->Fy;
+  pt->Mz = d->Mz;
+  pt->lateral_creepage = d->lateral_creepage;
+  pt->spin = d->spin;
   pt->velocity = d->velocity;
   pt->n_exterior = d->count[RS_EXTERIOR];
   pt->n_adhesion = d->count[RS_ADHESION];
@@ -74,15 +78,18 @@ static void chain_drop(steady_chain *ch)
 static int rolling_key(const char *key)
 {
   return !strcmp(key, "rolling.creepage") || !strcmp(key, "rolling.velocity") ||
-         !strcmp(key, "rolling.shift_velocity");
+         !strcmp(key, "rolling.shift_velocity") || !strcmp(key, "rolling.lateral_creepage") ||
+         !strcmp(key, "rolling.spin");
 }
 
 /* The model's rolling input `key` held at x (an intermediate continuation point). */
 static void set_rolling_value(rs_model *m, const char *key, double x)
 {
-  rs_history *h = !strcmp(key, "rolling.creepage")   ? &m->par.creepage
-                  : !strcmp(key, "rolling.velocity") ? &m->par.velocity
-                                                     : &m->par.shift_velocity;
+  rs_history *h = !strcmp(key, "rolling.creepage")           ? &m->par.creepage
+                  : !strcmp(key, "rolling.velocity")         ? &m->par.velocity
+                  : !strcmp(key, "rolling.lateral_creepage") ? &m->par.lateral_creepage
+                  : !strcmp(key, "rolling.spin")             ? &m->par.spin
+                                                             : &m->par.shift_velocity;
   rs_history_free(h);
   *h = (rs_history){.kind = RS_HISTORY_CONSTANT, .value = x};
 }
@@ -240,7 +247,11 @@ int rs_sweep_run(const rs_sweep *s, const char *case_path, const char *const *se
   /* Profiles (output.fields) when every point has the base case's grid. */
   const unsigned fields =
       base.has_plasticity ? base.fields : base.fields & ~(unsigned)RS_FIELD_TAUC;
-  if (fields) {
+  if (fields && base.dimension == 3) {
+    fprintf(stderr, "rollsim sweep: warning: output.fields not stored: a 3D sweep file holds "
+                    "the forces and counts of every point; rollsim run gives a point's fields "
+                    "(output.fields: [] silences this)\n");
+  } else if (fields) {
     char why[512];
     int common = 0;
     status = rs_sweep_common_grid(s, case_path, sets, nsets, &common, &grid_x, &grid_n, why,
@@ -326,6 +337,10 @@ int rs_sweep_run(const rs_sweep *s, const char *case_path, const char *const *se
         pt = (rs_sweep_point){.Fx = pt.Fx,
                               .Fn = pt.Fn,
                               .creepage = pt.creepage,
+                              .Fy = pt.Fy,
+                              .Mz = pt.Mz,
+                              .lateral_creepage = pt.lateral_creepage,
+                              .spin = pt.spin,
                               .velocity = pt.velocity,
                               .n_exterior = pt.n_exterior,
                               .n_adhesion = pt.n_adhesion,
@@ -345,6 +360,7 @@ int rs_sweep_run(const rs_sweep *s, const char *case_path, const char *const *se
       res->points_done++;
     } else if (ps == RS_ERR_SOLVER) {
       pt.Fx = pt.Fn = pt.creepage = pt.velocity = NAN;
+      pt.Fy = pt.Mz = pt.lateral_creepage = pt.spin = NAN;
       pt.frictional_power = pt.plastic_power = pt.elastic_energy = NAN;
       pt.n_exterior = pt.n_adhesion = pt.n_slip = pt.n_plastic = -1;
       res->points_failed++;

@@ -166,13 +166,31 @@ static int resolve_twin_disc(const resolver *r, rs_case *c)
       return rs_case_error(r->d, given(r, owned[i]), owned[i],
                            "is set by the twin_disc: block (disc radii, width, force, speed and "
                            "protocol): remove it");
+  const int three = c->dimension == 3;
+  if (three && given(r, "contact.curvature"))
+    return rs_case_error(r->d, given(r, "contact.curvature"), "contact.curvature",
+                         "is set by the twin_disc: block (disc and crown radii): remove it");
   static const char *const required[] = {"twin_disc.radius_1", "twin_disc.radius_2",
-                                         "twin_disc.width", "twin_disc.normal_force"};
-  for (size_t i = 0; i < sizeof required / sizeof *required; i++)
+                                         "twin_disc.normal_force", "twin_disc.width"};
+  for (size_t i = 0; i < sizeof required / sizeof *required - (size_t)three; i++)
     if (!given(r, required[i]))
       return rs_case_error(r->d, block, required[i],
-                           "missing (the twin_disc: block needs "
-                           "radius_1, radius_2, width, normal_force)");
+                           three ? "missing (a crowned twin_disc: block needs radius_1, "
+                                   "radius_2, normal_force and a crown radius)"
+                                 : "missing (the twin_disc: block needs "
+                                   "radius_1, radius_2, width, normal_force)");
+  const yaml_node_t *crown1 = given(r, "twin_disc.crown_radius_1"),
+                    *crown2 = given(r, "twin_disc.crown_radius_2");
+  if (three && given(r, "twin_disc.width"))
+    return rs_case_error(r->d, given(r, "twin_disc.width"), "twin_disc.width",
+                         "crowned discs (contact.dimension: 3) touch in an ellipse set by the "
+                         "crown radii and carry normal_force in N; the width is for flat discs "
+                         "(2D line load): remove it");
+  if (three && !crown1 && !crown2)
+    return rs_case_error(r->d, block, "twin_disc.crown_radius_1",
+                         "missing: a 3D rig needs crowned discs (crown_radius_1 and/or "
+                         "crown_radius_2, mm; a disc without one is flat across); flat discs "
+                         "make a line contact: contact.dimension: 2");
   if (c->mode != RS_MODE_TRANSIENT)
     return rs_case_error(r->d, given(r, "simulation.mode"), "simulation.mode",
                          "a twin_disc: run is transient (many revolutions); remove mode: steady");
@@ -221,8 +239,12 @@ static int resolve_twin_disc(const resolver *r, rs_case *c)
   rig->revolution_time = two_pi * rig->radius_1 / V;
   rs_history_free(&c->normal_load);
   c->normal_load =
-      (rs_history){.kind = RS_HISTORY_CONSTANT, .value = rig->normal_force / rig->width};
+      (rs_history){.kind = RS_HISTORY_CONSTANT,
+                   .value = three ? rig->normal_force : rig->normal_force / rig->width};
   c->radius = 1.0 / (1.0 / rig->radius_1 + 1.0 / rig->radius_2);
+  if (three) /* transverse curvatures add; a flat disc has none */
+    c->radius_y = 1.0 / ((crown1 ? 1.0 / rig->crown_radius_1 : 0.0) +
+                         (crown2 ? 1.0 / rig->crown_radius_2 : 0.0));
   rs_history_free(&c->velocity);
   c->velocity = (rs_history){.kind = RS_HISTORY_CONSTANT, .value = V};
   /* creepage table: two points per step (a jump where a held step starts elsewhere) */

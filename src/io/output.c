@@ -86,6 +86,26 @@ const rs_scalar_var rs_scalar_vars[RS_N_SCALARS] = {
      "elastic energy"},
 };
 
+/* 3D only: the lateral force, the spin moment and the two further creepages. */
+const rs_scalar_var rs_scalar_vars_3d[RS_N_SCALARS_3D] = {
+    {"Fy", NC_DOUBLE, offsetof(rs_record, Fy), "N", "N", "total lateral force on body 1"},
+    {"Mz", NC_DOUBLE, offsetof(rs_record, Mz), "N mm", "N mm",
+     "spin moment on body 1 about the contact centre"},
+    {"lateral_creepage", NC_DOUBLE, offsetof(rs_record, lateral_creepage), "1", "1",
+     "lateral creepage"},
+    {"spin", NC_DOUBLE, offsetof(rs_record, spin), "1/mm", "1/mm", "spin creepage"},
+};
+
+const char *rs_field_name(int f, int three_d, int comp)
+{
+  static const char *const names3d[RS_N_FIELDS][2] = {
+      {"px", "py"},    {"pn", NULL},   {"slip_x", "slip_y"}, {"upl_x", "upl_y"},
+      {"ustar", NULL}, {"tauc", NULL}, {"regime", NULL}};
+  if (f < 0 || f >= RS_N_FIELDS || comp < 0 || comp > 1) return NULL;
+  if (!three_d) return comp == 0 ? rs_field_vars[f].name : NULL;
+  return names3d[f][comp];
+}
+
 /* A double variable over one dimension with units, long_name and a NaN fill value. */
 static int def_rig_var(int ncid, const char *name, int dim, const char *units,
                        const char *long_name, int *id)
@@ -291,9 +311,15 @@ static int define_file(rs_output *out, const rs_output_spec *spec, const char **
   if ((err = nc_put_att_text(ncid, NC_GLOBAL, "status", RS_OUTPUT_STATUS_LEN, status))) return err;
 
   *what = "defining dimensions";
+  int y_dim = -1;
   if ((err = nc_def_dim(ncid, "time", NC_UNLIMITED, &time_dim)) ||
+      (three_d && (err = nc_def_dim(ncid, "y", spec->ny, &y_dim))) ||
       (err = nc_def_dim(ncid, "x", spec->nx, &x_dim)))
     return err;
+  if (three_d) {
+    const int dim = 3;
+    if ((err = nc_put_att_int(ncid, NC_GLOBAL, "dimension", NC_INT, 1, &dim))) return err;
+  }
 
   *what = "defining coordinate variables";
   if ((err = nc_def_var(ncid, "time", NC_DOUBLE, 1, &time_dim, &out->time_id)) ||
@@ -307,6 +333,13 @@ static int define_file(rs_output *out, const rs_output_spec *spec, const char **
       (err = rs_output_put_text(ncid, out->x_id, "long_name", "cell centre, rolling direction")) ||
       (err = rs_output_put_text(ncid, out->x_id, "axis", "X")))
     return err;
+  out->y_id = -1;
+  if (three_d &&
+      ((err = nc_def_var(ncid, "y", NC_DOUBLE, 1, &y_dim, &out->y_id)) ||
+       (err = rs_output_put_text(ncid, out->y_id, "units", "mm")) ||
+       (err = rs_output_put_text(ncid, out->y_id, "long_name", "cell centre, lateral direction")) ||
+       (err = rs_output_put_text(ncid, out->y_id, "axis", "Y"))))
+    return err;
 
   if (spec->rig) {
     *what = "defining the twin-disc summaries";
@@ -315,17 +348,31 @@ static int define_file(rs_output *out, const rs_output_spec *spec, const char **
 
   /* Fields first, scalars last: the last record variable is a double (see top). */
   *what = "defining field variables";
-  const int field_dims[2] = {time_dim, x_dim};
+  const int field_dims[3] = {time_dim, three_d ? y_dim : x_dim, x_dim};
+  const int ndims = three_d ? 3 : 2;
   for (int f = 0; f < RS_N_FIELDS; f++) {
     const rs_field_var *fv = &rs_field_vars[f];
-    out->field_id[f] = -1;
+    out->field_id[f] = out->field_id2[f] = -1;
     if (!(spec->fields & fv->bit)) continue;
     const nc_type type = f == RS_REGIME_FIELD ? NC_BYTE : NC_DOUBLE;
     int id;
-    if ((err = nc_def_var(ncid, fv->name, type, 2, field_dims, &id)) ||
-        (err = rs_output_put_text(ncid, id, "units", fv->units)) ||
-        (err = rs_output_put_text(ncid, id, "long_name", fv->long_name)))
-      return err;
+    for (int comp = 0; comp < 2; comp++) {
+      const char *name = rs_field_name(f, three_d, comp);
+      if (!name) break;
+      char long_name[128];
+      snprintf(long_name, sizeof long_name, "%s%s", fv->long_name,
+               !three_d || !rs_field_is_vector(f) ? ""
+               : comp                             ? ", y component"
+                                                  : ", x component");
+      if ((err = nc_def_var(ncid, name, type, ndims, field_dims, &id)) ||
+          (err = rs_output_put_text(ncid, id, "units", fv->units)) ||
+          (err = rs_output_put_text(ncid, id, "long_name", long_name)))
+        return err;
+      if (comp == 1) out->field_id2[f] = id;
+    }
+    if (three_d && rs_field_is_vector(f)) {
+      if ((err = nc_inq_varid(ncid, rs_field_name(f, 1, 0), &id))) return err;
+    }
     if (f == RS_REGIME_FIELD) {
       static const signed char flag_values[4] = {0, 1, 2, 3};
       if ((err = nc_put_att_schar(ncid, id, "flag_values", NC_BYTE, 4, flag_values)) ||
@@ -334,17 +381,21 @@ static int define_file(rs_output *out, const rs_output_spec *spec, const char **
     }
     const unsigned asked = spec->requested_fields ? spec->requested_fields : spec->fields;
     if (!(asked & fv->bit) &&
-        (err = rs_output_put_text(ncid, id, "comment",
-                                  "not in output.fields: stored for rollsim run --restart")))
+        ((err = rs_output_put_text(ncid, id, "comment",
+                                   "not in output.fields: stored for rollsim run --restart")) ||
+         (out->field_id2[f] >= 0 &&
+          (err = rs_output_put_text(ncid, out->field_id2[f], "comment",
+                                    "not in output.fields: stored for rollsim run --restart")))))
       return err;
     out->field_id[f] = id;
   }
   {
     const unsigned asked = spec->requested_fields ? spec->requested_fields : spec->fields;
-    char names[128] = "";
+    char names[192] = "";
     for (int f = 0; f < RS_N_FIELDS; f++)
       if (asked & spec->fields & rs_field_vars[f].bit)
-        strcat(strcat(names, *names ? " " : ""), rs_field_vars[f].name);
+        for (int comp = 0; comp < 2 && rs_field_name(f, three_d, comp); comp++)
+          strcat(strcat(names, *names ? " " : ""), rs_field_name(f, three_d, comp));
     if ((err = rs_output_put_text(ncid, NC_GLOBAL, "output_fields", names))) return err;
   }
 
@@ -358,6 +409,15 @@ static int define_file(rs_output *out, const rs_output_spec *spec, const char **
       return err;
     out->scalar_id[s] = id;
   }
+  for (int s = 0; s < RS_N_SCALARS_3D; s++) {
+    const rs_scalar_var *sv = &rs_scalar_vars_3d[s];
+    out->scalar3_id[s] = -1;
+    if (!three_d) continue;
+    if ((err = nc_def_var(ncid, sv->name, sv->type, 1, &time_dim, &out->scalar3_id[s])) ||
+        (err = rs_output_put_text(ncid, out->scalar3_id[s], "units", sv->units_3d)) ||
+        (err = rs_output_put_text(ncid, out->scalar3_id[s], "long_name", sv->long_name)))
+      return err;
+  }
 
   /* Record data are written in full every time: no fill pass needed. */
   int old_fill;
@@ -370,10 +430,11 @@ int rs_output_create(rs_output **outp, const rs_output_spec *spec, rs_msg *msg)
   *outp = NULL;
   if (!spec || !spec->path || !*spec->path)
     return rs_msg_set(msg, RS_ERR_OUTPUT, "output file: no path given");
-  if (spec->nx == 0 || !spec->x || (spec->dimension != 2 && spec->dimension != 3))
+  if (spec->nx == 0 || !spec->x || (spec->dimension != 2 && spec->dimension != 3) ||
+      (spec->dimension == 3 && (spec->ny == 0 || !spec->y)))
     return rs_msg_set(msg, RS_ERR_INTERNAL,
-                      "output file %s: invalid grid (nx = %zu, dimension = %d)", spec->path,
-                      spec->nx, spec->dimension);
+                      "output file %s: invalid grid (nx = %zu, ny = %zu, dimension = %d)",
+                      spec->path, spec->nx, spec->ny, spec->dimension);
   /* The file is built under PATH.part and renamed over PATH: never over a device, pipe or
    * directory (as root, `-o /dev/null` would otherwise replace /dev/null). */
   struct stat st;
@@ -393,6 +454,8 @@ int rs_output_create(rs_output **outp, const rs_output_spec *spec, rs_msg *msg)
   memcpy(part, spec->path, path_len);
   memcpy(part + path_len, ".part", sizeof ".part");
   out->nx = spec->nx;
+  out->three_d = spec->dimension == 3;
+  out->ny = out->three_d ? spec->ny : 1;
   out->fields = spec->fields;
 
   int status = rs_output_make_parent_dirs(spec->path, msg);
@@ -425,6 +488,10 @@ int rs_output_create(rs_output **outp, const rs_output_spec *spec, rs_msg *msg)
   if (err == NC_NOERR) {
     what = "writing x";
     err = nc_put_var_double(out->ncid, out->x_id, spec->x);
+  }
+  if (err == NC_NOERR && out->three_d) {
+    what = "writing y";
+    err = nc_put_var_double(out->ncid, out->y_id, spec->y);
   }
   if (err == NC_NOERR && spec->rig) {
     what = "writing the twin-disc protocol";
@@ -466,8 +533,9 @@ static const void *field_data(const rs_record *rec, int f)
 int rs_output_write(rs_output *out, const rs_record *rec, rs_msg *msg)
 {
   const int ncid = out->ncid;
-  const size_t start[2] = {out->records, 0};
-  const size_t count[2] = {1, out->nx};
+  const size_t start[3] = {out->records, 0, 0};
+  const size_t count[3] = {1, out->three_d ? out->ny : out->nx, out->nx};
+  const size_t n = out->nx * out->ny;
   int err;
 
   /* Refuse before writing anything: a put at index n already makes n+1 the record count
@@ -485,6 +553,9 @@ int rs_output_write(rs_output *out, const rs_record *rec, rs_msg *msg)
     err = f == RS_REGIME_FIELD ? nc_put_vara_schar(ncid, out->field_id[f], start, count, data)
                                : nc_put_vara_double(ncid, out->field_id[f], start, count, data);
     if (err) goto fail;
+    if (out->field_id2[f] >= 0 &&
+        (err = nc_put_vara_double(ncid, out->field_id2[f], start, count, (const double *)data + n)))
+      goto fail;
   }
 
   for (int s = 0; s < RS_N_SCALARS; s++) {
@@ -500,6 +571,13 @@ int rs_output_write(rs_output *out, const rs_record *rec, rs_msg *msg)
     }
     if (err) goto fail;
   }
+
+  for (int s = 0; s < RS_N_SCALARS_3D; s++)
+    if (out->scalar3_id[s] >= 0 &&
+        (err =
+             nc_put_var1_double(ncid, out->scalar3_id[s], start,
+                                (const double *)((const char *)rec + rs_scalar_vars_3d[s].member))))
+      goto fail;
 
   /* Data first, then numrecs: one nc_sync does both, in that order (see top). */
   if ((err = nc_sync(ncid))) goto fail;

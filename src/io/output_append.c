@@ -46,6 +46,10 @@ static int check_layout(rs_output *out, size_t nx, const double *x, unsigned fie
     return layout_error(path, msg,
                         "not a rollsim time-history file (netCDF 64-bit offset, "
                         "unlimited dimension time, dimension x)");
+  if (nc_inq_dimid(ncid, "y", &id) == NC_NOERR)
+    return layout_error(path, msg,
+                        "a 3D file cannot be continued in place yet (restart into a new file: "
+                        "leave out --append)");
   if (nc_inq_varid(ncid, "step_traction_coefficient", &id) == NC_NOERR)
     return layout_error(path, msg,
                         "a twin_disc: run cannot be continued (the plastic state "
@@ -125,6 +129,9 @@ int rs_output_open_append(rs_output **outp, const char *path, size_t nx, const d
     return rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory");
   }
   out->nx = nx;
+  out->ny = 1;
+  for (int f = 0; f < RS_N_FIELDS; f++) out->field_id2[f] = -1;
+  for (int k = 0; k < RS_N_SCALARS_3D; k++) out->scalar3_id[k] = -1;
   size_t block = RS_IO_BLOCK;
   int err = nc__open(path, NC_WRITE, &block, &out->ncid);
   int status = err ? rs_msg_set(msg, RS_ERR_INPUT, "--append %s: cannot open for writing: %s", path,

@@ -34,16 +34,28 @@ typedef struct rs_scalar_var {
 #define RS_N_SCALARS       12
 #define RS_TRACTION_SCALAR 2
 extern const rs_scalar_var rs_scalar_vars[RS_N_SCALARS];
+/* Scalars written in 3D only (doubles). */
+#define RS_N_SCALARS_3D 4
+extern const rs_scalar_var rs_scalar_vars_3d[RS_N_SCALARS_3D];
+
+/* Name of field f's variable: component comp (0, or 1 for the y component of the 3D
+ * vector fields px, slip, upl); NULL when the field has no such component. */
+const char *rs_field_name(int f, int three_d, int comp);
+/* Whether field f is a vector field with a y component in 3D. */
+static inline int rs_field_is_vector(int f) { return f == 0 || f == 2 || f == 3; }
 
 struct rs_output {
   int ncid;
-  char *path; /* as given; error messages name it */
-  size_t nx;
+  char *path;    /* as given; error messages name it */
+  size_t nx, ny; /* ny = 1 in 2D */
+  int three_d;
   unsigned fields;
   size_t records; /* records in the file (written and synced) */
-  int time_id, x_id;
-  int field_id[RS_N_FIELDS]; /* -1 when not in the file */
+  int time_id, x_id, y_id;
+  int field_id[RS_N_FIELDS];  /* -1 when not in the file */
+  int field_id2[RS_N_FIELDS]; /* 3D: the y component of px, slip, upl; else -1 */
   int scalar_id[RS_N_SCALARS];
+  int scalar3_id[RS_N_SCALARS_3D];
   int has_rig;
   int rig_meta_id[6];
   int step_mu_id, step_slip_id, rev_mu_id, rev_slip_id; /* twin-disc summaries */

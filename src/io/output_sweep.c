@@ -41,14 +41,23 @@ static const sweep_var sweep_vars[] = {
     {"elastic_energy", "elastic energy", "E", SW_DOUBLE},
     {"converged", "1 if the point was solved, 0 if it failed", "1", SW_INT},
 };
-#define N_SWEEP_VARS  (sizeof sweep_vars / sizeof sweep_vars[0])
-#define CONVERGED_VAR (N_SWEEP_VARS - 1)
+/* 3D only. */
+static const sweep_var sweep_vars_3d[] = {
+    {"Fy", "total lateral force on body 1", "F", SW_DOUBLE},
+    {"Mz", "spin moment on body 1 about the contact centre", "E", SW_DOUBLE},
+    {"lateral_creepage", "lateral creepage", "1", SW_DOUBLE},
+    {"spin", "spin creepage", "1/mm", SW_DOUBLE},
+};
+#define N_SWEEP_VARS_3D 4
+#define N_SWEEP_VARS    (sizeof sweep_vars / sizeof sweep_vars[0])
+#define CONVERGED_VAR   (N_SWEEP_VARS - 1)
 
 struct rs_sweep_output {
   int ncid, naxes;
   char *path;
   size_t sizes[NC_MAX_VAR_DIMS];
   int varid[N_SWEEP_VARS];
+  int varid3[N_SWEEP_VARS_3D]; /* -1 in 2D */
   size_t nx;
   int field_id[RS_N_FIELDS]; /* -1: not stored */
   double *nan_row;           /* nx NaN (fields of a failed point) */
@@ -187,6 +196,18 @@ int rs_sweep_output_create(rs_sweep_output **outp, const rs_sweep_output_spec *s
       err = nc_put_att_double(o->ncid, o->varid[v], "_FillValue", NC_DOUBLE, 1, &fill);
     }
   }
+  for (int v = 0; v < N_SWEEP_VARS_3D; v++) {
+    o->varid3[v] = -1;
+    if (err || spec->dimension != 3) continue;
+    const double fill = NAN;
+    err = nc_def_var(o->ncid, sweep_vars_3d[v].name, NC_DOUBLE, spec->naxes, dims, &o->varid3[v]);
+    if (!err)
+      err = rs_output_put_text(o->ncid, o->varid3[v], "long_name", sweep_vars_3d[v].long_name);
+    if (!err)
+      err = rs_output_put_text(o->ncid, o->varid3[v], "units",
+                               unit_of(&sweep_vars_3d[v], spec->dimension));
+    if (!err) err = nc_put_att_double(o->ncid, o->varid3[v], "_FillValue", NC_DOUBLE, 1, &fill);
+  }
   if (!err && o->nx) err = define_fields(o, spec, dims, &x_id);
   char status_buf[RS_OUTPUT_STATUS_LEN];
   rs_output_status_text(status_buf, "running");
@@ -271,6 +292,9 @@ int rs_sweep_output_write(rs_sweep_output *o, size_t index, const rs_sweep_point
   for (size_t v = 0; v < N_SWEEP_VARS && !err; v++)
     err = sweep_vars[v].type == SW_INT ? nc_put_var1_int(o->ncid, o->varid[v], start, &iv[v])
                                        : nc_put_var1_double(o->ncid, o->varid[v], start, &dv[v]);
+  const double d3[N_SWEEP_VARS_3D] = {pt->Fy, pt->Mz, pt->lateral_creepage, pt->spin};
+  for (int v = 0; v < N_SWEEP_VARS_3D && !err; v++)
+    if (o->varid3[v] >= 0) err = nc_put_var1_double(o->ncid, o->varid3[v], start, &d3[v]);
   if (!err && o->nx) err = write_fields(o, start, pt);
   if (!err) err = nc_sync(o->ncid);
   return err ? rs_output_nc_failure(msg, o->path, "cannot write a sweep point", err) : RS_OK;

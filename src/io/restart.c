@@ -10,40 +10,73 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* The three state fields. */
-static const char *const state_fields[3] = {"px", "upl", "ustar"};
+typedef struct state_field {
+  const char *name;
+  double *dst;
+} state_field;
 
 static int nc_fail(rs_msg *msg, const char *path, const char *what, int err)
 {
   return rs_msg_set(msg, RS_ERR_INPUT, "restart file %s: %s: %s", path, what, nc_strerror(err));
 }
 
-static int read_file(int ncid, const char *path, size_t nx, const double *x, double *t_last,
-                     double *const state[3], double *creepage, double *xold, rs_msg *msg)
+/* The coordinate `name` of the file against the case's centres c[len]. */
+static int check_coordinate(int ncid, const char *path, const char *name, int three, size_t len,
+                            const double *c, rs_msg *msg)
 {
-  int err, dim_x, dim_t, var;
-  size_t len_x, nrec;
-  if ((err = nc_inq_dimid(ncid, "x", &dim_x)) || (err = nc_inq_dimlen(ncid, dim_x, &len_x)) ||
-      (err = nc_inq_dimid(ncid, "time", &dim_t)) || (err = nc_inq_dimlen(ncid, dim_t, &nrec)))
-    return nc_fail(msg, path, "not a rollsim time-history file (dimensions time and x)", err);
-  if (len_x != nx)
+  int err, dim, var;
+  size_t len_old;
+  if ((err = nc_inq_dimid(ncid, name, &dim)) || (err = nc_inq_dimlen(ncid, dim, &len_old)))
     return rs_msg_set(msg, RS_ERR_INPUT,
-                      "restart file %s: its grid has %zu cells, the case has %zu "
+                      "restart file %s: has no dimension %s (a %s run's file is needed: "
+                      "contact.dimension must be that of the old run)",
+                      path, name, name[0] == 'y' ? "3D" : "rollsim");
+  if (len_old != len)
+    return rs_msg_set(msg, RS_ERR_INPUT,
+                      "restart file %s: its grid has %zu cells%s%s, the case has %zu "
                       "(grid.cells and grid.extent must be those of the old run)",
-                      path, len_x, nx);
-  if (nrec == 0) return rs_msg_set(msg, RS_ERR_INPUT, "restart file %s: holds no records", path);
+                      path, len_old, three ? " along " : "", three ? name : "", len);
+  double *old = malloc((len ? len : 1) * sizeof *old);
+  if (!old) return rs_msg_set(msg, RS_ERR_INTERNAL, "restart file %s: out of memory", path);
+  if ((err = nc_inq_varid(ncid, name, &var)) || (err = nc_get_var_double(ncid, var, old))) {
+    free(old);
+    return nc_fail(msg, path, name[0] == 'y' ? "reading y" : "reading x", err);
+  }
+  double cmax = 0.0;
+  for (size_t i = 0; i < len; i++) cmax = fmax(cmax, fabs(c[i]));
+  int status = RS_OK;
+  for (size_t i = 0; i < len && status == RS_OK; i++)
+    if (!(fabs(old[i] - c[i]) <= 1e-12 * cmax))
+      status = rs_msg_set(msg, RS_ERR_INPUT,
+                          "restart file %s: its grid differs from the case's: %s[%zu] = %.17g mm "
+                          "there, %.17g mm here (grid.cells, grid.extent and the contact size "
+                          "must be those of the old run)",
+                          path, name, i, old[i], c[i]);
+  free(old);
+  return status;
+}
 
-  if ((err = nc_inq_varid(ncid, "x", &var)) || (err = nc_get_var_double(ncid, var, xold)))
-    return nc_fail(msg, path, "reading x", err);
-  double xmax = 0.0;
-  for (size_t i = 0; i < nx; i++) xmax = fmax(xmax, fabs(x[i]));
-  for (size_t i = 0; i < nx; i++)
-    if (!(fabs(xold[i] - x[i]) <= 1e-12 * xmax))
-      return rs_msg_set(msg, RS_ERR_INPUT,
-                        "restart file %s: its grid differs from the case's: x[%zu] = %.17g mm "
-                        "there, %.17g mm here (grid.cells, grid.extent and the contact size "
-                        "must be those of the old run)",
-                        path, i, xold[i], x[i]);
+static int read_file(int ncid, const char *path, const rs_restart_grid *g, double *t_last,
+                     double *p, double *upl, double *ustar, double *extras, rs_msg *msg)
+{
+  const int three = g->ncomp == 2;
+  const size_t n = g->nx * (three ? g->ny : 1);
+  int err, dim_t, dim_y = -1, var, status;
+  size_t nrec;
+  if ((err = nc_inq_dimid(ncid, "time", &dim_t)) || (err = nc_inq_dimlen(ncid, dim_t, &nrec)))
+    return nc_fail(msg, path, "not a rollsim time-history file (dimensions time and x)", err);
+  if ((status = check_coordinate(ncid, path, "x", three, g->nx, g->x, msg)) != RS_OK) return status;
+  if (three && (status = check_coordinate(ncid, path, "y", three, g->ny, g->y, msg)) != RS_OK)
+    return status;
+  if (!three && nc_inq_dimid(ncid, "y", &dim_y) == NC_NOERR)
+    return rs_msg_set(msg, RS_ERR_INPUT,
+                      "restart file %s: is a 3D run's file; the case is 2D (contact.dimension "
+                      "must be that of the old run)",
+                      path);
+  if (three) nc_inq_dimid(ncid, "y", &dim_y);
+  int dim_x;
+  nc_inq_dimid(ncid, "x", &dim_x);
+  if (nrec == 0) return rs_msg_set(msg, RS_ERR_INPUT, "restart file %s: holds no records", path);
 
   const size_t last = nrec - 1;
   if ((err = nc_inq_varid(ncid, "time", &var)) ||
@@ -53,51 +86,59 @@ static int read_file(int ncid, const char *path, size_t nx, const double *x, dou
     return rs_msg_set(msg, RS_ERR_INPUT, "restart file %s: invalid time %g s at its last record",
                       path, *t_last);
 
-  for (int f = 0; f < 3; f++) {
-    const char *name = state_fields[f];
+  /* The state fields and where they go. */
+  const state_field fields2[3] = {{"px", p}, {"upl", upl}, {"ustar", ustar}};
+  const state_field fields3[5] = {
+      {"px", p}, {"py", p + n}, {"upl_x", upl}, {"upl_y", upl + n}, {"ustar", ustar}};
+  const state_field *fields = three ? fields3 : fields2;
+  const int nf = three ? 5 : 3;
+  const char *needed = three ? "px, py, upl_x, upl_y and ustar" : "px, upl and ustar";
+  for (int f = 0; f < nf; f++) {
+    const char *name = fields[f].name;
     if ((err = nc_inq_varid(ncid, name, &var)))
       return rs_msg_set(msg, RS_ERR_INPUT,
                         "restart file %s: has no variable '%s' (a restart needs the state "
-                        "fields px, upl and ustar: every transient file holds them; a steady "
-                        "run's file only what its output.fields lists: add %s there)",
-                        path, name, name);
+                        "fields %s: every transient file holds them; a steady run's file only "
+                        "what its output.fields lists: add them there)",
+                        path, name, needed);
     int ndims, dims[NC_MAX_VAR_DIMS];
-    if ((err = nc_inq_varndims(ncid, var, &ndims)) || ndims != 2 ||
-        (err = nc_inq_vardimid(ncid, var, dims)) || dims[0] != dim_t || dims[1] != dim_x)
-      return rs_msg_set(msg, RS_ERR_INPUT,
-                        "restart file %s: variable '%s' is not a (time, x) field", path, name);
-    const size_t start[2] = {last, 0}, count[2] = {1, nx};
-    double *dst = state[f];
+    const int want = three ? 3 : 2;
+    if ((err = nc_inq_varndims(ncid, var, &ndims)) || ndims != want ||
+        (err = nc_inq_vardimid(ncid, var, dims)) || dims[0] != dim_t || dims[want - 1] != dim_x ||
+        (three && dims[1] != dim_y))
+      return rs_msg_set(msg, RS_ERR_INPUT, "restart file %s: variable '%s' is not a %s field", path,
+                        name, three ? "(time, y, x)" : "(time, x)");
+    const size_t start[3] = {last, 0, 0};
+    const size_t count[3] = {1, three ? g->ny : g->nx, g->nx};
+    double *dst = fields[f].dst;
     if ((err = nc_get_vara_double(ncid, var, start, count, dst)))
       return nc_fail(msg, path, name, err);
-    for (size_t i = 0; i < nx; i++)
+    for (size_t i = 0; i < n; i++)
       if (!isfinite(dst[i]))
         return rs_msg_set(msg, RS_ERR_INPUT,
                           "restart file %s: %s is not finite at cell %zu of the last record "
                           "(t = %g s)",
                           path, name, i, *t_last);
   }
-  if (creepage && ((err = nc_inq_varid(ncid, "creepage", &var)) ||
-                   (err = nc_get_var1_double(ncid, var, &last, creepage)) || !isfinite(*creepage)))
-    return rs_msg_set(msg, RS_ERR_INPUT,
-                      "restart file %s: no valid creepage at its last record (needed to continue "
-                      "a run with a prescribed tangential force)",
-                      path);
+  static const char *const extra_names[2] = {"creepage", "lateral_creepage"};
+  for (int k = 0; k < g->nextra && k < 2; k++)
+    if ((err = nc_inq_varid(ncid, extra_names[k], &var)) ||
+        (err = nc_get_var1_double(ncid, var, &last, &extras[k])) || !isfinite(extras[k]))
+      return rs_msg_set(msg, RS_ERR_INPUT,
+                        "restart file %s: no valid %s at its last record (needed to continue "
+                        "a run with a prescribed tangential force)",
+                        path, extra_names[k]);
   return RS_OK;
 }
 
-int rs_restart_read(const char *path, size_t nx, const double *x, double *t_last, double *px,
-                    double *upl, double *ustar, double *creepage, rs_msg *msg)
+int rs_restart_read(const char *path, const rs_restart_grid *g, double *t_last, double *p,
+                    double *upl, double *ustar, double *extras, rs_msg *msg)
 {
   if (!path || !*path) return rs_msg_set(msg, RS_ERR_INPUT, "restart: no file given");
   int ncid;
   int err = nc_open(path, NC_NOWRITE, &ncid);
   if (err) return nc_fail(msg, path, "cannot open", err);
-  double *xold = malloc((nx ? nx : 1) * sizeof *xold);
-  double *const state[3] = {px, upl, ustar};
-  int status = xold ? read_file(ncid, path, nx, x, t_last, state, creepage, xold, msg)
-                    : rs_msg_set(msg, RS_ERR_INTERNAL, "restart file %s: out of memory", path);
-  free(xold);
+  int status = read_file(ncid, path, g, t_last, p, upl, ustar, extras, msg);
   nc_close(ncid);
   return status;
 }
