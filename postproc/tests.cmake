@@ -234,3 +234,24 @@ pp_error(pp_err_3d_map_select pp_synthetic3d "run3d\\.nc: --select applies to sw
   map ${PP_SYNTH3D}/run3d.nc --select rolling.creepage=0 -o ${PP_OUT}/never.png)
 pp_error(pp_err_3d_field pp_synthetic3d ".-field stress: expected one of traction, slip, pressure, regime, ustar, tauc, upl"
   map ${PP_SYNTH3D}/run3d.nc --field stress -o ${PP_OUT}/never.png)
+
+# A real 3D run (postproc/tests/small3d.yaml: 20 x 20 cells, steady, partial slip; ~0.1 s) and
+# the same with plasticity (tau_c0 = 60 N/mm2, k_rel = 0.3: plastic cells, u* and tau_c; a few
+# seconds): the maps' numbers against the file, Hertz's a, b, p0 from `rollsim check`, and the
+# regime counts against the file's n_exterior, ... scalars.
+set(PP_3D ${CMAKE_CURRENT_BINARY_DIR}/pp_3d.nc)
+set(PP_3D_PLASTIC ${CMAKE_CURRENT_BINARY_DIR}/pp_3d_plastic.nc)
+set(PP_3D_CASE ${PP_TESTS}/small3d.yaml)
+add_test(NAME pp_run_3d COMMAND ${RS_BIN} run ${PP_3D_CASE} -o ${PP_3D} --quiet)
+add_test(NAME pp_run_3d_plastic COMMAND ${RS_BIN} run ${PP_3D_CASE} -o ${PP_3D_PLASTIC} --quiet
+  --set "title=\"3D steady, 20 x 20 cells, plastic: tau_c0 = 60, k_rel = 0.3\""
+  --set plasticity.tau_c0=60 --set plasticity.k_rel=0.3
+  --set "output.fields=[px,pn,slip,upl,ustar,tauc,regime]")
+set_tests_properties(pp_run_3d PROPERTIES FIXTURES_SETUP pp_3d)
+set_tests_properties(pp_run_3d_plastic PROPERTIES FIXTURES_SETUP pp_3d_plastic)
+add_test(NAME pp_3d_real COMMAND ${PP_NUM3D} real ${PP_3D} ${PP_OUT}/3d_real ${RS_BIN} ${PP_3D_CASE})
+add_test(NAME pp_3d_real_plastic
+  COMMAND ${PP_NUM3D} real ${PP_3D_PLASTIC} ${PP_OUT}/3d_real_plastic ${RS_BIN} ${PP_3D_CASE})
+set_tests_properties(pp_3d_real PROPERTIES FIXTURES_REQUIRED pp_3d ENVIRONMENT "${PP_ENV}")
+set_tests_properties(pp_3d_real_plastic PROPERTIES FIXTURES_REQUIRED pp_3d_plastic
+  ENVIRONMENT "${PP_ENV}")
