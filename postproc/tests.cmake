@@ -255,3 +255,13 @@ add_test(NAME pp_3d_real_plastic
 set_tests_properties(pp_3d_real PROPERTIES FIXTURES_REQUIRED pp_3d ENVIRONMENT "${PP_ENV}")
 set_tests_properties(pp_3d_real_plastic PROPERTIES FIXTURES_REQUIRED pp_3d_plastic
   ENVIRONMENT "${PP_ENV}")
+# A real 3D sweep over xi (4) x eta (3) of the same case (~1 s): creep3d draws the file's values.
+set(PP_3D_SWEEP ${CMAKE_CURRENT_BINARY_DIR}/pp_3d_sweep.nc)
+add_test(NAME pp_run_3d_sweep COMMAND ${RS_BIN} sweep ${PP_3D_CASE} -o ${PP_3D_SWEEP} --quiet
+  --set "title=\"3D steady creep forces, 20 x 20 cells, mu = 0.3\""
+  --set "sweep.rolling.creepage=[0.0,-0.0005,-0.001,-0.002]"
+  --set "sweep.rolling.lateral_creepage=[-0.0005,0.0,0.0005]")
+set_tests_properties(pp_run_3d_sweep PROPERTIES FIXTURES_SETUP pp_3d_sweep)
+add_test(NAME pp_3d_real_sweep COMMAND ${PP_NUM3D} realsweep ${PP_3D_SWEEP} ${PP_OUT}/3d_real_sweep)
+set_tests_properties(pp_3d_real_sweep PROPERTIES FIXTURES_REQUIRED pp_3d_sweep
+  ENVIRONMENT "${PP_ENV}")

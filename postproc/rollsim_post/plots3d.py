@@ -134,7 +134,8 @@ def plot_creep3d(panels, title, out, rec=None):
         colours = {}
         for s in p.series:
             if s.values:
-                s.label = ", ".join(describe(k, v) for k, v in s.values.items())
+                s.label = ", ".join(f"{CREEP_SYMBOLS[k]} = {v:.6g}" if k in CREEP_SYMBOLS
+                                    else describe(k, v) for k, v in s.values.items())
             c = colours.setdefault(s.label, SERIES_COLOURS[len(colours) % len(SERIES_COLOURS)])
             style = dict(ELASTIC_STYLE) if len(p.series) == 1 else dict(color=c, lw=1.4)
             style["color"] = "black" if len(p.series) == 1 else c
@@ -150,8 +151,10 @@ def plot_creep3d(panels, title, out, rec=None):
         ax.ticklabel_format(axis="x", style="sci", scilimits=(-2, 2))
         if row == len(names) - 1:
             ax.set_xlabel(_key_label(p.key, p.key_units))
-        if row == 0 and len(p.series) > 1:
-            ax.legend(fontsize=7)
+        if row == len(names) - 1 and len(p.series) > 1:
+            # one legend per column, under it: no curve hidden
+            ax.legend(fontsize=8, loc="upper center", bbox_to_anchor=(0.5, -0.22),
+                      ncol=min(3, len(p.series)), frameon=False)
         rec.retitle(k, ax.get_title())
     if title:
         fig.suptitle(title, fontsize=11)

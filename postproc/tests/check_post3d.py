@@ -9,6 +9,8 @@ Usage:
   check_post3d.py history FIXTURE_DIR OUTDIR   history of a 3D file: Fy/Fn, Mz, eta, phi
   check_post3d.py export  FIXTURE_DIR OUTDIR   export of (time, y, x) fields: long format
   check_post3d.py profile FIXTURE_DIR OUTDIR   traction of a 3D file: the row nearest --y
+  check_post3d.py realsweep SWEEP.nc OUTDIR    creep3d of a rollsim 3D sweep: every drawn point
+                                               == Fx, Fy, Mz of the file at that point
   check_post3d.py real    RUN.nc OUTDIR [ROLLSIM CASE [--set ...]]
                                                map of a rollsim 3D run: |p| and p_n per cell,
                                                arrow count == cells with p_n > 0, the fitted
@@ -410,13 +412,39 @@ def check_real(path, out, rollsim=None, case=None, *sets):
           f"history: Fy/Fn = {fy_fn:.6g}, Mz = {mz:.6g} N mm as in the file")
 
 
+def check_real_sweep(path, out):
+    os.makedirs(out, exist_ok=True)
+    rows = plotted(["creep3d", path], f"{out}/creep3d.png", f"{out}/creep3d.csv")
+    with netCDF4.Dataset(path) as ds:
+        dims = [d for d in ds.variables["Fx"].dimensions]
+        keys = [ds.variables[d].key for d in dims]
+        coords = [np.asarray(ds.variables[d][:]) for d in dims]
+        data = {q: np.ma.filled(ds.variables[q][...].astype(np.float64), np.nan)
+                for q in ("Fx", "Fy", "Mz")}
+    swept = [k for k in keys if k.startswith("rolling.")]
+    n = 0
+    for r in rows:
+        idx = []
+        for k, c in zip(keys, coords):
+            v = float(r[k]) if r.get(k) else float(r["x"])
+            hit = np.nonzero(c == v)[0]
+            check_quiet(hit.size == 1, f"{k} = {v} is a coordinate value")
+            idx.append(int(hit[0]))
+        check_quiet(float(r["y"]) == data[r["quantity"]][tuple(idx)],
+                    f"{r['quantity']} at {tuple(idx)}: drawn {r['y']} == the file")
+        n += 1
+    finite = sum(int(np.isfinite(v).sum()) for v in data.values())
+    check(n == finite * len(swept), f"creep3d {os.path.basename(path)}: {n} points drawn == "
+          f"{finite} values of Fx, Fy, Mz x {len(swept)} creepage keys, each == the file")
+
+
 def main(argv):
     if len(argv) < 3:
         print(__doc__, file=sys.stderr)
         return 2
     cmd, args = argv[1], argv[2:]
     {"map": check_map, "creep": check_creep, "history": check_history, "export": check_export,
-     "profile": check_profile, "real": check_real}[cmd](*args)
+     "profile": check_profile, "real": check_real, "realsweep": check_real_sweep}[cmd](*args)
     return 0
 
 
