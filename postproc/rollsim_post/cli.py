@@ -10,7 +10,7 @@ from . import extract
 from . import field3d
 from . import sweep
 from .record import Recorder
-from .runfile import RunFile
+from .runfile import RunFile, case_value
 
 PROG = "rollsim_post"
 
@@ -212,6 +212,9 @@ def cmd_map(args):
         else:
             indices = extract.record_indices(run, args.time)
             maps = [field3d.field_map(run, args.field, i) for i in indices]
+            if case_value(run.case(), "simulation.mode") == "steady":
+                for m in maps:
+                    m.label = f"steady rolling (record {m.index})"
         _warn_status(run)
         from . import plots3d
         plots3d.plot_map(maps, _title(args, run), args.output, rec, max_arrows=args.arrows)

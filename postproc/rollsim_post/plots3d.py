@@ -48,7 +48,8 @@ def plot_map(maps, title, out, rec=None, max_arrows=25):
         if m.time is None:   # a sweep point
             ptitle, point = m.label, dict(m.index.values)
         else:
-            ptitle, point = f"t = {m.time * factor:.4g} {unit} (record {m.index})", {"time": m.time}
+            ptitle = m.label or f"t = {m.time * factor:.4g} {unit} (record {m.index})"
+            point = {"time": m.time}
         ax.set_title(ptitle, fontsize=10)
         X, Y = np.meshgrid(m.x, m.y)
         if m.field == "regime":

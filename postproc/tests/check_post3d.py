@@ -403,6 +403,18 @@ def check_real(path, out, rollsim=None, case=None, *sets):
                        f"{out}/real_{field}.csv")
         drawn = cell_values(rows_of(rows, field), x, y)
         check(np.array_equal(drawn, read_nc(path, field, -1)), f"{field} map == the file's")
+    check(rows[0]["panel_title"] == "steady rolling (record 0)",
+          "a steady file's panel is titled 'steady rolling (record 0)'")
+    proc = subprocess.run(CLI + ["export", path, "--var", "px", "py", "--csv", f"{out}/e.csv"],
+                          capture_output=True, text=True)
+    check_quiet(proc.returncode == 0, proc.stderr)
+    with open(f"{out}/e.csv", newline="") as f:
+        exp = list(csv.reader(f))
+    body = np.array([[float(v) for v in r] for r in exp[1:]])
+    check(exp[0] == ["time", "y", "x", "px", "py"] and len(body) == px.size and
+          np.array_equal(body[:, 3], px.ravel()) and np.array_equal(body[:, 4], py.ravel()) and
+          np.array_equal(body[:, 1], Y.ravel()) and np.array_equal(body[:, 2], X.ravel()),
+          f"export px py: {len(body)} rows time,y,x,px,py == the file (x fastest)")
     rows = plotted(["history", path], f"{out}/real_h.png", f"{out}/real_h.csv")
     with netCDF4.Dataset(path) as ds:
         fy_fn = float(ds.variables["Fy"][-1]) / float(ds.variables["Fn"][-1])
