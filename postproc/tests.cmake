@@ -224,6 +224,8 @@ pp_error(pp_err_3d_creep_run pp_synthetic3d "run3d\\.nc: creep3d needs a sweep f
   creep3d ${PP_SYNTH3D}/run3d.nc -o ${PP_OUT}/never.png)
 pp_error(pp_err_3d_creep_2d pp_synthetic "sweep_krel_creep\\.nc: not a 3D sweep file"
   creep3d ${PP_SYNTH}/sweep_krel_creep.nc -o ${PP_OUT}/never.png)
+pp_error(pp_err_3d_creep_x pp_synthetic3d "sweep3d\\.nc: --x rolling\\.spin: not a swept creepage"
+  creep3d ${PP_SYNTH3D}/sweep3d.nc --x rolling.spin -o ${PP_OUT}/never.png)
 pp_error(pp_err_3d_creepcurve pp_synthetic3d "sweep3d_spin\\.nc: sweep file does not sweep rolling\\.creepage.*creep3d"
   creepcurve ${PP_SYNTH3D}/sweep3d_spin.nc -o ${PP_OUT}/never.png)
 pp_error(pp_err_3d_history_sweep pp_synthetic3d "sweep3d\\.nc: a sweep file has no time histories"

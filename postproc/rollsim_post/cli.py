@@ -225,7 +225,7 @@ def cmd_creep3d(args):
     figure_format(args.output)
     rec = Recorder()
     with RunFile(args.file) as run:
-        panels = field3d.creep3d_panels(run)
+        panels = field3d.creep3d_panels(run, x_keys=args.x)
         _warn_status(run)
         from . import plots3d
         plots3d.plot_creep3d(panels, args.title if args.title is not None else run.title,
@@ -449,10 +449,13 @@ def build_parser():
 
     s = figure("creep3d", "3D sweep: F_x, F_y, M_z against each swept creepage",
                "3D sweep file: F_x, F_y and M_z (rows) against each swept creepage key "
-               "(columns:\nrolling.creepage, rolling.lateral_creepage, rolling.spin); one line "
-               "per combination of\nthe other swept keys.", title_help="figure title "
-               "(default: the file's title)")
+               "(columns:\nrolling.creepage, rolling.lateral_creepage, rolling.spin; by default "
+               "those swept over\n3 or more values); one line per combination of the other "
+               "swept keys.", title_help="figure title (default: the file's title)")
     s.add_argument("file", metavar="FILE")
+    s.add_argument("--x", action="append", metavar="KEY",
+                   help="abscissa: this swept creepage key (repeatable; default: every one "
+                        "swept over at least 3 values)")
     s.set_defaults(func=cmd_creep3d)
 
     s = sub.add_parser("export", help="variables to CSV", epilog=EXPORT_EPILOG,

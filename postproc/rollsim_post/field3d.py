@@ -253,9 +253,15 @@ class CreepPanel:
     series: list    # extract.CreepSeries: x = the key's values, y = var
 
 
-def creep3d_panels(run, names=("Fx", "Fy", "Mz")):
+MIN_CURVE_POINTS = 3
+
+
+def creep3d_panels(run, names=("Fx", "Fy", "Mz"), x_keys=None):
     """One panel per (swept creepage key, force or moment): the key's values on the abscissa,
-    one series per combination of the other swept keys (sweep_series), last record if timed."""
+    one series per combination of the other swept keys (sweep_series), last record if timed.
+    The abscissae: `x_keys` if given, else every swept creepage key with at least 3 values (a
+    key swept over 2 values only labels the series), else every swept creepage key; in the
+    order ξ, η, φ."""
     if not run.is_sweep():
         raise PostError(f"{run.path}: creep3d needs a sweep file (rollsim sweep) over "
                         f"{', '.join(CREEP_KEYS)}")
@@ -264,10 +270,20 @@ def creep3d_panels(run, names=("Fx", "Fy", "Mz")):
     dims = [d for d in run.dims("traction_coefficient") if d != "time"]
     keys = [run.sweep_key(d) for d in dims]
     canonical = [k if k in CREEP_KEYS else k.replace("_", ".", 1) for k in keys]
-    swept = [k for k in canonical if k in CREEP_KEYS]
+    swept = [k for k in CREEP_KEYS if k in canonical]
     if not swept:
         raise PostError(f"{run.path}: sweeps none of {', '.join(CREEP_KEYS)} (swept keys: "
                         f"{', '.join(keys)})")
+    if x_keys:
+        for k in x_keys:
+            if k not in swept:
+                raise PostError(f"{run.path}: --x {k}: not a swept creepage (swept: "
+                                f"{', '.join(swept)})")
+        swept = [k for k in CREEP_KEYS if k in x_keys]
+    else:
+        long_ = [k for k in swept
+                 if len(run.ds.dimensions[dims[canonical.index(k)]]) >= MIN_CURVE_POINTS]
+        swept = long_ or swept
     panels = []
     for key in swept:
         dim = dims[canonical.index(key)]

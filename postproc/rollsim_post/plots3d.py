@@ -127,7 +127,8 @@ def plot_creep3d(panels, title, out, rec=None):
     rec = rec or Recorder()
     keys = list(dict.fromkeys(p.key for p in panels))
     names = list(dict.fromkeys(p.var for p in panels))
-    fig, axes = plt.subplots(len(names), len(keys), figsize=(4.8 * len(keys), 2.9 * len(names) + 0.8),
+    width = 6.4 if len(keys) == 1 else 4.8 * len(keys)
+    fig, axes = plt.subplots(len(names), len(keys), figsize=(width, 2.9 * len(names) + 0.8),
                              squeeze=False, sharex="col", layout="constrained")
     for k, p in enumerate(panels):
         col, row = keys.index(p.key), names.index(p.var)

@@ -233,6 +233,11 @@ def check_creep(fixdir, out):
     panels = {(r["quantity"], r["panel"]) for r in rows}
     check(len(panels) == 6, "6 panels: Fx, Fy, Mz against xi and against eta")
 
+    rows = plotted(["creep3d", os.path.join(fixdir, "sweep3d.nc"), "--x",
+                    "rolling.lateral_creepage"], f"{out}/cx.png", f"{out}/cx.csv")
+    check(len(rows) == 3 * (len(fx.XI) * len(fx.ETA) - 1) and
+          all(float(r["x"]) in fx.ETA and r["rolling.creepage"] for r in rows),
+          f"--x rolling.lateral_creepage: {len(rows)} points, all against eta, one line per xi")
     rows = plotted(["creep3d", os.path.join(fixdir, "sweep3d_spin.nc")], f"{out}/cs.png",
                    f"{out}/cs.csv")
     for r in rows:
