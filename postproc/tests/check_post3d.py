@@ -153,8 +153,11 @@ def check_map(fixdir, out):
     cols_in_contact = int(contact.any(axis=0).sum())
     check(nseg - vertical == 2 * cols_in_contact,
           f"contact edge: {nseg - vertical} horizontal sides == 2 x {cols_in_contact} columns")
-    corner_x = np.min(np.abs(((ex - x[0]) / fx.DX) - 0.5 - np.round((ex - x[0]) / fx.DX - 0.5)))
-    check(corner_x < 1e-9, "contact-edge points on cell sides")
+    def off_side(c, c0, d):   # distance from the nearest cell side, in cells
+        u = (c - c0) / d - 0.5
+        return float(np.max(np.abs(u - np.round(u))))
+    check(max(off_side(ex, x[0], fx.DX), off_side(ey, y[0], fx.DY)) < 1e-9,
+          "contact-edge points are cell corners")
 
     # Default thinning (25 arrows at most along each axis): every 2nd cell of 31, through the
     # centre cell.
