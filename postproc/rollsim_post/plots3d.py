@@ -15,6 +15,9 @@ SEQUENTIAL = {"traction": "viridis", "slip": "cividis", "pressure": "Greys", "us
               "tauc": "magma", "upl": "viridis"}
 
 
+NON_NEGATIVE = ("traction", "slip", "pressure", "ustar", "upl")
+
+
 def pretty_units(u):
     """N/mm2 -> N/mm², as the 2D figures write units."""
     return (u or "").replace("mm2", "mm²").replace("mm3", "mm³")
@@ -62,8 +65,12 @@ def plot_map(maps, title, out, rec=None, max_arrows=25):
             present = set(np.unique(m.values).tolist())
             regime_handles = _regime_legend(m.regime_flags, present, skip=())
         else:
+            limits = {}
+            if m.field in NON_NEGATIVE:   # magnitudes: the colour scale starts at 0
+                top = float(np.nanmax(m.values)) if np.isfinite(m.values).any() else 0.0
+                limits = dict(vmin=0.0, vmax=top if top > 0.0 else 1.0)
             mesh = ax.pcolormesh(ex, ey, m.values, cmap=SEQUENTIAL.get(m.field, "viridis"),
-                                 shading="flat")
+                                 shading="flat", **limits)
             bar = fig.colorbar(mesh, ax=ax, shrink=0.9)
             bar.set_label(f"{m.symbol} [{pretty_units(m.units)}]" if m.units else m.symbol)
         rec.add_map(k, ptitle, m.long_name, m.field, point, X, Y, m.values)
