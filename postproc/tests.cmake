@@ -112,6 +112,8 @@ set_tests_properties(pp_check_export pp_check_nearest pp_check_bound
 set_tests_properties(pp_check_export_plastic PROPERTIES FIXTURES_REQUIRED pp_plastic)
 set_tests_properties(pp_check_creep PROPERTIES FIXTURES_REQUIRED pp_creep)
 set_tests_properties(pp_check_sweep PROPERTIES FIXTURES_REQUIRED pp_synthetic)
+add_test(NAME pp_check_history COMMAND ${PP_NUM} history ${PP_DEFAULT} ${PP_OUT}/history_data)
+set_tests_properties(pp_check_history PROPERTIES FIXTURES_REQUIRED pp_default ENVIRONMENT "${PP_ENV}")
 add_test(NAME pp_check_rig COMMAND ${PP_NUM} rig ${PP_RIG})
 set_tests_properties(pp_check_rig PROPERTIES FIXTURES_REQUIRED pp_rig)
 
@@ -189,3 +191,79 @@ add_test(NAME pp_readme_commands COMMAND ${PP_NUM} readme ${PP_DIR}/README.md)
 set_tests_properties(pp_readme_commands PROPERTIES ENVIRONMENT "${PP_ENV}")
 pp_error(pp_err_data_path figures "no_dir/fig7\\.csv: cannot write \\(no writable directory"
   traction ${PP_FIG_DATA}/fig7.nc --data ${PP_OUT}/no_dir/fig7.csv -o ${PP_OUT}/never_data.png)
+
+# ---- 3D files (elliptic contact): maps, creep3d, history, export ------------------------------
+# Synthetic files with analytic content (make_fixtures3d.py: Hertz pressure on an a = 3, b = 2 mm
+# ellipse, tractions proportional to it, regimes, u*, tau_c, slip; sweeps over xi x eta and
+# mu x phi): check_post3d.py compares every number the figures draw (--data) with them.
+set(PP_SYNTH3D ${PP_OUT}/synthetic3d)
+add_test(NAME pp_make_synthetic3d
+  COMMAND ${SYSTEM_PYTHON3} ${PP_TESTS}/make_fixtures3d.py ${PP_SYNTH3D})
+set_tests_properties(pp_make_synthetic3d PROPERTIES FIXTURES_SETUP pp_synthetic3d)
+set(PP_NUM3D ${SYSTEM_PYTHON3} ${PP_TESTS}/check_post3d.py)
+foreach(what map creep history export profile)
+  add_test(NAME pp_3d_${what} COMMAND ${PP_NUM3D} ${what} ${PP_SYNTH3D} ${PP_OUT}/3d_${what})
+  set_tests_properties(pp_3d_${what} PROPERTIES FIXTURES_REQUIRED pp_synthetic3d
+    ENVIRONMENT "${PP_ENV}")
+endforeach()
+
+# 2D-only figures refuse 3D files and name the 3D command; 3D commands refuse 2D files.
+pp_error(pp_err_3d_traction pp_synthetic3d "sweep3d_fields\\.nc: a 3D file .*use map FILE --field traction"
+  traction ${PP_SYNTH3D}/sweep3d_fields.nc -o ${PP_OUT}/never.png)
+pp_error(pp_err_3d_y_2d pp_synthetic "no_records\\.nc: --y applies to 3D files"
+  traction ${PP_SYNTH}/no_records.nc --y 0 -o ${PP_OUT}/never.png)
+pp_error(pp_err_3d_regimes pp_synthetic3d "run3d\\.nc: a 3D file .*use map FILE --field regime"
+  regimes ${PP_SYNTH3D}/run3d.nc -o ${PP_OUT}/never.png)
+pp_error(pp_err_3d_plastic pp_synthetic3d "run3d\\.nc: a 3D file .*--field ustar"
+  plastic ${PP_SYNTH3D}/run3d.nc -o ${PP_OUT}/never.png)
+pp_error(pp_err_3d_map_2d pp_synthetic "no_records\\.nc: not a 3D file"
+  map ${PP_SYNTH}/no_records.nc -o ${PP_OUT}/never.png)
+pp_error(pp_err_3d_map_sweep pp_synthetic3d "sweep3d\\.nc: sweep file without the fields px, py"
+  map ${PP_SYNTH3D}/sweep3d.nc -o ${PP_OUT}/never.png)
+pp_error(pp_err_3d_creep_run pp_synthetic3d "run3d\\.nc: creep3d needs a sweep file"
+  creep3d ${PP_SYNTH3D}/run3d.nc -o ${PP_OUT}/never.png)
+pp_error(pp_err_3d_creep_2d pp_synthetic "sweep_krel_creep\\.nc: not a 3D sweep file"
+  creep3d ${PP_SYNTH}/sweep_krel_creep.nc -o ${PP_OUT}/never.png)
+pp_error(pp_err_3d_creep_x pp_synthetic3d "sweep3d\\.nc: --x rolling\\.spin: not a swept creepage"
+  creep3d ${PP_SYNTH3D}/sweep3d.nc --x rolling.spin -o ${PP_OUT}/never.png)
+pp_error(pp_err_3d_creepcurve pp_synthetic3d "sweep3d_spin\\.nc: sweep file does not sweep rolling\\.creepage.*creep3d"
+  creepcurve ${PP_SYNTH3D}/sweep3d_spin.nc -o ${PP_OUT}/never.png)
+pp_error(pp_err_3d_history_sweep pp_synthetic3d "sweep3d\\.nc: a sweep file has no time histories"
+  history ${PP_SYNTH3D}/sweep3d.nc -o ${PP_OUT}/never.png)
+pp_error(pp_err_3d_map_time pp_synthetic3d "sweep3d_fields\\.nc: --time applies to time-history"
+  map ${PP_SYNTH3D}/sweep3d_fields.nc --time 0 -o ${PP_OUT}/never.png)
+pp_error(pp_err_3d_map_select pp_synthetic3d "run3d\\.nc: --select applies to sweep files"
+  map ${PP_SYNTH3D}/run3d.nc --select rolling.creepage=0 -o ${PP_OUT}/never.png)
+pp_error(pp_err_3d_field pp_synthetic3d ".-field stress: expected one of traction, slip, pressure, regime, ustar, tauc, upl"
+  map ${PP_SYNTH3D}/run3d.nc --field stress -o ${PP_OUT}/never.png)
+
+# A real 3D run (postproc/tests/small3d.yaml: 20 x 20 cells, steady, partial slip; ~0.1 s) and
+# the same with plasticity (tau_c0 = 60 N/mm2, k_rel = 0.3: plastic cells, u* and tau_c; a few
+# seconds): the maps' numbers against the file, Hertz's a, b, p0 from `rollsim check`, and the
+# regime counts against the file's n_exterior, ... scalars.
+set(PP_3D ${CMAKE_CURRENT_BINARY_DIR}/pp_3d.nc)
+set(PP_3D_PLASTIC ${CMAKE_CURRENT_BINARY_DIR}/pp_3d_plastic.nc)
+set(PP_3D_CASE ${PP_TESTS}/small3d.yaml)
+add_test(NAME pp_run_3d COMMAND ${RS_BIN} run ${PP_3D_CASE} -o ${PP_3D} --quiet)
+add_test(NAME pp_run_3d_plastic COMMAND ${RS_BIN} run ${PP_3D_CASE} -o ${PP_3D_PLASTIC} --quiet
+  --set "title=\"3D steady, 20 x 20 cells, plastic: tau_c0 = 60, k_rel = 0.3\""
+  --set plasticity.tau_c0=60 --set plasticity.k_rel=0.3
+  --set "output.fields=[px,pn,slip,upl,ustar,tauc,regime]")
+set_tests_properties(pp_run_3d PROPERTIES FIXTURES_SETUP pp_3d)
+set_tests_properties(pp_run_3d_plastic PROPERTIES FIXTURES_SETUP pp_3d_plastic)
+add_test(NAME pp_3d_real COMMAND ${PP_NUM3D} real ${PP_3D} ${PP_OUT}/3d_real ${RS_BIN} ${PP_3D_CASE})
+add_test(NAME pp_3d_real_plastic
+  COMMAND ${PP_NUM3D} real ${PP_3D_PLASTIC} ${PP_OUT}/3d_real_plastic ${RS_BIN} ${PP_3D_CASE})
+set_tests_properties(pp_3d_real PROPERTIES FIXTURES_REQUIRED pp_3d ENVIRONMENT "${PP_ENV}")
+set_tests_properties(pp_3d_real_plastic PROPERTIES FIXTURES_REQUIRED pp_3d_plastic
+  ENVIRONMENT "${PP_ENV}")
+# A real 3D sweep over xi (4) x eta (3) of the same case (~1 s): creep3d draws the file's values.
+set(PP_3D_SWEEP ${CMAKE_CURRENT_BINARY_DIR}/pp_3d_sweep.nc)
+add_test(NAME pp_run_3d_sweep COMMAND ${RS_BIN} sweep ${PP_3D_CASE} -o ${PP_3D_SWEEP} --quiet
+  --set "title=\"3D steady creep forces, 20 x 20 cells, mu = 0.3\""
+  --set "sweep.rolling.creepage=[0.0,-0.0005,-0.001,-0.002]"
+  --set "sweep.rolling.lateral_creepage=[-0.0005,0.0,0.0005]")
+set_tests_properties(pp_run_3d_sweep PROPERTIES FIXTURES_SETUP pp_3d_sweep)
+add_test(NAME pp_3d_real_sweep COMMAND ${PP_NUM3D} realsweep ${PP_3D_SWEEP} ${PP_OUT}/3d_real_sweep)
+set_tests_properties(pp_3d_real_sweep PROPERTIES FIXTURES_REQUIRED pp_3d_sweep
+  ENVIRONMENT "${PP_ENV}")

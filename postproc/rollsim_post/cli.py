@@ -7,9 +7,10 @@ import numpy as np
 
 from . import PostError, figure_format
 from . import extract
+from . import field3d
 from . import sweep
 from .record import Recorder
-from .runfile import RunFile
+from .runfile import RunFile, case_value
 
 PROG = "rollsim_post"
 
@@ -27,6 +28,7 @@ coordinates (coordinate variable, or the index if there is none), then one colum
 per variable in the order given. Hence:
   time-only variables      time,Fx,Fn            one row per record
   (time, x) variables      time,x,px             long format, one row per record and cell
+  3D (time, y, x) fields   time,y,x,px,py        one row per record and cell (x fastest)
   mixed                    time,x,px,Fx          time-only values repeated on every x row
   sweep-file results       plasticity_k_rel,rolling_creepage,traction_coefficient
 Numbers are written with Python's repr(), which reads back to the identical double;
@@ -99,9 +101,18 @@ def cmd_traction(args):
     figure_format(args.output)
     rec = Recorder()
     with RunFile(args.file) as run:
+        if run.is_sweep():
+            run.require_2d("traction", "map FILE --field traction (|p| and arrows over x and y)")
+        elif args.y is not None and not run.is_3d():
+            raise PostError(f"{run.path}: --y applies to 3D files")
         for opt in ("overlay", "select"):
             _sweep_only(args, run, opt)
-        if run.is_sweep():
+        if run.is_3d() and not run.is_sweep():
+            indices = extract.record_indices(run, args.time)
+            profiles = [field3d.row_profile(run, i, args.y or 0.0, mu=args.mu) for i in indices]
+            _warn_status(run)
+            _plots().plot_traction(profiles, _title(args, run), args.output, rec)
+        elif run.is_sweep():
             if args.time:
                 raise PostError(f"{run.path}: --time applies to time-history files, not sweeps")
             sweep.require_profiles(run)
@@ -128,6 +139,7 @@ def cmd_regimes(args):
     figure_format(args.output)
     rec = Recorder()
     with RunFile(args.file) as run:
+        run.require_2d("regimes", "map FILE --field regime (the regime over x and y)")
         for opt in ("overlay", "select"):
             _sweep_only(args, run, opt)
         if run.is_sweep():
@@ -158,11 +170,67 @@ def cmd_regimes(args):
 
 def cmd_history(args):
     figure_format(args.output)
+    rec = Recorder()
     with RunFile(args.file) as run:
+        if run.is_sweep():
+            raise PostError(f"{run.path}: a sweep file has no time histories: use creepcurve "
+                            "(or creep3d for a 3D sweep)")
         data, units = extract.history(run)
+        extra, extra_units = field3d.history_extra(run) if run.is_3d() else (None, None)
         mu = args.mu if args.mu is not None else run.mu()
         _warn_status(run)
-        _plots().plot_history(data, units, mu, _title(args, run), args.output)
+        _plots().plot_history(data, units, mu, _title(args, run), args.output, rec,
+                              extra=extra, extra_units=extra_units)
+    _finish(args, rec)
+
+
+MAX_MAP_PANELS = 12
+
+
+def cmd_map(args):
+    figure_format(args.output)
+    rec = Recorder()
+    if args.field not in field3d.MAP_FIELDS:
+        raise PostError(f"--field {args.field}: expected one of {', '.join(field3d.MAP_FIELDS)}")
+    with RunFile(args.file) as run:
+        run.require_3d("map")
+        _sweep_only(args, run, "select")
+        if run.is_sweep():
+            if args.time:
+                raise PostError(f"{run.path}: --time applies to time-history files, not sweeps")
+            colour = field3d.MAP_FIELDS[args.field][0]
+            if not all(run.has(v) for v in colour):
+                raise PostError(f"{run.path}: sweep file without the fields {', '.join(colour)}: "
+                                "run the sweep with output.fields listing them")
+            pts = sweep.points(run, _selection(args))
+            if len(pts) > MAX_MAP_PANELS:
+                raise PostError(f"{run.path}: {len(pts)} sweep points; choose at most "
+                                f"{MAX_MAP_PANELS} with --select KEY=VALUE")
+            maps = [field3d.field_map(run, args.field, p) for p in pts]
+            for m, p in zip(maps, pts):
+                m.label = p.label(run)
+        else:
+            indices = extract.record_indices(run, args.time)
+            maps = [field3d.field_map(run, args.field, i) for i in indices]
+            if case_value(run.case(), "simulation.mode") == "steady":
+                for m in maps:
+                    m.label = f"steady rolling (record {m.index})"
+        _warn_status(run)
+        from . import plots3d
+        plots3d.plot_map(maps, _title(args, run), args.output, rec, max_arrows=args.arrows)
+    _finish(args, rec)
+
+
+def cmd_creep3d(args):
+    figure_format(args.output)
+    rec = Recorder()
+    with RunFile(args.file) as run:
+        panels = field3d.creep3d_panels(run, x_keys=args.x)
+        _warn_status(run)
+        from . import plots3d
+        plots3d.plot_creep3d(panels, args.title if args.title is not None else run.title,
+                             args.output, rec)
+    _finish(args, rec)
 
 
 def cmd_creepcurve(args):
@@ -216,6 +284,7 @@ def cmd_plastic(args):
     figure_format(args.output)
     rec = Recorder()
     with RunFile(args.file) as run:
+        run.require_2d("plastic", "map FILE --field ustar or --field tauc")
         for opt in ("overlay", "select"):
             _sweep_only(args, run, opt)
         if run.is_sweep():
@@ -301,6 +370,9 @@ def build_parser():
     s.add_argument("--time", type=float, nargs="+", metavar="T",
                    help="times in s; each picks the nearest stored record (default: the last)")
     s.add_argument("--mu", type=float, help="override the coefficient of friction")
+    s.add_argument("--y", type=float, metavar="Y",
+                   help="3D file: the row of cells nearest to Y mm (default 0, the centre line); "
+                        "p_y and |p| are drawn too")
     sweep_options(s)
     s.set_defaults(func=cmd_traction)
 
@@ -352,6 +424,39 @@ def build_parser():
                "the slip.")
     s.add_argument("file", metavar="FILE")
     s.set_defaults(func=cmd_rig)
+
+    s = figure("map", "3D file: a field over the contact patch (x, y) at chosen times",
+               "3D run file (contact.dimension: 3): one field over the cells, equal aspect, with "
+               "a colour bar,\nthe discrete contact edge (p_n > 0) and the contact ellipse "
+               "(Hertz semi-axes from the file's\nattributes hertz_a, hertz_b, else the ellipse "
+               "with the contact cells' second moments).\nVector fields (traction, slip, upl) "
+               "get arrows on the cells in contact. One panel per\nrequested time (nearest "
+               "stored record). --data adds a column value: one row per cell\n(quantity = "
+               "the field), per arrow (arrow_x, arrow_y), the edge, the ellipse and its\n"
+               "semi-axes (x = a, y = b).")
+    s.add_argument("file", metavar="FILE")
+    s.add_argument("--field", default="traction", metavar="FIELD",
+                   help="what to colour: traction (|p| with arrows, default), slip (|s| with "
+                        "arrows), pressure, regime, ustar, tauc, upl")
+    s.add_argument("--time", type=float, nargs="+", metavar="T",
+                   help="times in s; each picks the nearest stored record (default: the last)")
+    s.add_argument("--arrows", type=int, default=25, metavar="N",
+                   help="at most N arrows along x and along y (every k-th cell; default 25)")
+    s.add_argument("--select", metavar="KEY=VALUE", action="append",
+                   help="3D sweep file with fields: only the points whose KEY is nearest VALUE "
+                        "(repeatable); one panel per point")
+    s.set_defaults(func=cmd_map)
+
+    s = figure("creep3d", "3D sweep: F_x, F_y, M_z against each swept creepage",
+               "3D sweep file: F_x, F_y and M_z (rows) against each swept creepage key "
+               "(columns:\nrolling.creepage, rolling.lateral_creepage, rolling.spin; by default "
+               "those swept over\n3 or more values); one line per combination of the other "
+               "swept keys.", title_help="figure title (default: the file's title)")
+    s.add_argument("file", metavar="FILE")
+    s.add_argument("--x", action="append", metavar="KEY",
+                   help="abscissa: this swept creepage key (repeatable; default: every one "
+                        "swept over at least 3 values)")
+    s.set_defaults(func=cmd_creep3d)
 
     s = sub.add_parser("export", help="variables to CSV", epilog=EXPORT_EPILOG,
                        description="Write variables of a rollsim file to CSV.",

@@ -76,6 +76,9 @@ class TractionProfile:
     tauc: np.ndarray = None
     regime: np.ndarray = None
     regime_flags: tuple = None
+    py: np.ndarray = None    # 3D: lateral traction along the row shown
+    y: float = None          # 3D: the row's y (mm) and index
+    row: int = None
 
 
 def traction_profile(run, index, mu=None):
@@ -196,8 +199,10 @@ def sweep_series(run, prefix=None, var="traction_coefficient", x_key=CREEPAGE_KE
             x_dim = d
     if x_dim is None:
         swept = ", ".join(run.sweep_key(d) for d in dims) or "none"
+        hint = " (a 3D sweep: creep3d draws F_x, F_y, M_z against each creepage)" \
+            if run.has("Fy") else ""
         raise PostError(f"{run.path}: sweep file does not sweep {x_key} (swept keys: {swept}); "
-                        f"creepcurve needs {x_key} as a sweep dimension")
+                        f"creepcurve needs {x_key} as a sweep dimension{hint}")
     creepage = run.coordinate(x_dim)
     others = [d for d in dims if d != x_dim]
     # Move the creepage axis last so each series is values[combination of others, :].
@@ -282,11 +287,18 @@ def export_table(run, names):
     Returns (header, columns), each column a masked array of the stored type."""
     if not names:
         raise PostError("export: no variables given (--var NAME...)")
+    # Row dimensions in file order, unless that contradicts the variable with the most
+    # dimensions (3D fields are (time, y, x) whichever of y and x the file defined first).
     order = list(run.ds.dimensions)
     used = set()
+    widest = ()
     for name in names:
         used.update(run.dims(name))
+        if len(run.dims(name)) > len(widest):
+            widest = run.dims(name)
     row_dims = [d for d in order if d in used]
+    if [d for d in row_dims if d in widest] != list(widest):
+        row_dims = list(widest) + [d for d in row_dims if d not in widest]
     shape = [len(run.ds.dimensions[d]) for d in row_dims]
     grids = dict(zip(row_dims, (g.ravel() for g in np.indices(shape)))) if row_dims else {}
     nrows = int(np.prod(shape)) if row_dims else 1

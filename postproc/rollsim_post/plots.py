@@ -71,7 +71,8 @@ def plot_traction(profiles, title, out, rec=None):
     factor, unit = time_axis([p.time for p in profiles])
     regimes_present = set()
     for k, (ax, p) in enumerate(zip(axes[:, 0], profiles)):
-        ax.set_title(f"t = {p.time * factor:.4g} {unit} (record {p.index})", fontsize=10)
+        ax.set_title(f"t = {p.time * factor:.4g} {unit} (record {p.index})" +
+                     (f", y = {p.y:.4g} mm (row {p.row})" if p.y is not None else ""), fontsize=10)
         dx = np.diff(p.x).mean() if p.x.size > 1 else 1.0
         present = set()
         if p.regime is not None:
@@ -85,6 +86,8 @@ def plot_traction(profiles, title, out, rec=None):
                 ax.axvspan(p.x[i0] - dx / 2, p.x[i1 - 1] + dx / 2, color=_regime_style(m)[1],
                            alpha=0.35, lw=0)
         point = {"time": p.time}
+        if p.y is not None:
+            point["row_y"] = p.y   # (a column "y" would clash with the plotted y)
         rec.line(ax, k, p.x, p.g, "--", color="#0072b2", lw=1.2, series=f"g = μ p_n (μ = {p.mu:g})",
                  quantity="g", point=point)
         rec.line(ax, k, p.x, -p.g, "--", color="#0072b2", lw=1.2, alpha=0.6, series="−g",
@@ -95,6 +98,11 @@ def plot_traction(profiles, title, out, rec=None):
                      series="τ_c" if sign > 0 else "−τ_c", quantity="tau_c", point=point)
         rec.line(ax, k, p.x, p.px, "-", color="black", lw=1.8, series="p_x", quantity="px",
                  point=point)
+        if p.py is not None:
+            rec.line(ax, k, p.x, p.py, "-", color="#009e73", lw=1.6, series="p_y", quantity="py",
+                     point=point)
+            rec.line(ax, k, p.x, np.hypot(p.px, p.py), ":", color="0.35", lw=1.4, series="|p|",
+                     quantity="abs_p", point=point)
         ax.axhline(0.0, color="0.5", lw=0.5)
         ax.set_ylabel("traction [N/mm²]")
         ax.grid(alpha=0.25)
@@ -154,43 +162,85 @@ def plot_plastic(ustar, tauc, title, out):
 LEGEND_RIGHT = dict(fontsize=8, loc="center left", bbox_to_anchor=(1.01, 0.5), frameon=False)
 
 
-def plot_history(data, units, mu, title, out):
-    """F_x/F_n, creepage, velocity, regime counts, frictional and plastic power against time."""
+def plot_history(data, units, mu, title, out, rec=None, extra=None, extra_units=None):
+    """F_x/F_n, creepage, velocity, regime counts, frictional and plastic power against time.
+    A 3D file (`extra`: Fy, Mz, Fn, lateral_creepage, spin) adds F_y/F_n beside F_x/F_n, a
+    panel for the spin moment M_z, the lateral creepage beside ξ and a panel for the spin φ."""
+    rec = rec or Recorder()
+    extra_units = extra_units or {}
     t = data["time"]
     factor, unit = time_axis(t)
     t = t * factor
     style = "o-" if t.size < 2 else "-"
-    fig, axes = plt.subplots(5, 1, figsize=(8.0, 10.5), sharex=True,
+    three_d = extra is not None
+    names = ["coefficients"] + (["moment"] if three_d else []) + ["creepage"] + \
+        (["spin"] if three_d else []) + ["velocity", "counts", "power"]
+    fig, axes = plt.subplots(len(names), 1, figsize=(8.0, 2.1 * len(names)), sharex=True,
                              layout="constrained")
-    ax = axes[0]
-    ax.plot(t, data["traction_coefficient"], style, color="black", label="F_x / F_n")
+    ax_of = dict(zip(names, axes))
+    panel = {n: i for i, n in enumerate(names)}
+    ax = ax_of["coefficients"]
+    coeffs = [data["traction_coefficient"]]
+    rec.line(ax, panel["coefficients"], t, data["traction_coefficient"], style, color="black",
+             series="F_x / F_n", quantity="traction_coefficient")
+    if three_d:
+        fn = extra["Fn"]
+        with np.errstate(divide="ignore", invalid="ignore"):
+            fy_fn = np.where(fn != 0.0, extra["Fy"] / fn, np.nan)
+        coeffs.append(fy_fn)
+        rec.line(ax, panel["coefficients"], t, fy_fn, style, color="#d55e00", series="F_y / F_n",
+                 quantity="Fy/Fn")
     if mu is not None:
         ax.axhline(mu, ls="--", color="#0072b2", lw=1, label=f"μ = {mu:g}")
         ax.axhline(-mu, ls="--", color="#0072b2", lw=1)
-        # Show 0 and the bound +-mu on the side(s) where the traction coefficient lies.
-        lo = min(float(np.nanmin(data["traction_coefficient"])), 0.0)
-        hi = max(float(np.nanmax(data["traction_coefficient"])), 0.0)
+        # Show 0 and the bound +-mu on the side(s) where the coefficients lie.
+        allc = np.concatenate([np.ravel(c) for c in coeffs])
+        lo = min(float(np.nanmin(allc)) if np.isfinite(allc).any() else 0.0, 0.0)
+        hi = max(float(np.nanmax(allc)) if np.isfinite(allc).any() else 0.0, 0.0)
         hi = max(hi, mu) if hi > 0.0 or lo == 0.0 else hi
         lo = min(lo, -mu) if lo < 0.0 else lo
         ax.set_ylim(lo - 0.05 * mu, hi + 0.05 * mu)
-    ax.set_ylabel("F_x / F_n [1]")
+    ax.set_ylabel("F / F_n [1]" if three_d else "F_x / F_n [1]")
     ax.legend(**LEGEND_RIGHT)
-    axes[1].plot(t, data["creepage"], style, color="#d55e00")
-    axes[1].set_ylabel("creepage ξ [1]")
-    axes[2].plot(t, data["velocity"], style, color="#009e73")
-    axes[2].set_ylabel(f"velocity V [{units['velocity']}]")
+    if three_d:
+        ax = ax_of["moment"]
+        rec.line(ax, panel["moment"], t, extra["Mz"], style, color="black", series="M_z",
+                 quantity="Mz")
+        ax.set_ylabel(f"spin moment M_z [{extra_units.get('Mz', 'N mm')}]")
+    ax = ax_of["creepage"]
+    rec.line(ax, panel["creepage"], t, data["creepage"], style, color="#d55e00",
+             series="ξ (longitudinal)" if three_d else "", quantity="creepage")
+    if three_d and "lateral_creepage" in extra:
+        rec.line(ax, panel["creepage"], t, extra["lateral_creepage"], style, color="#0072b2",
+                 series="η (lateral)", quantity="lateral_creepage")
+        ax.legend(**LEGEND_RIGHT)
+    ax.set_ylabel("creepages ξ, η [1]" if three_d else "creepage ξ [1]")
+    if three_d:
+        ax = ax_of["spin"]
+        if "spin" in extra:
+            rec.line(ax, panel["spin"], t, extra["spin"], style, color="#009e73", quantity="spin")
+        ax.set_ylabel(f"spin φ [{extra_units.get('spin', '1/mm')}]")
+    ax = ax_of["velocity"]
+    rec.line(ax, panel["velocity"], t, data["velocity"], style, color="#009e73",
+             quantity="velocity")
+    ax.set_ylabel(f"velocity V [{units['velocity']}]")
+    ax = ax_of["counts"]
     for name, meaning in (("n_exterior", "exterior"), ("n_adhesion", "adhesion"),
                           ("n_slip", "slip"), ("n_plastic", "plastic")):
         letter, colour = _regime_style(meaning)
-        axes[3].plot(t, data[name], style, color="0.6" if meaning == "exterior" else colour,
-                     label=f"{letter}: {meaning}")
-    axes[3].set_ylabel("cells [1]")
-    axes[3].legend(**LEGEND_RIGHT)
-    axes[4].plot(t, data["frictional_power"], style, color="#e69f00", label="frictional")
-    axes[4].plot(t, data["plastic_power"], style, color="#cc79a7", label="plastic")
-    axes[4].set_ylabel(f"power [{units['frictional_power']}]")
-    axes[4].legend(**LEGEND_RIGHT)
-    axes[4].set_xlabel(f"time [{unit}]")
+        rec.line(ax, panel["counts"], t, data[name], style,
+                 color="0.6" if meaning == "exterior" else colour,
+                 series=f"{letter}: {meaning}", quantity=name)
+    ax.set_ylabel("cells [1]")
+    ax.legend(**LEGEND_RIGHT)
+    ax = ax_of["power"]
+    rec.line(ax, panel["power"], t, data["frictional_power"], style, color="#e69f00",
+             series="frictional", quantity="frictional_power")
+    rec.line(ax, panel["power"], t, data["plastic_power"], style, color="#cc79a7",
+             series="plastic", quantity="plastic_power")
+    ax.set_ylabel(f"power [{units['frictional_power']}]")
+    ax.legend(**LEGEND_RIGHT)
+    ax.set_xlabel(f"time [{unit}]")
     for ax in axes:
         ax.grid(alpha=0.25)
     fig.suptitle(title, fontsize=11)

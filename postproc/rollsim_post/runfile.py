@@ -144,6 +144,29 @@ class RunFile:
                 return values, meanings
         return DEFAULT_REGIME_FLAGS
 
+    def is_3d(self):
+        """A 3D (elliptic contact) file: global attribute dimension = 3, or a `y` dimension,
+        or the 3D-only variables Fy/py (interfaces.md v2, "3D output"). 2D files carry
+        dimension = 2 or no such attribute."""
+        dim = self.attr("dimension")
+        if dim is not None:
+            try:
+                return int(np.ravel(dim)[0]) == 3
+            except (TypeError, ValueError):
+                pass
+        return "y" in self.ds.dimensions or self.has("Fy") or self.has("py")
+
+    def require_2d(self, command, instead):
+        """PostError for a 3D file given to a 2D-only figure, saying what to use instead."""
+        if self.is_3d():
+            raise PostError(f"{self.path}: a 3D file (elliptic contact): {command} draws 2D "
+                            f"line-contact profiles; use {instead}")
+
+    def require_3d(self, command):
+        if not self.is_3d():
+            raise PostError(f"{self.path}: not a 3D file (no y dimension, Fy or "
+                            f"dimension = 3 attribute): {command} needs 3D output")
+
     def is_sweep(self, name="traction_coefficient"):
         """A sweep file holds `name` over swept-key dimensions (anything besides time)."""
         return any(d != "time" for d in self.dims(name))

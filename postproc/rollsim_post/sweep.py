@@ -27,6 +27,8 @@ CASE_DEFAULTS = {
 # How figures name swept keys: (symbol, unit shown, factor from the file's value).
 KEY_NAMES = {
     "rolling.creepage": ("ξ", "%", 100.0),
+    "rolling.lateral_creepage": ("η", "", 1.0),
+    "rolling.spin": ("φ", "1/mm", 1.0),
     "plasticity.k_rel": ("k_rel", "", 1.0),
     "plasticity.k_tau": ("k_τ", "N/mm³", 1.0),
     "plasticity.tau_c0": ("τ_c0", "N/mm²", 1.0),
@@ -129,7 +131,13 @@ def is_elastic(run, point, pn=None):
         return True
     tau_c0 = value_at(run, point, "plasticity.tau_c0")
     mu = value_at(run, point, "friction.mu")
-    p_max = float(np.nanmax(pn)) if pn is not None and np.size(pn) else hertz_peak_pressure(run, point)
+    if pn is not None and np.size(pn):
+        p_max = float(np.nanmax(pn))
+    else:
+        try:
+            p_max = hertz_peak_pressure(run, point)
+        except TypeError:  # 3D case (radius: [Rx, Ry]): the line-contact formula does not apply
+            return False
     return tau_c0 >= mu * p_max
 
 

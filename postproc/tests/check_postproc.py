@@ -8,6 +8,7 @@ Usage:
   check_postproc.py creep    FILE...               series grouping, labels and sorting
   check_postproc.py sweep    FIXTURE_DIR           sweep-file reader on the synthetic files
   check_postproc.py rig      RUN.nc                twin-disc step/revolution means vs records
+  check_postproc.py history  RUN.nc OUTDIR         history --data: every drawn series == the file's
   check_postproc.py readme   README.md             the README's command table lists every subcommand
   check_postproc.py sweep_views DATA_DIR OUTDIR    regimes/plastic/traction of rollsim sweep files
                                                    (fig7.nc, fig8.nc): the series each draws (--data)
@@ -320,6 +321,20 @@ def plotted(args, out_png, out_csv):
     return groups
 
 
+def check_history(path, out):
+    os.makedirs(out, exist_ok=True)
+    groups = plotted(["history", path], f"{out}/history.png", f"{out}/history.csv")
+    names = ["traction_coefficient", "creepage", "velocity", "n_exterior", "n_adhesion", "n_slip",
+             "n_plastic", "frictional_power", "plastic_power"]
+    drawn = {q: g["y"] for (_, _, q), g in groups.items()}
+    check(sorted(drawn) == sorted(names), f"history draws {sorted(drawn)}")
+    for name in names:
+        check(np.array_equal(np.array(drawn[name]), nc_values(path, name)),
+              f"history {name}: drawn != file")
+    print(f"OK: history of {path}: {len(names)} series, {len(drawn['creepage'])} records each, "
+          "== the file")
+
+
 def point_index(ds, point):
     """Index tuple of a sweep point (coordinates compared exactly: the CSV holds repr())."""
     idx = []
@@ -369,7 +384,7 @@ def check_readme(path):
     parser = cli.build_parser()
     sub = next(a for a in parser._actions if a.__class__.__name__ == "_SubParsersAction")
     text = open(path).read()
-    table = set(__import__("re").findall(r"^\| `([a-z]+) ", text, __import__("re").M))
+    table = set(__import__("re").findall(r"^\| `([a-z0-9]+) ", text, __import__("re").M))
     missing = sorted(set(sub.choices) - table)
     check(not missing, f"{path}: subcommands missing from the table: {missing}")
     extra = sorted(table - set(sub.choices))
@@ -393,6 +408,8 @@ def main(argv):
         check_sweep(*args)
     elif cmd == "rig" and len(args) == 1:
         check_rig(*args)
+    elif cmd == "history" and len(args) == 2:
+        check_history(*args)
     elif cmd == "readme" and len(args) == 1:
         check_readme(*args)
     elif cmd == "sweep_views" and len(args) == 2:
