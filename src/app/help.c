@@ -70,6 +70,22 @@ static const rs_command_help commands[] = {
      "  -q, --quiet        no progress line\n"
      "\n"
      "A point that fails is NaN in the file (counts -1, converged 0) and the exit code is 3.\n"},
+    {"fit", "fit CASE.yaml [-o FIT.nc] [--set KEY=VALUE]... [--quiet]",
+     "fit case keys to measurements (the case's fit: block), write FIT.nc",
+     "Fits the parameters of the case's fit: block (case keys with start and bounds) to the\n"
+     "measurements of its CSV (input columns: swept case keys such as rolling.creepage, or\n"
+     "a twin-disc protocol's step or twin_disc.slip; one measured column; optional\n"
+     "weights 1/sigma) by bounded Levenberg-Marquardt (MINPACK). Each evaluation solves\n"
+     "the data rows as rollsim sweep would (continuation along the last input column), or\n"
+     "the twin-disc protocol once. Prints the stop reason, fitted values with standard\n"
+     "errors, the correlation matrix and notes (a parameter at a bound, without effect,\n"
+     "correlated pairs). FIT.nc holds parameters, covariance, measured and simulated\n"
+     "values; it is rewritten whenever the fit improves, so Ctrl-C keeps the best point\n"
+     "(status \"interrupted\", exit code 4). rollsim_post.py fit FIT.nc -o fig.png plots it.\n"
+     "\n"
+     "  -o, --output FILE  the output file (default: output.file of the case; an existing\n"
+     "                     one is kept as FILE~)\n"
+     "  -q, --quiet        no progress line\n"},
     {"help", "help [COMMAND]", "this overview, or the help of one command",
      "Prints the overview of rollsim's commands, or the help of COMMAND (the same as\n"
      "rollsim COMMAND --help).\n"},

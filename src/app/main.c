@@ -2,6 +2,7 @@
  *   rollsim run CASE.yaml [-o OUT.nc] [--restart OLD.nc [--append]] [--set KEY=VALUE]... [--quiet]
  *   rollsim check CASE.yaml [--set KEY=VALUE]...
  *   rollsim sweep CASE.yaml [-o OUT.nc] [--set ...]
+ *   rollsim fit CASE.yaml [-o FIT.nc] [--set ...]
  *   rollsim --help | --version
  * Exit codes: 0 success, 2 invalid input (nothing run), 3 solver failure (partial
  * results kept), 4 interrupted (partial results kept), 1 internal or output error. */
@@ -15,6 +16,7 @@
 #include <unistd.h>
 
 #include "rollsim/case.h"
+#include "rollsim/fit.h"
 #include "rollsim/run.h"
 #include "rollsim/sweep.h"
 #include "app/cli.h"
@@ -316,7 +318,8 @@ int main(int argc, char **argv)
     free(a.sets);
     return exit_code(status);
   }
-  if (c.has_sweep && strcmp(a.cmd, "run")) { /* check and sweep: the sweep block is input too */
+  if (c.has_sweep && strcmp(a.cmd, "run") &&
+      strcmp(a.cmd, "fit")) { /* check and sweep: the sweep block is input too */
     if ((status = rs_sweep_load(&sw, a.case_path, a.sets, a.nsets, &msg)) != RS_OK)
       fprintf(stderr, "%s\n", msg.text);
   } else if (!strcmp(a.cmd, "sweep")) {
@@ -326,7 +329,7 @@ int main(int argc, char **argv)
   if (status == RS_OK) {
     if (sw.naxes > 0)
       rs_warn_sweep(&c, &sw, stderr);
-    else
+    else if (strcmp(a.cmd, "fit"))
       rs_warn_case(&c, stderr);
   }
   if (status == RS_OK && !strcmp(a.cmd, "check")) {
@@ -342,7 +345,13 @@ int main(int argc, char **argv)
                            .cost_warning = 1,
                            .progress = !a.quiet && isatty(STDERR_FILENO),
                            .interrupt_flag = &interrupted};
-    status = !strcmp(a.cmd, "sweep") ? cmd_sweep(&c, &a, &sw, &o) : cmd_run(&c, &a, &o);
+    const rs_fit_opts fo = {.output_path = a.out_path,
+                            .history = history,
+                            .progress = o.progress,
+                            .interrupt_flag = &interrupted};
+    status = !strcmp(a.cmd, "sweep") ? cmd_sweep(&c, &a, &sw, &o)
+             : !strcmp(a.cmd, "fit") ? rs_cli_fit(&c, a.case_path, a.sets, a.nsets, &fo)
+                                     : cmd_run(&c, &a, &o);
   }
   rs_sweep_free(&sw);
   rs_case_free(&c);

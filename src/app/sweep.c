@@ -15,6 +15,7 @@
 #include "rollsim/sweep.h"
 #include "base/util.h"
 #include "app/cli.h"
+#include "app/sweep_lines.h"
 
 static void fill_point(rs_sweep_point *pt, const rs_diag *d)
 {
@@ -399,5 +400,58 @@ done:
   free(all);
   free(assign);
   rs_case_free(&base);
+  return status;
+}
+
+/* One continuation line in memory (app/sweep_lines.h): the points of rs_sweep_run's loop
+ * along its last axis, with the same models, warm starts and continuation. */
+int rs_sweep_line_eval(const char *case_path, const char *const *sets, int nsets, const char *key,
+                       const double *values, size_t n, rs_diag *d, int *ok, rs_msg *msg)
+{
+  const char **all = calloc((size_t)nsets + 1, sizeof *all);
+  if (!all) return rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory");
+  for (int i = 0; i < nsets; i++) all[i] = sets[i];
+  steady_chain chain = {0};
+  if (SUNContext_Create(NULL, &chain.ctx) != 0) {
+    free(all);
+    return rs_msg_set(msg, RS_ERR_INTERNAL, "could not create the SUNDIALS context");
+  }
+  double *y = NULL;
+  int ny = 0, status = RS_OK, warm = 0;
+  rs_stats sum = {0};
+  char assign[320];
+  for (size_t j = 0; j < n && status == RS_OK; j++) {
+    snprintf(assign, sizeof assign, "%s=%.17g", key, values[j]);
+    all[nsets] = assign;
+    rs_case c;
+    rs_msg point_msg = {{0}};
+    int ps = rs_case_load(&c, case_path, all, nsets + 1, &point_msg);
+    if (ps == RS_OK) {
+      if (c.mode == RS_MODE_STEADY) {
+        ps = steady_point(&c, &chain, &y, &ny, warm, rolling_key(key), key, values[j], &d[j], NULL,
+                          &sum, &point_msg);
+      } else {
+        const rs_run_opts po = {.no_output = 1};
+        rs_run_result rr;
+        ps = rs_run(&c, &po, &rr, &point_msg);
+        d[j] = rr.final;
+        rs_run_result_free(&rr);
+      }
+      rs_case_free(&c);
+    }
+    ok[j] = ps == RS_OK;
+    warm = ps == RS_OK;
+    if (ps == RS_ERR_SOLVER) {
+      free(y);
+      y = NULL;
+      ny = 0;
+    } else if (ps != RS_OK) {
+      status = rs_msg_set(msg, ps, "%s: %s", assign, point_msg.text);
+    }
+  }
+  chain_drop(&chain);
+  SUNContext_Free(&chain.ctx);
+  free(y);
+  free(all);
   return status;
 }
