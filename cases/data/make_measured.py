@@ -3,10 +3,15 @@
 deterministic noise, written as CSV with a header saying so.
 
     make_measured.py ROLLSIM CASE.yaml OUT.csv [--points N] [--sigma S] [--seed K]
-                     [--set KEY=VALUE]...
+                     [--lo LO] [--hi HI] [--twin-disc] [--set KEY=VALUE]...
+
+The shipped data: make_measured.py build/rollsim cases/fit_creep_curve.yaml
+cases/data/creep_curve_measured.csv and (--twin-disc) cases/fit_twin_disc.yaml
+cases/data/twin_disc_measured.csv, with the defaults (sigma 0.002, seed 15).
 
 Steady creep curve: runs `ROLLSIM sweep CASE --set sweep.rolling.creepage={linspace:
-[0, -0.02, N]}` at the case's own parameter values (the true values), adds
+[LO, HI, N]}` (--lo/--hi, default 0 and -0.04) at the case's own parameter values (the
+true values), adds
 S * g_i to each traction coefficient, g_i = random.Random(K).gauss(0, 1) in order
 (Python's Mersenne Twister: the same numbers on every platform and version), and
 writes creepage,traction_coefficient.
@@ -33,7 +38,7 @@ def main():
     ap.add_argument("--sigma", type=float, default=0.002)
     ap.add_argument("--seed", type=int, default=15)
     ap.add_argument("--lo", type=float, default=0.0)
-    ap.add_argument("--hi", type=float, default=-0.02)
+    ap.add_argument("--hi", type=float, default=-0.04)
     ap.add_argument("--twin-disc", action="store_true")
     ap.add_argument("--set", action="append", default=[])
     a = ap.parse_args()
