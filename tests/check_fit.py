@@ -24,6 +24,9 @@
   check_fit.py twin-disc ROLLSIM CASE WORKDIR
       The shipped twin-disc protocol fit (cases/fit_twin_disc.yaml, true tau_c0 = 200,
       k_rel = 0.0387): each within 3 standard errors, status complete.
+  check_fit.py plot ROLLSIM CASE WORKDIR
+      rollsim_post.py fit draws the file: its --data rows are the file's measured and
+      simulated values and their differences.
   check_fit.py interrupt ROLLSIM CASE WORKDIR
       SIGINT during a fit: exit 4, FIT.nc with status "interrupted" and the best point so
       far (a residual norm no larger than the start's).
@@ -133,10 +136,37 @@ def interrupt(rollsim, case, work):
         check("residual norm recorded", np.isfinite(float(ds.residual_norm)))
 
 
+def plot(rollsim, case, work):
+    """rollsim_post.py fit: the figure is written and its --data rows are the file's values."""
+    out, png, csv = (os.path.join(work, f) for f in ("plot.nc", "plot.png", "plot.csv"))
+    fit(rollsim, case, out)
+    post = os.path.join(HERE, "..", "postproc", "rollsim_post.py")
+    env = dict(os.environ, MPLBACKEND="Agg", MPLCONFIGDIR=os.path.join(work, "mpl"))
+    p = subprocess.run([sys.executable, post, "fit", out, "-o", png, "--data", csv], env=env,
+                       capture_output=True, text=True)
+    print(p.stdout + p.stderr)
+    check("rollsim_post.py fit: exit 0", p.returncode == 0, str(p.returncode))
+    check("figure written", os.path.getsize(png) > 10000)
+    import csv as csvmod
+    rows = list(csvmod.DictReader(open(csv)))
+    with netCDF4.Dataset(out) as ds:
+        x = ds["creepage"][:].data
+        order = np.argsort(x, kind="stable")
+        for series, var in (("measured", "measured"), ("simulated", "simulated")):
+            ys = [float(r["y"]) for r in rows
+                  if r["quantity"] != "residual" and r["series"].startswith(series)]
+            check(f"plotted {series} = the file's {var}",
+                  np.array_equal(np.array(ys), ds[var][:].data[order]))
+        res = [float(r["y"]) for r in rows if r["quantity"] == "residual"]
+        check("plotted residuals = measured - simulated",
+              np.array_equal(np.array(res), (ds["measured"][:].data - ds["simulated"][:].data)[order]))
+
+
 if __name__ == "__main__":
     what, rollsim, case, work = sys.argv[1:5]
     os.makedirs(work, exist_ok=True)
-    {"exact": exact, "noisy": noisy, "twin-disc": twin_disc, "interrupt": interrupt}[what](
+    {"exact": exact, "noisy": noisy, "twin-disc": twin_disc, "interrupt": interrupt,
+     "plot": plot}[what](
         rollsim, case, work)
     if failures:
         sys.exit(f"{len(failures)} check(s) failed")

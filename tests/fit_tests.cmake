@@ -2,7 +2,7 @@
 # cases/data/make_measured.py from known values; tests/check_fit.py says why each band),
 # the twin-disc protocol fit, Ctrl-C keeping the best point, and invalid fit: blocks.
 set(RS_FIT_WORK ${CMAKE_CURRENT_BINARY_DIR}/fit)
-foreach(what exact noisy interrupt)
+foreach(what exact noisy interrupt plot)
   add_test(NAME fit_creep_${what}
     COMMAND ${SYSTEM_PYTHON3} ${RS_TESTS}/check_fit.py ${what} ${RS_BIN}
             ${RS_CASES}/fit_creep_curve.yaml ${RS_FIT_WORK}/${what})
