@@ -129,6 +129,17 @@ static size_t rig_step_of(const rs_fit_spec *f, const rs_case *c, size_t row)
   return 0; /* not reached: rs_fit_load checked the rows */
 }
 
+static int store_point(void *ctx, size_t j, int status, const rs_diag *d, long newton,
+                       const char *why)
+{
+  rs_fit_eval *e = ctx;
+  (void)newton;
+  (void)why;
+  e->ok[e->line0 + j] = status == RS_OK;
+  e->diag[e->line0 + j] = *d;
+  return RS_OK;
+}
+
 int rs_fit_eval_at(rs_fit_eval *e, const double *p, double *sim, rs_msg *msg)
 {
   const rs_fit_spec *f = e->f;
@@ -148,8 +159,16 @@ int rs_fit_eval_at(rs_fit_eval *e, const double *p, double *sim, rs_msg *msg)
                    f->table[i0 * (size_t)f->ncols + (size_t)j]);
           e->all[nl++] = e->assign[f->nparams + j];
         }
-      status = rs_sweep_line_eval(e->case_path, e->all, nl, f->input_keys[e->key_col], e->xs + i0,
-                                  len, e->diag + i0, e->ok + i0, msg);
+      e->line0 = i0;
+      const rs_sweep_line line = {.case_path = e->case_path,
+                                  .sets = e->all,
+                                  .nsets = nl,
+                                  .key = f->input_keys[e->key_col],
+                                  .values = e->xs + i0,
+                                  .n = len,
+                                  .point_done = store_point,
+                                  .ctx = e};
+      status = rs_sweep_line_eval(&line, msg);
       for (size_t i = i0; status == RS_OK && i < i0 + len; i++) {
         if (!e->ok[i])
           status = rs_msg_set(msg, RS_ERR_SOLVER, "data row %zu did not converge", i + 1);

@@ -22,6 +22,7 @@ typedef struct rs_fit_eval {
   double *xs;       /* [npoints] the continued input of each row */
   rs_diag *diag;    /* [npoints] */
   int *ok;          /* [npoints] */
+  size_t line0;     /* first row of the line being solved */
   long evaluations; /* whole data sets evaluated */
 } rs_fit_eval;
 
