@@ -27,6 +27,8 @@
   check_fit.py plot ROLLSIM CASE WORKDIR
       rollsim_post.py fit draws the file: its --data rows are the file's measured and
       simulated values and their differences.
+  check_fit.py mpi ROLLSIM CASE WORKDIR
+      mpirun -n 2 rollsim fit (Jacobian columns on two ranks) gives the serial fit bit for bit.
   check_fit.py interrupt ROLLSIM CASE WORKDIR
       SIGINT during a fit: exit 4, FIT.nc with status "interrupted" and the best point so
       far (a residual norm no larger than the start's).
@@ -162,11 +164,31 @@ def plot(rollsim, case, work):
               np.array_equal(np.array(res), (ds["measured"][:].data - ds["simulated"][:].data)[order]))
 
 
+def mpi(rollsim, case, work):
+    """mpirun -n 2 rollsim fit: the Jacobian's columns on two ranks, each computed whole by the
+    same code from the same parameters, so the fit takes the serial fit's path bit for bit."""
+    ser, par = os.path.join(work, "serial.nc"), os.path.join(work, "mpi2.nc")
+    fit(rollsim, case, ser)
+    mpirun = os.environ.get("RS_MPIRUN", "mpirun")
+    p = subprocess.run([mpirun, "--oversubscribe", "--allow-run-as-root", "-n", "2", rollsim, "fit",
+                        case, "-o", par, "--quiet"], capture_output=True, text=True)
+    print(p.stdout + p.stderr)
+    check("mpirun -n 2 rollsim fit: exit 0", p.returncode == 0, str(p.returncode))
+    check("the summary names the two ranks", "Jacobian columns on 2 MPI ranks" in p.stdout)
+    with netCDF4.Dataset(ser) as a, netCDF4.Dataset(par) as b:
+        for v in ("fitted", "standard_error", "covariance", "simulated"):
+            x, y = a[v][:].data, b[v][:].data
+            check(f"{v}: bitwise equal to the serial fit",
+                  np.array_equal(x.view(np.uint64), y.view(np.uint64)))
+        check("same evaluations", int(a.evaluations) == int(b.evaluations),
+              f"{a.evaluations} vs {b.evaluations}")
+
+
 if __name__ == "__main__":
     what, rollsim, case, work = sys.argv[1:5]
     os.makedirs(work, exist_ok=True)
     {"exact": exact, "noisy": noisy, "twin-disc": twin_disc, "interrupt": interrupt,
-     "plot": plot}[what](
+     "plot": plot, "mpi": mpi}[what](
         rollsim, case, work)
     if failures:
         sys.exit(f"{len(failures)} check(s) failed")

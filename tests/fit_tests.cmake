@@ -24,3 +24,12 @@ foreach(bad ${RS_FIT_BAD})
             --absent ${RS_FIT_WORK}/bad_${stem}.nc
             -- ${RS_BIN} fit ${bad} -o ${RS_FIT_WORK}/bad_${stem}.nc)
 endforeach()
+
+# Under MPI the Jacobian's columns go to the ranks: the same fit, bit for bit.
+if(RS_MPI)
+  find_program(RS_MPIRUN NAMES mpirun mpiexec REQUIRED)
+  add_test(NAME fit_creep_mpi2
+    COMMAND ${SYSTEM_PYTHON3} ${RS_TESTS}/check_fit.py mpi ${RS_BIN}
+            ${RS_CASES}/fit_creep_curve.yaml ${RS_FIT_WORK}/mpi2)
+  set_tests_properties(fit_creep_mpi2 PROPERTIES ENVIRONMENT "RS_MPIRUN=${RS_MPIRUN}")
+endif()

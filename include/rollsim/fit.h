@@ -55,6 +55,7 @@ typedef struct rs_fit_opts {
   const char *history;
   int progress;                          /* evaluation count and residual on stderr */
   volatile sig_atomic_t *interrupt_flag; /* Ctrl-C: stop, keep the best point */
+  int mpi_rank, mpi_size; /* under MPI: the Jacobian's columns over the ranks (else 0, 1) */
 } rs_fit_opts;
 
 typedef struct rs_fit_result {
@@ -76,6 +77,9 @@ typedef struct rs_fit_result {
 int rs_fit_run(const rs_fit_spec *f, const char *case_path, const char *const *sets, int nsets,
                const rs_fit_opts *o, rs_fit_result *res, rs_msg *msg);
 void rs_fit_result_free(rs_fit_result *res);
+/* MPI ranks > 0 of a fit: serve rank 0's Jacobian columns until it is done. */
+int rs_fit_serve(const rs_fit_spec *f, const char *case_path, const char *const *sets, int nsets,
+                 const rs_fit_opts *o, rs_msg *msg);
 
 /* FIT.nc (io/output_fit.c): written whole to PATH.part and renamed over PATH (an older
  * file is kept as PATH~ the first time). */

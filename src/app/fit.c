@@ -502,6 +502,19 @@ static int analyse(fit_run *r, rs_fit_result *res)
   return status;
 }
 
+int rs_fit_serve(const rs_fit_spec *f, const char *case_path, const char *const *sets, int nsets,
+                 const rs_fit_opts *o, rs_msg *msg)
+{
+  rs_fit_eval e;
+  rs_fit_columns *cols = NULL;
+  int status = rs_fit_eval_init(&e, f, case_path, sets, nsets, msg);
+  if (status == RS_OK) status = rs_fit_columns_create(&cols, f, o->mpi_rank, o->mpi_size, msg);
+  if (status == RS_OK) status = rs_fit_columns_serve(cols, &e);
+  rs_fit_columns_free(cols);
+  rs_fit_eval_free(&e);
+  return status;
+}
+
 void rs_fit_result_free(rs_fit_result *res)
 {
   free(res->fitted);
@@ -548,7 +561,8 @@ int rs_fit_run(const rs_fit_spec *f, const char *case_path, const char *const *s
            !fjac || !diag || !qtf || !wa || !ipvt)
     status = rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory");
   if (status == RS_OK) status = rs_fit_eval_init(&r.e, f, case_path, sets, nsets, msg);
-  if (status == RS_OK) status = rs_fit_columns_create(&r.cols, f, msg);
+  if (status == RS_OK)
+    status = rs_fit_columns_create(&r.cols, f, 0, o->mpi_size > 1 ? o->mpi_size : 1, msg);
   if (status == RS_OK) {
     for (int i = 0; i < m; i++) {
       const double *row = f->table + (size_t)i * (size_t)f->ncols;

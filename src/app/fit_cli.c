@@ -55,7 +55,15 @@ int rs_cli_fit(const rs_case *c, const char *case_path, const char *const *sets,
     fprintf(stderr, "%s\n", msg.text);
     return status;
   }
+  if (o->mpi_rank > 0) { /* an MPI worker: Jacobian columns for rank 0 */
+    status = rs_fit_serve(&f, case_path, sets, nsets, o, &msg);
+    rs_fit_free(&f);
+    return status;
+  }
   printf("%s\n", c->title && *c->title ? c->title : case_path);
+  if (o->mpi_size > 1)
+    printf("  Jacobian columns on %d MPI ranks (column k on rank k mod %d)\n", o->mpi_size,
+           o->mpi_size);
   if (c->overrides) printf("  with --set %s\n", c->overrides);
   rs_fit_result r;
   status = rs_fit_run(&f, case_path, sets, nsets, o, &r, &msg);

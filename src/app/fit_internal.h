@@ -39,9 +39,14 @@ double rs_fit_fd_step(const rs_fit_param *q, double p);
  * column-major with leading dimension ld. Serial, or one column per MPI rank at a time
  * (the same numbers: each column is computed whole on one rank). */
 typedef struct rs_fit_columns rs_fit_columns;
-int rs_fit_columns_create(rs_fit_columns **c, const rs_fit_spec *f, rs_msg *msg);
+int rs_fit_columns_create(rs_fit_columns **c, const rs_fit_spec *f, int rank, int size,
+                          rs_msg *msg);
 void rs_fit_columns_free(rs_fit_columns *c);
 int rs_fit_columns_eval(rs_fit_columns *c, rs_fit_eval *e, const double *p, const double *sim0,
                         const double *w, double *jac, int ld, rs_msg *msg);
+
+/* MPI ranks > 0: compute the columns k = rank, rank + size, ... for every parameter vector
+ * rank 0 sends, until it says stop. */
+int rs_fit_columns_serve(rs_fit_columns *c, rs_fit_eval *e);
 
 #endif

@@ -392,7 +392,9 @@ static int run_command(int argc, char **argv, cli_args *ap)
     const rs_fit_opts fo = {.output_path = a.out_path,
                             .history = history,
                             .progress = o.progress,
-                            .interrupt_flag = &interrupted};
+                            .interrupt_flag = &interrupted,
+                            .mpi_rank = a.mpi->rank,
+                            .mpi_size = a.mpi->size};
     status = !strcmp(a.cmd, "sweep") ? cmd_sweep(&c, &a, &sw, &o)
              : !strcmp(a.cmd, "fit") ? rs_cli_fit(&c, a.case_path, a.sets, a.nsets, &fo)
                                      : cmd_run(&c, &a, &o);
