@@ -82,6 +82,18 @@ def exact(rollsim, case, work):
         rel = abs(x / TRUE[name] - 1)
         check(f"noise-free {name} = {x:.15g} exact", rel <= 1e-8, f"relative error {rel:.2e}")
     check("noise-free residual at solver tolerance", r["norm"] <= 1e-10, f"{r['norm']:.2e}")
+    # weights (1/sigma) change the metric, not the zero of noise-free residuals
+    weighted = os.path.join(work, "weighted.csv")
+    with open(csv) as f, open(weighted, "w") as g:
+        rows = [line.rstrip("\n") for line in f if not line.startswith("#")]
+        g.write(rows[0] + ",w\n")
+        for i, row in enumerate(rows[1:]):
+            g.write(f"{row},{1 + i % 3}\n")
+    r = fit(rollsim, case, os.path.join(work, "weighted.nc"), "fit.data=" + weighted,
+            "fit.weights=w")
+    for name, x in zip(r["names"], r["fitted"]):
+        rel = abs(x / TRUE[name] - 1)
+        check(f"weighted noise-free {name} exact", rel <= 1e-8, f"relative error {rel:.2e}")
 
 
 def noisy(rollsim, case, work):

@@ -42,6 +42,7 @@ typedef struct rs_fit_spec {
   int measured_col, weight_col; /* weight_col -1: all weights 1 */
   size_t npoints;
   double *table; /* [npoints][ncols], rows in file order */
+  int *row_line; /* [npoints] line of each row in the CSV file */
 } rs_fit_spec;
 
 /* Read and check the fit: block of a case (after --set) and its CSV. Errors name

@@ -15,6 +15,7 @@
  * another (|rho| > 0.95; not identifiable together when J^T J is singular). */
 #define _POSIX_C_SOURCE 200809L
 #include <math.h>
+#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -396,16 +397,27 @@ static int invert(double *a, int n, double tol)
   return ok;
 }
 
-static void note(char *notes, size_t len, const char *fmt, const char *a, const char *b, double x)
+static void note(char *notes, size_t len, const char *fmt, ...)
+    __attribute__((format(printf, 3, 4)));
+static void note(char *notes, size_t len, const char *fmt, ...)
 {
   const size_t used = strlen(notes);
   if (used + 1 >= len) return;
   char line[512];
-  snprintf(line, sizeof line, fmt, a, b, x);
+  va_list ap;
+  va_start(ap, fmt);
+  vsnprintf(line, sizeof line, fmt, ap);
+  va_end(ap);
   snprintf(notes + used, len - used, "%s%s", used ? "\n" : "", line);
 }
 
-/* Covariance, standard errors and notes at the best point (res->fitted). */
+/* A parameter this close to a bound (fraction of the bounds' span) is "at" it: the sine
+ * transform approaches a bound only asymptotically. */
+#define AT_BOUND 1e-4
+
+/* Covariance, standard errors and notes at the best point (res->fitted). Parameters without
+ * effect (a zero Jacobian column) get NaN; the others' covariance is that of the reduced
+ * problem. */
 static int analyse(fit_run *r, rs_fit_result *res)
 {
   const rs_fit_spec *f = r->f;
@@ -413,11 +425,15 @@ static int analyse(fit_run *r, rs_fit_result *res)
   const size_t m = f->npoints;
   double *J = calloc(m * (size_t)n, sizeof *J);
   double *A = calloc((size_t)n * (size_t)n, sizeof *A);
+  double *R = calloc((size_t)n * (size_t)n, sizeof *R);
   double *scale = calloc((size_t)n, sizeof *scale);
-  if (!J || !A || !scale) {
+  int *act = calloc((size_t)n, sizeof *act);
+  if (!J || !A || !R || !scale || !act) {
     free(J);
     free(A);
+    free(R);
     free(scale);
+    free(act);
     return rs_msg_set(&r->msg, RS_ERR_INTERNAL, "out of memory");
   }
   int status =
@@ -432,73 +448,78 @@ static int analyse(fit_run *r, rs_fit_result *res)
       A[a * n + b] = s;
     }
   const double s2 = res->residual_norm * res->residual_norm / (double)(m - (size_t)n);
-  int singular = 0;
-  if (status == RS_OK) {
-    for (int k = 0; k < n; k++) {
-      const rs_fit_param *q = &f->params[k];
-      scale[k] = A[k * n + k] > 0 ? 1 / sqrt(A[k * n + k]) : 0;
-      const double x = res->fitted[k], span = q->hi - q->lo;
-      if (x - q->lo < 1e-6 * span)
-        note(res->notes, sizeof res->notes,
-             "%s is at its lower bound %s%.6g (widen the bounds "
-             "or fix it)",
-             q->key, "", q->lo);
-      else if (q->hi - x < 1e-6 * span)
-        note(res->notes, sizeof res->notes,
-             "%s is at its upper bound %s%.6g (widen the bounds "
-             "or fix it)",
-             q->key, "", q->hi);
-      /* no effect: moving it over its whole range changes the simulated values by less
-       * than 1e-9 of the data */
-      if (sqrt(A[k * n + k]) * span <= 1e-9 * data_norm)
-        note(res->notes, sizeof res->notes,
-             "%s has no effect on the simulated values (not identifiable from these data)%s%.0g",
-             q->key, "", 0.0);
+  int na = 0; /* parameters with an effect */
+  for (int k = 0; status == RS_OK && k < n; k++) {
+    const rs_fit_param *q = &f->params[k];
+    const double x = res->fitted[k], span = q->hi - q->lo;
+    if (x - q->lo < AT_BOUND * span)
+      note(res->notes, sizeof res->notes,
+           "%s is at its lower bound %g: its standard error assumes it free (widen the bounds "
+           "or fix it)",
+           q->key, q->lo);
+    else if (q->hi - x < AT_BOUND * span)
+      note(res->notes, sizeof res->notes,
+           "%s is at its upper bound %g: its standard error assumes it free (widen the bounds "
+           "or fix it)",
+           q->key, q->hi);
+    /* no effect: moving it over its whole range would change the simulated values by less
+     * than 1e-9 of the data */
+    if (sqrt(A[k * n + k]) * span <= 1e-9 * data_norm) {
+      note(res->notes, sizeof res->notes,
+           "%s has no effect on the simulated values (not identifiable from these data: fix it "
+           "or remove it)",
+           q->key);
+    } else {
+      scale[k] = 1 / sqrt(A[k * n + k]);
+      act[na++] = k;
     }
-    double *R = calloc((size_t)n * (size_t)n, sizeof *R); /* correlation of J's columns */
-    if (!R) status = rs_msg_set(&r->msg, RS_ERR_INTERNAL, "out of memory");
-    for (int a = 0; R && a < n; a++)
-      for (int b = 0; b < n; b++) R[a * n + b] = A[a * n + b] * scale[a] * scale[b];
-    double *Rinv = R ? malloc((size_t)n * (size_t)n * sizeof *Rinv) : NULL;
-    if (R && Rinv) memcpy(Rinv, R, (size_t)n * (size_t)n * sizeof *R);
-    int zero_col = 0;
-    for (int k = 0; k < n; k++) zero_col |= scale[k] == 0;
-    if (R && Rinv && !zero_col && invert(Rinv, n, 1e-10)) {
-      for (int a = 0; a < n; a++)
-        for (int b = 0; b < n; b++)
-          res->covariance[a * n + b] = s2 * Rinv[a * n + b] * scale[a] * scale[b];
-    } else if (R) {
-      singular = 1;
-      for (size_t k = 0; k < (size_t)n * (size_t)n; k++) res->covariance[k] = NAN;
-      for (int a = 0; a < n; a++)
-        for (int b = a + 1; b < n; b++)
-          if (fabs(R[a * n + b]) > 1 - 1e-8)
+  }
+  for (size_t k = 0; k < (size_t)n * (size_t)n; k++) res->covariance[k] = NAN;
+  /* R: J^T J of the active parameters scaled to unit diagonal (cosines of J's columns) */
+  for (int a = 0; a < na; a++)
+    for (int b = 0; b < na; b++)
+      R[a * na + b] = A[act[a] * n + act[b]] * scale[act[a]] * scale[act[b]];
+  double *Rinv = malloc((size_t)(na > 0 ? na * na : 1) * sizeof *Rinv);
+  if (!Rinv && status == RS_OK) status = rs_msg_set(&r->msg, RS_ERR_INTERNAL, "out of memory");
+  if (status == RS_OK && na > 0) {
+    memcpy(Rinv, R, (size_t)(na * na) * sizeof *R);
+    if (invert(Rinv, na, 1e-10)) {
+      for (int a = 0; a < na; a++)
+        for (int b = 0; b < na; b++)
+          res->covariance[act[a] * n + act[b]] =
+              s2 * Rinv[a * na + b] * scale[act[a]] * scale[act[b]];
+    } else {
+      int named = 0;
+      for (int a = 0; a < na; a++)
+        for (int b = a + 1; b < na; b++)
+          if (fabs(R[a * na + b]) > 1 - 1e-8) {
+            named = 1;
             note(res->notes, sizeof res->notes,
                  "%s and %s are not identifiable together (their effects on the data are "
                  "proportional, cosine %.10f): fix one of them",
-                 f->params[a].key, f->params[b].key, R[a * n + b]);
+                 f->params[act[a]].key, f->params[act[b]].key, R[a * na + b]);
+          }
+      if (!named)
+        note(res->notes, sizeof res->notes,
+             "J^T J is singular: the parameters are not identifiable together from these data");
     }
-    free(R);
-    free(Rinv);
-    for (int k = 0; k < n; k++)
-      res->std_error[k] = singular ? NAN : sqrt(res->covariance[k * n + k]);
-    for (int a = 0; !singular && a < n; a++)
-      for (int b = a + 1; b < n; b++) {
-        const double rho = res->covariance[a * n + b] / (res->std_error[a] * res->std_error[b]);
-        if (fabs(rho) > FIT_RHO_NOTE)
-          note(res->notes, sizeof res->notes,
-               "%s and %s are strongly correlated (rho = %+.4f): the data constrain a combination "
-               "better than each",
-               f->params[a].key, f->params[b].key, rho);
-      }
-    if (singular && !res->notes[0])
-      note(res->notes, sizeof res->notes,
-           "J^T J is singular: the parameters are not identifiable from these data%s%s%.0g", "", "",
-           0.0);
   }
+  for (int k = 0; k < n; k++) res->std_error[k] = sqrt(res->covariance[k * n + k]);
+  for (int a = 0; status == RS_OK && a < n; a++)
+    for (int b = a + 1; b < n; b++) {
+      const double rho = res->covariance[a * n + b] / (res->std_error[a] * res->std_error[b]);
+      if (fabs(rho) > FIT_RHO_NOTE)
+        note(res->notes, sizeof res->notes,
+             "%s and %s are strongly correlated (rho = %+.4f): the data constrain a combination "
+             "better than each",
+             f->params[a].key, f->params[b].key, rho);
+    }
+  free(Rinv);
   free(J);
   free(A);
+  free(R);
   free(scale);
+  free(act);
   return status;
 }
 

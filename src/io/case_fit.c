@@ -29,6 +29,7 @@ void rs_fit_free(rs_fit_spec *f)
   free(f->measured);
   free(f->weights);
   free(f->table);
+  free(f->row_line);
   memset(f, 0, sizeof *f);
 }
 
@@ -171,7 +172,14 @@ static int read_csv(rs_fit_spec *f, const char *path, rs_msg *msg)
           break;
         }
         f->table = t;
+        int *rl = realloc(f->row_line, cap * sizeof *rl);
+        if (!rl) {
+          status = rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory");
+          break;
+        }
+        f->row_line = rl;
       }
+      f->row_line[f->npoints] = lineno;
       for (int j = 0; status == RS_OK && j < n; j++) {
         char *end;
         errno = 0;
@@ -262,23 +270,21 @@ static int assign_columns(rs_fit_spec *f, const rs_case *c, rs_msg *msg)
   for (size_t i = 0; i < f->npoints; i++) {
     const double *row = f->table + i * (size_t)f->ncols;
     if (f->weight_col >= 0 && !(row[f->weight_col] > 0))
-      return rs_msg_set(msg, RS_ERR_INPUT, "%s: data row %zu: %s: a weight must be > 0, got %g",
-                        path, i + 1, f->weights, row[f->weight_col]);
+      return rs_msg_set(msg, RS_ERR_INPUT, "%s:%d: %s: a weight must be > 0, got %g", path,
+                        f->row_line[i], f->weights, row[f->weight_col]);
     if (f->kind == RS_FIT_RIG_STEP) {
       const double s = row[rig_col];
       if (!(s >= 1 && s <= (double)c->rig.nsteps && s == floor(s)))
-        return rs_msg_set(msg, RS_ERR_INPUT,
-                          "%s: data row %zu: step: expected a protocol step 1..%zu, got %g", path,
-                          i + 1, c->rig.nsteps, s);
+        return rs_msg_set(msg, RS_ERR_INPUT, "%s:%d: step: expected a protocol step 1..%zu, got %g",
+                          path, f->row_line[i], c->rig.nsteps, s);
     } else if (f->kind == RS_FIT_RIG_SLIP) {
       int found = 0;
       for (size_t k = 0; k < c->rig.nsteps; k++)
         if (c->rig.steps[k].slip_start == row[rig_col] && c->rig.steps[k].slip_end == row[rig_col])
           found++;
       if (found != 1)
-        return rs_msg_set(msg, RS_ERR_INPUT,
-                          "%s: data row %zu: twin_disc.slip: %g %s (use a column step)", path,
-                          i + 1, row[rig_col],
+        return rs_msg_set(msg, RS_ERR_INPUT, "%s:%d: twin_disc.slip: %g %s (use a column step)",
+                          path, f->row_line[i], row[rig_col],
                           found ? "is held in more than one protocol step"
                                 : "is not the slip of a held protocol step");
     }
@@ -316,7 +322,7 @@ static int check_cases(const rs_fit_spec *f, const char *case_path, const char *
     if (status == RS_OK)
       rs_case_free(&c);
     else if (f->kind == RS_FIT_STEADY)
-      rs_msg_set(msg, status, "%s: data row %zu (with the start values): %s", f->data_path, i + 1,
+      rs_msg_set(msg, status, "%s:%d: (with the start values): %s", f->data_path, f->row_line[i],
                  inner.text);
     else
       rs_msg_set(msg, status, "%s: fit: with the start values: %s", case_path, inner.text);
