@@ -10,7 +10,10 @@ endforeach()
 add_test(NAME fit_twin_disc
   COMMAND ${SYSTEM_PYTHON3} ${RS_TESTS}/check_fit.py twin-disc ${RS_BIN}
           ${RS_CASES}/fit_twin_disc.yaml ${RS_FIT_WORK}/twin_disc)
-set_tests_properties(fit_creep_noisy fit_twin_disc PROPERTIES TIMEOUT 600)
+add_test(NAME fit_twin_disc_revolutions
+  COMMAND ${SYSTEM_PYTHON3} ${RS_TESTS}/check_fit.py twin-disc-rev ${RS_BIN}
+          ${RS_CASES}/fit_twin_disc.yaml ${RS_FIT_WORK}/twin_disc_rev)
+set_tests_properties(fit_creep_noisy fit_twin_disc fit_twin_disc_revolutions PROPERTIES TIMEOUT 600)
 
 # Each tests/fit_inputs/*.yaml names on its first line (# expect: REGEX) what the
 # message must say: exit 2, nothing written.

@@ -22,7 +22,8 @@ typedef struct rs_fit_param {
 typedef enum {
   RS_FIT_STEADY = 0, /* steady points: the input columns are case keys (a sweep) */
   RS_FIT_RIG_STEP,   /* twin-disc protocol: the column `step` (1-based protocol step) */
-  RS_FIT_RIG_SLIP    /* twin-disc protocol: the column `twin_disc.slip` (a held step's slip) */
+  RS_FIT_RIG_SLIP,   /* twin-disc protocol: the column `twin_disc.slip` (a held step's slip) */
+  RS_FIT_RIG_REV     /* twin-disc protocol: the column `revolution` (1-based, of disc 1) */
 } rs_fit_kind;
 
 /* Role of a CSV column. */

@@ -124,7 +124,7 @@ static size_t rig_step_of(const rs_fit_spec *f, const rs_case *c, size_t row)
   for (int j = 0; j < f->ncols; j++)
     if (f->roles[j] == RS_FIT_COL_INPUT) col = j;
   const double v = f->table[row * (size_t)f->ncols + (size_t)col];
-  if (f->kind == RS_FIT_RIG_STEP) return (size_t)v - 1;
+  if (f->kind == RS_FIT_RIG_STEP || f->kind == RS_FIT_RIG_REV) return (size_t)v - 1;
   for (size_t k = 0; k < c->rig.nsteps; k++)
     if (c->rig.steps[k].slip_start == v && c->rig.steps[k].slip_end == v) return k;
   return 0; /* not reached: rs_fit_load checked the rows */
@@ -186,10 +186,12 @@ int rs_fit_eval_at(rs_fit_eval *e, const double *p, double *sim, rs_msg *msg)
       status = rs_run(&c, &po, &rr, msg);
       for (size_t i = 0; status == RS_OK && i < f->npoints; i++) {
         const size_t k = rig_step_of(f, &c, i);
-        sim[i] = k < rr.rig_nsteps ? rr.rig_step_mu[k] : NAN;
+        const int rev = f->kind == RS_FIT_RIG_REV;
+        sim[i] = rev ? (k < rr.rig_nrev ? rr.rig_rev_mu[k] : NAN)
+                     : (k < rr.rig_nsteps ? rr.rig_step_mu[k] : NAN);
         if (!isfinite(sim[i]))
-          status = rs_msg_set(msg, RS_ERR_SOLVER, "protocol step %zu has no traction coefficient",
-                              k + 1);
+          status = rs_msg_set(msg, RS_ERR_SOLVER, "%s %zu has no traction coefficient",
+                              rev ? "revolution" : "protocol step", k + 1);
       }
       rs_run_result_free(&rr);
       rs_case_free(&c);

@@ -11,7 +11,10 @@ static void print_summary(const rs_fit_spec *f, const rs_fit_result *r, int stat
 {
   const int n = f->nparams;
   printf("fit of %s to %zu points of %s (%s): %s\n", f->measured, f->npoints, f->data_path,
-         f->kind == RS_FIT_STEADY ? "steady points" : "twin-disc protocol steps", r->stop_reason);
+         f->kind == RS_FIT_STEADY    ? "steady points"
+         : f->kind == RS_FIT_RIG_REV ? "twin-disc revolutions"
+                                     : "twin-disc protocol steps",
+         r->stop_reason);
   printf("  %-24s %14s %14s %14s   %s\n", "parameter", "start", "fitted", "std. error", "bounds");
   for (int k = 0; k < n; k++) {
     const rs_fit_param *q = &f->params[k];

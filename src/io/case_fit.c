@@ -220,17 +220,21 @@ static int assign_columns(rs_fit_spec *f, const rs_case *c, rs_msg *msg)
     } else if (f->weights && !strcmp(name, f->weights)) {
       f->roles[j] = RS_FIT_COL_WEIGHT;
       f->weight_col = j;
-    } else if (!strcmp(name, "step") || !strcmp(name, "twin_disc.slip")) {
-      f->kind = name[0] == 's' ? RS_FIT_RIG_STEP : RS_FIT_RIG_SLIP;
+    } else if (!strcmp(name, "step") || !strcmp(name, "twin_disc.slip") ||
+               !strcmp(name, "revolution")) {
+      f->kind = name[0] == 's'   ? RS_FIT_RIG_STEP
+                : name[0] == 'r' ? RS_FIT_RIG_REV
+                                 : RS_FIT_RIG_SLIP;
       rig_col = j;
       ninputs++;
     } else {
       const char *key = input_key(name);
       if (!key)
-        return rs_msg_set(msg, RS_ERR_INPUT,
-                          "%s:1: column %s: neither a numeric case key (an input), the measured "
-                          "output (fit.measured: %s), the weights, step nor twin_disc.slip",
-                          path, name, f->measured);
+        return rs_msg_set(
+            msg, RS_ERR_INPUT,
+            "%s:1: column %s: neither a numeric case key (an input), the measured "
+            "output (fit.measured: %s), the weights, step, twin_disc.slip nor revolution",
+            path, name, f->measured);
       if (!(f->input_keys[j] = strdup(key)))
         return rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory");
       ninputs++;
@@ -242,20 +246,21 @@ static int assign_columns(rs_fit_spec *f, const rs_case *c, rs_msg *msg)
     return rs_msg_set(msg, RS_ERR_INPUT, "%s:1: no column %s (fit.weights)", path, f->weights);
   if (ninputs == 0)
     return rs_msg_set(msg, RS_ERR_INPUT,
-                      "%s:1: no input column (a swept case key, step or "
+                      "%s:1: no input column (a swept case key, step, revolution or "
                       "twin_disc.slip)",
                       path);
   if (rig_col >= 0 && ninputs > 1)
-    return rs_msg_set(msg, RS_ERR_INPUT,
-                      "%s:1: %s: a twin-disc fit has one input column (step or twin_disc.slip)",
-                      path, f->columns[rig_col]);
+    return rs_msg_set(
+        msg, RS_ERR_INPUT,
+        "%s:1: %s: a twin-disc fit has one input column (step, twin_disc.slip or revolution)", path,
+        f->columns[rig_col]);
   if (rig_col >= 0 && !c->rig.on)
     return rs_msg_set(msg, RS_ERR_INPUT, "%s:1: %s: the case has no twin_disc: block", path,
                       f->columns[rig_col]);
   if (rig_col < 0 && c->rig.on)
     return rs_msg_set(msg, RS_ERR_INPUT,
-                      "%s:1: a twin-disc case is fitted per protocol step: give a column step or "
-                      "twin_disc.slip",
+                      "%s:1: a twin-disc case is fitted per protocol step: give a column step, "
+                      "twin_disc.slip or revolution",
                       path);
   if (f->measured_col >= 0 && strcmp(f->measured, "traction_coefficient") &&
       strcmp(f->measured, "Fx"))
@@ -277,6 +282,13 @@ static int assign_columns(rs_fit_spec *f, const rs_case *c, rs_msg *msg)
       if (!(s >= 1 && s <= (double)c->rig.nsteps && s == floor(s)))
         return rs_msg_set(msg, RS_ERR_INPUT, "%s:%d: step: expected a protocol step 1..%zu, got %g",
                           path, f->row_line[i], c->rig.nsteps, s);
+    } else if (f->kind == RS_FIT_RIG_REV) {
+      const double v = row[rig_col], nrev = ceil(c->end_time / c->rig.revolution_time - 1e-9);
+      if (!(v >= 1 && v <= nrev && v == floor(v)))
+        return rs_msg_set(
+            msg, RS_ERR_INPUT,
+            "%s:%d: revolution: expected a revolution 1..%.0f of the protocol, got %g", path,
+            f->row_line[i], nrev, v);
     } else if (f->kind == RS_FIT_RIG_SLIP) {
       int found = 0;
       for (size_t k = 0; k < c->rig.nsteps; k++)
