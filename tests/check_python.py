@@ -81,6 +81,12 @@ def main():
                                for x in ("--set", f"{k}={rollsim._yaml_value(v)}")]
     same("sweep with set=", cli_file(rollsim_bin, args, os.path.join(work, "sweep.nc")),
          rollsim.sweep(creep, set=sets))
+    # a progress callback: called once per point, the same numbers
+    calls = []
+    same("sweep with progress", cli_file(rollsim_bin, args, os.path.join(work, "sweep2.nc")),
+         rollsim.sweep(creep, set=sets, progress=lambda d, t: calls.append((d, t))))
+    check("progress called once per point, in order",
+          calls == [(k, 22) for k in range(1, 23)], str(calls[:3]))
     # a dict case: the same numbers as its file (the case text differs: not compared)
     carter = [c for c in cases if c.endswith("carter2d.yaml")][0]
     with open(carter) as f:

@@ -15,6 +15,12 @@ int rs_api_run(const char *case_path, const char *const *sets, int nsets, const 
 /* rollsim sweep CASE [--set ...] -o OUT. */
 int rs_api_sweep(const char *case_path, const char *const *sets, int nsets, const char *out_path,
                  char *msg, size_t msg_len);
+/* rs_api_sweep with progress(ctx, points done, points in all) after every point (the
+ * points are solved line by line as by rollsim sweep --part 1/1: the same numbers). */
+typedef void (*rs_api_progress_fn)(void *ctx, size_t done, size_t total);
+int rs_api_sweep_progress(const char *case_path, const char *const *sets, int nsets,
+                          const char *out_path, rs_api_progress_fn progress, void *ctx, char *msg,
+                          size_t msg_len);
 /* rollsim check CASE [--set ...]: the resolved and derived values as the command prints
  * them ("key: value  # unit" lines), in *text (free with rs_api_free). */
 int rs_api_check(const char *case_path, const char *const *sets, int nsets, char **text, char *msg,

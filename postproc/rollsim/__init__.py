@@ -50,6 +50,7 @@ def library_path():
 
 
 _lib = None
+_PROGRESS = ctypes.CFUNCTYPE(None, ctypes.c_void_p, ctypes.c_size_t, ctypes.c_size_t)
 
 
 def _load():
@@ -67,6 +68,10 @@ def _load():
             f.argtypes = [ctypes.c_char_p, sets, ctypes.c_int, ctypes.c_char_p, ctypes.c_char_p,
                           ctypes.c_size_t]
             f.restype = ctypes.c_int
+        lib.rs_api_sweep_progress.argtypes = [ctypes.c_char_p, sets, ctypes.c_int,
+                                              ctypes.c_char_p, _PROGRESS, ctypes.c_void_p,
+                                              ctypes.c_char_p, ctypes.c_size_t]
+        lib.rs_api_sweep_progress.restype = ctypes.c_int
         lib.rs_api_check.argtypes = [ctypes.c_char_p, sets, ctypes.c_int,
                                      ctypes.POINTER(ctypes.c_void_p), ctypes.c_char_p,
                                      ctypes.c_size_t]
@@ -125,7 +130,7 @@ class _Case:
             shutil.rmtree(self.tmp, ignore_errors=True)
 
 
-def _call(kind, case, set):
+def _call(kind, case, set, progress=None):
     import xarray as xr
     lib = _load()
     c = _Case(case)
@@ -134,8 +139,23 @@ def _call(kind, case, set):
     try:
         arr, n = _sets(set)
         msg = ctypes.create_string_buffer(4096)
-        fn = lib.rs_api_run if kind == "run" else lib.rs_api_sweep
-        status = fn(c.path.encode(), arr, n, out.encode(), msg, len(msg))
+        if progress is not None:
+            errors = []
+
+            def relay(_ctx, done, total):
+                try:
+                    progress(done, total)
+                except Exception as e:  # noqa: BLE001 (reported after the call)
+                    errors.append(e)
+
+            cb = _PROGRESS(relay)
+            status = lib.rs_api_sweep_progress(c.path.encode(), arr, n, out.encode(), cb, None,
+                                               msg, len(msg))
+            if errors:
+                raise errors[0]
+        else:
+            fn = lib.rs_api_run if kind == "run" else lib.rs_api_sweep
+            status = fn(c.path.encode(), arr, n, out.encode(), msg, len(msg))
         if status != 0 and (status not in (3, 4) or not os.path.exists(out)):
             raise c.error(status, msg.value.decode(errors="replace"))
         with xr.open_dataset(out) as ds:
@@ -155,9 +175,10 @@ def run(case, set=None):
     return _call("run", case, set)
 
 
-def sweep(case, set=None):
-    """rollsim sweep (the case's sweep: block): the sweep file as an xarray.Dataset."""
-    return _call("sweep", case, set)
+def sweep(case, set=None, progress=None):
+    """rollsim sweep (the case's sweep: block): the sweep file as an xarray.Dataset.
+    progress(done, total), if given, is called after every point."""
+    return _call("sweep", case, set, progress)
 
 
 def _parse_value(text):

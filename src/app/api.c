@@ -10,6 +10,7 @@
 #include "rollsim/case.h"
 #include "rollsim/run.h"
 #include "rollsim/sweep.h"
+#include "app/sweep_dist.h"
 
 static int finish(int status, const rs_msg *m, char *msg, size_t len)
 {
@@ -57,6 +58,34 @@ int rs_api_sweep(const char *case_path, const char *const *sets, int nsets, cons
                          .interrupt_flag = &stop};
   rs_sweep_result res;
   status = rs_sweep_run(&sw, case_path, sets, nsets, &o, &res, &m);
+  rs_sweep_free(&sw);
+  return finish(status, &m, msg, msg_len);
+}
+
+int rs_api_sweep_progress(const char *case_path, const char *const *sets, int nsets,
+                          const char *out_path, rs_api_progress_fn progress, void *ctx, char *msg,
+                          size_t msg_len)
+{
+  rs_msg m = {{0}};
+  rs_case c;
+  int status = rs_case_load(&c, case_path, sets, nsets, &m);
+  if (status != RS_OK) return finish(status, &m, msg, msg_len);
+  const int has_sweep = c.has_sweep;
+  rs_case_free(&c);
+  if (!has_sweep) {
+    rs_msg_set(&m, RS_ERR_INPUT, "%s: the case has no sweep: block (use rollsim run)", case_path);
+    return finish(RS_ERR_INPUT, &m, msg, msg_len);
+  }
+  rs_sweep sw;
+  status = rs_sweep_load(&sw, case_path, sets, nsets, &m);
+  if (status != RS_OK) return finish(status, &m, msg, msg_len);
+  volatile sig_atomic_t stop = 0;
+  const rs_run_opts o = {.output_path = out_path,
+                         .history = "rollsim " RS_VERSION " (API: rs_api_sweep_progress)",
+                         .interrupt_flag = &stop};
+  const rs_sweep_dist d = {.progress = progress, .progress_ctx = ctx};
+  rs_sweep_result res;
+  status = rs_sweep_run_dist(&sw, case_path, sets, nsets, &o, &d, &res, &m);
   rs_sweep_free(&sw);
   return finish(status, &m, msg, msg_len);
 }

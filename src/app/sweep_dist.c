@@ -126,6 +126,9 @@ static int write_point(dist_run *r, const double *m, int rank)
   pt.rank = rank;
   const int ws = rs_sweep_output_write(r->out, p, &pt, &r->msg);
   free(regime);
+  if (r->dist->progress)
+    r->dist->progress(r->dist->progress_ctx, r->res->points_done + r->res->points_failed,
+                      r->s->npoints);
   if (r->o->progress) {
     fprintf(stderr, "\rsweep: %zu/%zu points, %zu failed, %.1f s ",
             r->res->points_done + r->res->points_failed, r->s->npoints, r->res->points_failed,

@@ -11,6 +11,9 @@
 typedef struct rs_sweep_dist {
   const rs_mpi *mpi; /* NULL or size 1: no farm */
   int part, parts;   /* --part K/N (1 <= K <= N), or 0 */
+  /* Called after each point written (points written so far, of the sweep's), or NULL. */
+  void (*progress)(void *ctx, size_t done, size_t total);
+  void *progress_ctx;
 } rs_sweep_dist;
 
 /* The sweep over MPI ranks, or one part of it. Rank 0 (or the part) writes the file;
