@@ -187,7 +187,9 @@ static int cmd_sweep(const rs_case *c, const cli_args *a, const rs_sweep *sw, co
            : rs_sweep_run(sw, a->case_path, a->sets, a->nsets, o, &sres, &msg);
   if (status != RS_OK) fprintf(stderr, "rollsim: %s: %s\n", a->case_path, msg.text);
   if (a->mpi->size > 1)
-    printf("sweep on %d MPI ranks (task farm over continuation lines)\n", a->mpi->size);
+    printf("sweep on %d MPI ranks (task farm over continuation lines; the solver statistics below "
+           "are rank 0's)\n",
+           a->mpi->size);
   if (a->parts > 0)
     printf("part %d of %d (continuation lines l with l mod %d = %d)\n", a->part, a->parts, a->parts,
            a->part - 1);
