@@ -197,6 +197,17 @@ sweep:
           f"{fy0:.2e} N, {mz0:.2e} N mm")
     check("eta < 0 gives F_y > 0 (rigid slip w_y = eta opposes p_y)",
           bool((d.Fy.values[1] > 0).all()))
+    # the sweep split in two parts and merged: the same numbers bit for bit (lines are
+    # independent), F_y, M_z and the creepages included
+    parts = [os.path.join(work, f"part{k}.nc") for k in (1, 2)]
+    for k, part in enumerate(parts, 1):
+        run(binary, ["sweep", path, "--part", f"{k}/2", "-o", part, "--quiet"])
+    merged = os.path.join(work, "merged.nc")
+    run(binary, ["merge", merged] + parts)
+    m = xr.open_dataset(merged)
+    same = all(np.array_equal(d[v].values, m[v].values)
+               for v in ("Fx", "Fy", "Mz", "lateral_creepage", "spin", "n_slip"))
+    check("sweep --part 1/2, 2/2 + merge = the whole sweep bit for bit (3D scalars)", same)
     # the point (eta, xi) = (-0.0008, -0.002), solved from rest by rollsim run
     single = os.path.join(work, "single.nc")
     run(binary, ["run", path, "-o", single, "--quiet", "--set", "rolling.creepage=-0.002",

@@ -112,6 +112,11 @@ typedef struct rs_sweep_output_spec {
   unsigned fields;
   size_t nx;
   const double *x;
+  /* Distributed sweeps (0 for a serial sweep: neither is in the file): ranks > 0 adds the
+   * per-point variable `rank` (which process computed it) and the global attribute
+   * `ranks`; parts > 0 the global attributes `part` and `parts` (rollsim sweep --part). */
+  int ranks;
+  int part, parts;
 } rs_sweep_output_spec;
 
 /* The results of one sweep point (NaN, counts -1, where the point failed). Field
@@ -124,6 +129,7 @@ typedef struct rs_sweep_point {
   int converged;
   const double *px, *pn, *slip, *upl, *ustar, *tauc;
   const signed char *regime;
+  int rank; /* the process that computed it (files with ranks > 0) */
 } rs_sweep_point;
 
 /* Create the sweep file (an existing file of that name is kept as PATH~, see

@@ -53,6 +53,8 @@ typedef struct rs_run_result {
    * rs_run_result_free. */
   size_t rig_nsteps;
   double *rig_step_mu, *rig_step_slip;
+  size_t rig_nrev;    /* revolutions of the protocol */
+  double *rig_rev_mu; /* per revolution: mean traction coefficient (NaN if not reached) */
   double rig_revolutions;
   double dx;           /* cell size, mm */
   char backup[1040];   /* an older file at the output path kept under this name, or "" */

@@ -323,6 +323,19 @@ def cmd_rig(args):
         _plots().plot_rig(rig, _title(args, run), args.output)
 
 
+def cmd_fit(args):
+    figure_format(args.output)
+    from . import fitplot
+    fit = fitplot.read_fit(args.file)
+    if fit["status"] and fit["status"] != "complete":
+        print(f"{PROG}: warning: {args.file}: status is '{fit['status']}'; the best point so far",
+              file=sys.stderr)
+    rec = Recorder()
+    fitplot.plot_fit(fit, args.title or fit["title"] or os.path.basename(args.file), args.output,
+                     rec)
+    _finish(args, rec)
+
+
 def cmd_export(args):
     with RunFile(args.file) as run:
         header, columns = extract.export_table(run, args.var)
@@ -457,6 +470,12 @@ def build_parser():
                    help="abscissa: this swept creepage key (repeatable; default: every one "
                         "swept over at least 3 values)")
     s.set_defaults(func=cmd_creep3d)
+    s = figure("fit", "rollsim fit: measured and simulated against the input, residuals below",
+               "A fit file (rollsim fit): the measured points and the simulated values at the "
+               "fitted\nparameters against the data's (last) input column, the residuals below; "
+               "the fitted\nvalues with their standard errors in the legend.")
+    s.add_argument("file", metavar="FILE")
+    s.set_defaults(func=cmd_fit)
 
     s = sub.add_parser("export", help="variables to CSV", epilog=EXPORT_EPILOG,
                        description="Write variables of a rollsim file to CSV.",

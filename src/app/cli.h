@@ -75,4 +75,12 @@ int rs_sweep_common_grid(const rs_sweep *s, const char *case_path, const char *c
                          int nsets, int *common, double **x, int *n, char *why, size_t why_len,
                          rs_msg *msg);
 
+/* ---- merge_cli.c: rollsim merge OUT.nc PART.nc... (args after "merge"); a status ---- */
+int rs_cli_merge(int argc, char **argv);
+
+/* ---- fit_cli.c: rollsim fit ---- */
+struct rs_fit_opts;
+int rs_cli_fit(const rs_case *c, const char *case_path, const char *const *sets, int nsets,
+               const struct rs_fit_opts *o);
+
 #endif

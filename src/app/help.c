@@ -69,7 +69,38 @@ static const rs_command_help commands[] = {
      "                     FILE~)\n"
      "  -q, --quiet        no progress line\n"
      "\n"
+     "  --part K/N         compute only the K-th of N interleaved shares of the sweep's\n"
+     "                     continuation lines (line l when l mod N = K - 1) into its own file\n"
+     "                     (the full sweep's shape, other points unwritten); rollsim merge\n"
+     "                     joins the parts\n"
+     "\n"
+     "Under MPI (mpirun -n N rollsim sweep ...) the continuation lines are farmed out to the\n"
+     "ranks (rank 0 computes too and writes every point as it arrives); the file has the\n"
+     "serial sweep's numbers plus the per-point variable rank and the attribute ranks.\n"
      "A point that fails is NaN in the file (counts -1, converged 0) and the exit code is 3.\n"},
+    {"fit", "fit CASE.yaml [-o FIT.nc] [--set KEY=VALUE]... [--quiet]",
+     "fit case keys to measurements (the case's fit: block), write FIT.nc",
+     "Fits the parameters of the case's fit: block (case keys with start and bounds) to the\n"
+     "measurements of its CSV (input columns: swept case keys such as rolling.creepage, or\n"
+     "a twin-disc protocol's step or twin_disc.slip; one measured column; optional\n"
+     "weights 1/sigma) by bounded Levenberg-Marquardt (MINPACK). Each evaluation solves\n"
+     "the data rows as rollsim sweep would (continuation along the last input column), or\n"
+     "the twin-disc protocol once. Prints the stop reason, fitted values with standard\n"
+     "errors, the correlation matrix and notes (a parameter at a bound, without effect,\n"
+     "correlated pairs). FIT.nc holds parameters, covariance, measured and simulated\n"
+     "values; it is rewritten whenever the fit improves, so Ctrl-C keeps the best point\n"
+     "(status \"interrupted\", exit code 4). rollsim_post.py fit FIT.nc -o fig.png plots it.\n"
+     "\n"
+     "  -o, --output FILE  the output file (default: output.file of the case; an existing\n"
+     "                     one is kept as FILE~)\n"
+     "  -q, --quiet        no progress line\n"},
+    {"merge", "merge OUT.nc PART.nc...",
+     "join the parts of a sweep (rollsim sweep --part K/N) into one file",
+     "Joins the files of rollsim sweep CASE --part K/N (K = 1..N, e.g. the tasks of a Slurm\n"
+     "job array) into OUT.nc, the file the whole sweep writes. Checks that the parts belong\n"
+     "to the same case (equal case text) and N, that each is given once and that together\n"
+     "they hold every point; otherwise exit 2 naming the files or the missing points, and\n"
+     "nothing is written.\n"},
     {"help", "help [COMMAND]", "this overview, or the help of one command",
      "Prints the overview of rollsim's commands, or the help of COMMAND (the same as\n"
      "rollsim COMMAND --help).\n"},

@@ -2,6 +2,7 @@
  *   rollsim run CASE.yaml [-o OUT.nc] [--restart OLD.nc [--append]] [--set KEY=VALUE]... [--quiet]
  *   rollsim check CASE.yaml [--set KEY=VALUE]...
  *   rollsim sweep CASE.yaml [-o OUT.nc] [--set ...]
+ *   rollsim fit CASE.yaml [-o FIT.nc] [--set ...]
  *   rollsim --help | --version
  * Exit codes: 0 success, 2 invalid input (nothing run), 3 solver failure (partial
  * results kept), 4 interrupted (partial results kept), 1 internal or output error. */
@@ -15,9 +16,12 @@
 #include <unistd.h>
 
 #include "rollsim/case.h"
+#include "rollsim/fit.h"
 #include "rollsim/run.h"
 #include "rollsim/sweep.h"
 #include "app/cli.h"
+#include "app/mpi_session.h"
+#include "app/sweep_dist.h"
 
 #ifndef RS_VERSION
 #define RS_VERSION "unknown"
@@ -65,6 +69,8 @@ typedef struct cli_args {
   const char *cmd, *case_path, *out_path, *restart_path;
   int quiet, append, nsets;
   const char **sets; /* the --set KEY=VALUE strings [nsets] (owned array) */
+  int part, parts;   /* sweep --part K/N, or 0 */
+  const rs_mpi *mpi; /* this process's MPI session (rank 0 of 1 without a launcher) */
 } cli_args;
 
 /* argv after the command: options and the case file. RS_OK, or RS_ERR_INPUT (message
@@ -109,6 +115,15 @@ static int parse_args(int argc, char **argv, cli_args *a)
         return RS_ERR_INPUT;
       }
       a->append = 1;
+    } else if (!strcmp(arg, "--part")) {
+      char tail = 0;
+      if (strcmp(a->cmd, "sweep") || ++i >= argc ||
+          sscanf(argv[i], "%d/%d%c", &a->part, &a->parts, &tail) != 2 || a->parts < 1 ||
+          a->part < 1 || a->part > a->parts) {
+        fprintf(stderr, "rollsim: --part applies to rollsim sweep and needs K/N with "
+                        "1 <= K <= N, e.g. --part 2/8\n");
+        return RS_ERR_INPUT;
+      }
     } else if (!strcmp(arg, "--quiet") || !strcmp(arg, "-q")) {
       a->quiet = 1;
     } else if (arg[0] == '-' && arg[1] != '\0') {
@@ -158,10 +173,26 @@ static int cmd_check(const rs_case *c, const cli_args *a, const rs_sweep *sw)
 static int cmd_sweep(const rs_case *c, const cli_args *a, const rs_sweep *sw, const rs_run_opts *o)
 {
   rs_msg msg = {{0}};
+  const int dist = a->parts > 0 || a->mpi->size > 1;
+  if (a->mpi->rank > 0) { /* an MPI worker: compute, print nothing */
+    const rs_sweep_dist d = {.mpi = a->mpi};
+    rs_sweep_result sres;
+    return rs_sweep_run_dist(sw, a->case_path, a->sets, a->nsets, o, &d, &sres, &msg);
+  }
   print_title(c, a->case_path);
   rs_sweep_result sres;
-  const int status = rs_sweep_run(sw, a->case_path, a->sets, a->nsets, o, &sres, &msg);
+  const rs_sweep_dist d = {.mpi = a->mpi, .part = a->part, .parts = a->parts};
+  const int status =
+      dist ? rs_sweep_run_dist(sw, a->case_path, a->sets, a->nsets, o, &d, &sres, &msg)
+           : rs_sweep_run(sw, a->case_path, a->sets, a->nsets, o, &sres, &msg);
   if (status != RS_OK) fprintf(stderr, "rollsim: %s: %s\n", a->case_path, msg.text);
+  if (a->mpi->size > 1)
+    printf("sweep on %d MPI ranks (task farm over continuation lines; the solver statistics below "
+           "are rank 0's)\n",
+           a->mpi->size);
+  if (a->parts > 0)
+    printf("part %d of %d (continuation lines l with l mod %d = %d)\n", a->part, a->parts, a->parts,
+           a->part - 1);
   printf("sweep over");
   for (int k = 0; k < sw->naxes; k++) printf(" %s (%d)", sw->axes[k].key, sw->axes[k].n);
   printf(": %zu points solved, %zu failed, Newton iterations %ld, wall time %.3f s\n",
@@ -267,6 +298,8 @@ static void history_text(int argc, char **argv, char *history, size_t size)
     len += snprintf(history + len, size - (size_t)len, " %s", argv[i]);
 }
 
+static int run_command(int argc, char **argv, cli_args *ap);
+
 /* rollsim help [CMD]: the overview or one command's help. */
 static int cmd_help(int argc, char **argv)
 {
@@ -296,6 +329,21 @@ int main(int argc, char **argv)
   }
   cli_args a = {.cmd = argv[1]};
   if (!strcmp(a.cmd, "help")) return cmd_help(argc, argv);
+  if (!strcmp(a.cmd, "merge")) return exit_code(rs_cli_merge(argc - 2, argv + 2));
+  rs_mpi mpi;
+  if (rs_mpi_start(&mpi, &argc, &argv) != 0) return 1;
+  a.mpi = &mpi;
+  const int code = run_command(argc, argv, &a);
+  rs_mpi_finish(&mpi);
+  return code;
+}
+
+/* Everything but help and merge, on every MPI rank. */
+static int run_command(int argc, char **argv, cli_args *ap)
+{
+  cli_args a = *ap;
+  if (a.mpi->rank > 0 && strcmp(a.cmd, "sweep") && strcmp(a.cmd, "fit"))
+    return 0; /* other commands run once, on rank 0 */
   if (!rs_cli_is_command(a.cmd)) {
     fprintf(stderr, "rollsim: unknown command '%s'\n", a.cmd);
     usage(stderr);
@@ -316,17 +364,18 @@ int main(int argc, char **argv)
     free(a.sets);
     return exit_code(status);
   }
-  if (c.has_sweep && strcmp(a.cmd, "run")) { /* check and sweep: the sweep block is input too */
+  if (c.has_sweep && strcmp(a.cmd, "run") &&
+      strcmp(a.cmd, "fit")) { /* check and sweep: the sweep block is input too */
     if ((status = rs_sweep_load(&sw, a.case_path, a.sets, a.nsets, &msg)) != RS_OK)
       fprintf(stderr, "%s\n", msg.text);
   } else if (!strcmp(a.cmd, "sweep")) {
     fprintf(stderr, "%s: the case has no sweep: block (use rollsim run)\n", a.case_path);
     status = RS_ERR_INPUT;
   }
-  if (status == RS_OK) {
+  if (status == RS_OK && a.mpi->rank == 0) {
     if (sw.naxes > 0)
       rs_warn_sweep(&c, &sw, stderr);
-    else
+    else if (strcmp(a.cmd, "fit"))
       rs_warn_case(&c, stderr);
   }
   if (status == RS_OK && !strcmp(a.cmd, "check")) {
@@ -342,7 +391,15 @@ int main(int argc, char **argv)
                            .cost_warning = 1,
                            .progress = !a.quiet && isatty(STDERR_FILENO),
                            .interrupt_flag = &interrupted};
-    status = !strcmp(a.cmd, "sweep") ? cmd_sweep(&c, &a, &sw, &o) : cmd_run(&c, &a, &o);
+    const rs_fit_opts fo = {.output_path = a.out_path,
+                            .history = history,
+                            .progress = o.progress,
+                            .interrupt_flag = &interrupted,
+                            .mpi_rank = a.mpi->rank,
+                            .mpi_size = a.mpi->size};
+    status = !strcmp(a.cmd, "sweep") ? cmd_sweep(&c, &a, &sw, &o)
+             : !strcmp(a.cmd, "fit") ? rs_cli_fit(&c, a.case_path, a.sets, a.nsets, &fo)
+                                     : cmd_run(&c, &a, &o);
   }
   rs_sweep_free(&sw);
   rs_case_free(&c);

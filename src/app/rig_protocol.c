@@ -63,6 +63,13 @@ int rs_rig_run_create(rs_rig_run *r, const rs_case *c, const rs_model *m, rs_run
     rs_rig_run_free(r);
     return rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory (twin-disc memory)");
   }
+  res->rig_rev_mu = malloc((r->nrev ? r->nrev : 1) * sizeof(double));
+  if (!res->rig_rev_mu) {
+    rs_rig_run_free(r);
+    return rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory (twin-disc protocol)");
+  }
+  res->rig_nrev = r->nrev;
+  for (size_t k = 0; k < r->nrev; k++) res->rig_rev_mu[k] = NAN;
   return RS_OK;
 }
 
@@ -125,6 +132,7 @@ int rs_rig_run_step(void *ctx, double t, const double *y)
                                                        r->rev_slip / (b - a), &r->msg)) != RS_OK)
         return status;
       r->res->rig_revolutions = (double)(r->rev + 1);
+      r->res->rig_rev_mu[r->rev] = r->rev_mu / (b - a);
       r->rev++;
       r->rev_mu = r->rev_slip = 0.0;
     }

@@ -33,7 +33,9 @@ void rs_run_result_free(rs_run_result *res)
 {
   free(res->rig_step_mu);
   free(res->rig_step_slip);
-  res->rig_step_mu = res->rig_step_slip = NULL;
+  free(res->rig_rev_mu);
+  res->rig_step_mu = res->rig_step_slip = res->rig_rev_mu = NULL;
+  res->rig_nrev = 0;
   res->rig_nsteps = 0;
 }
 

@@ -15,6 +15,7 @@
 #include "rollsim/sweep.h"
 #include "base/util.h"
 #include "app/cli.h"
+#include "app/sweep_lines.h"
 
 static void fill_point(rs_sweep_point *pt, const rs_diag *d)
 {
@@ -415,5 +416,69 @@ done:
   free(all);
   free(assign);
   rs_case_free(&base);
+  return status;
+}
+
+/* One continuation line in memory (app/sweep_lines.h): the points of rs_sweep_run's loop
+ * along its last axis, with the same models, warm starts and continuation. */
+int rs_sweep_line_eval(const rs_sweep_line *line, rs_msg *msg)
+{
+  const char **all = calloc((size_t)line->nsets + 1, sizeof *all);
+  if (!all) return rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory");
+  for (int i = 0; i < line->nsets; i++) all[i] = line->sets[i];
+  steady_chain chain = {0};
+  if (SUNContext_Create(NULL, &chain.ctx) != 0) {
+    free(all);
+    return rs_msg_set(msg, RS_ERR_INTERNAL, "could not create the SUNDIALS context");
+  }
+  double *y = NULL;
+  int ny = 0, status = RS_OK;
+  rs_stats sum = {0};
+  char assign[320];
+  for (size_t j = 0; j < line->n && status == RS_OK; j++) {
+    snprintf(assign, sizeof assign, "%s=%.17g", line->key, line->values[j]);
+    all[line->nsets] = assign;
+    rs_case c;
+    rs_diag d;
+    long newton = 0;
+    rs_msg point_msg = {{0}};
+    int ps = rs_case_load(&c, line->case_path, all, line->nsets + 1, &point_msg);
+    if (ps == RS_OK) {
+      if (c.mode == RS_MODE_STEADY) {
+        ps = steady_point(&c, &chain, &y, &ny, j > 0, rolling_key(line->key), line->key,
+                          line->values[j], &d, line->fields, &sum, &point_msg);
+      } else {
+        rs_run_opts po = {
+            .no_output = 1, .final_fields = line->fields, .interrupt_flag = line->interrupt_flag};
+        rs_run_result rr;
+        ps = rs_run(&c, &po, &rr, &point_msg);
+        d = rr.final;
+        newton = rr.stats.nonlin_iters;
+        rs_run_result_free(&rr);
+      }
+      rs_case_free(&c);
+    }
+    if (ps == RS_ERR_SOLVER) { /* no warm start from a failed point */
+      free(y);
+      y = NULL;
+      ny = 0;
+    }
+    if (ps == RS_OK || ps == RS_ERR_SOLVER) {
+      status = line->point_done(line->ctx, j, ps, &d, newton, point_msg.text);
+    } else {
+      status = rs_msg_set(msg, ps, "%s: %s", assign, point_msg.text);
+    }
+  }
+  if (line->stats) {
+    line->stats->nonlin_iters += sum.nonlin_iters;
+    line->stats->lin_solves += sum.lin_solves;
+    line->stats->refused += sum.refused;
+    line->stats->jac_evals += chain.jac_evals + chain.jac_now;
+  }
+  if (line->refined) *line->refined += chain.refined;
+  chain_drop(&chain);
+  SUNContext_Free(&chain.ctx);
+  free(y);
+  free(all);
   return status;
 }

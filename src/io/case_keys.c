@@ -133,6 +133,7 @@ const rs_case_key rs_case_keys[] = {
     {"output.fields", RS_KEY_FIELDS, F(c.fields), "", 0, 0, 0, NULL},
 
     {"sweep", RS_KEY_OPAQUE, 0, "", 0, 0, 0, NULL},
+    {"fit", RS_KEY_OPAQUE, 0, "", 0, 0, 0, NULL},
 };
 const size_t rs_case_nkeys = sizeof rs_case_keys / sizeof rs_case_keys[0];
 

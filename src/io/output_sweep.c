@@ -60,6 +60,7 @@ struct rs_sweep_output {
   int varid3[N_SWEEP_VARS_3D]; /* -1 in 2D */
   size_t nx;
   int field_id[RS_N_FIELDS]; /* -1: not stored */
+  int rank_id;               /* -1: not stored (serial sweeps) */
   double *nan_row;           /* nx NaN (fields of a failed point) */
   signed char *flag_row;     /* nx times -1 (regime of a failed point) */
   char backup[1040];
@@ -209,6 +210,20 @@ int rs_sweep_output_create(rs_sweep_output **outp, const rs_sweep_output_spec *s
     if (!err) err = nc_put_att_double(o->ncid, o->varid3[v], "_FillValue", NC_DOUBLE, 1, &fill);
   }
   if (!err && o->nx) err = define_fields(o, spec, dims, &x_id);
+  o->rank_id = -1;
+  if (!err && spec->ranks > 0) {
+    err = nc_def_var(o->ncid, "rank", NC_INT, spec->naxes, dims, &o->rank_id);
+    if (!err)
+      err = rs_output_put_text(o->ncid, o->rank_id, "long_name",
+                               "MPI rank of the process that computed the point");
+    if (!err) err = rs_output_put_text(o->ncid, o->rank_id, "units", "1");
+    if (!err) err = nc_put_att_int(o->ncid, o->rank_id, "valid_min", NC_INT, 1, (const int[]){0});
+    if (!err) err = nc_put_att_int(o->ncid, NC_GLOBAL, "ranks", NC_INT, 1, &spec->ranks);
+  }
+  if (!err && spec->parts > 0) {
+    err = nc_put_att_int(o->ncid, NC_GLOBAL, "part", NC_INT, 1, &spec->part);
+    if (!err) err = nc_put_att_int(o->ncid, NC_GLOBAL, "parts", NC_INT, 1, &spec->parts);
+  }
   char status_buf[RS_OUTPUT_STATUS_LEN];
   rs_output_status_text(status_buf, "running");
   if (!err) err = rs_output_put_text(o->ncid, NC_GLOBAL, "Conventions", "CF-1.10");
@@ -296,6 +311,7 @@ int rs_sweep_output_write(rs_sweep_output *o, size_t index, const rs_sweep_point
   for (int v = 0; v < N_SWEEP_VARS_3D && !err; v++)
     if (o->varid3[v] >= 0) err = nc_put_var1_double(o->ncid, o->varid3[v], start, &d3[v]);
   if (!err && o->nx) err = write_fields(o, start, pt);
+  if (!err && o->rank_id >= 0) err = nc_put_var1_int(o->ncid, o->rank_id, start, &pt->rank);
   if (!err) err = nc_sync(o->ncid);
   return err ? rs_output_nc_failure(msg, o->path, "cannot write a sweep point", err) : RS_OK;
 }

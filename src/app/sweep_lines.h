@@ -1,0 +1,42 @@
+/* Private to the drivers: one continuation line of sweep points solved in memory with
+ * the machinery of rollsim sweep (the same case assignments, models, warm starts and
+ * continuation along the last key), for fits, distributed sweeps and sweep parts. The
+ * lines of a sweep are independent (each starts from rest), so a line computed here
+ * gives the numbers of the serial sweep bit for bit. */
+#ifndef ROLLSIM_SWEEP_LINES_H
+#define ROLLSIM_SWEEP_LINES_H
+
+#include <signal.h>
+#include <stddef.h>
+
+#include "rollsim/model.h"
+#include "rollsim/run.h"
+#include "rollsim/status.h"
+
+/* Called after point j of the line: status RS_OK or RS_ERR_SOLVER (why says why), d its
+ * quantities, the line's fields buffer filled (when given and the point has the grid).
+ * Returns a status; anything but RS_OK stops the line with it. */
+typedef int (*rs_line_point_fn)(void *ctx, size_t j, int status, const rs_diag *d, long newton,
+                                const char *why);
+
+typedef struct rs_sweep_line {
+  const char *case_path;
+  const char *const *sets; /* the command's --set, then the other axes' KEY=%.17g */
+  int nsets;
+  const char *key; /* the continued (last) key */
+  const double *values;
+  size_t n;
+  rs_fields *fields; /* the profiles of each point, or NULL */
+  rs_line_point_fn point_done;
+  void *ctx;
+  volatile sig_atomic_t *interrupt_flag; /* transient points stop at it */
+  rs_stats *stats;                       /* steady solver statistics added, or NULL */
+  long *refined;                         /* continuation steps halved added, or NULL */
+} rs_sweep_line;
+
+/* Solve the points key = values[j], j = 0..n-1, in order (each warm-started from the
+ * previous one), calling point_done after each. Returns RS_OK, the callback's status, or
+ * an input/internal error's (message in msg). */
+int rs_sweep_line_eval(const rs_sweep_line *line, rs_msg *msg);
+
+#endif
