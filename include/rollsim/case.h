@@ -74,8 +74,9 @@ typedef struct rs_case {
   double shear_modulus; /* G, N/mm^2 */
   double poisson_ratio; /* nu */
 
-  /* friction: (law: coulomb is the only law) */
-  double mu;
+  /* friction: */
+  double mu;            /* coulomb; with another law mu(0), the coefficient at rest */
+  rs_friction friction; /* the law (kind from friction.law) and its parameters */
 
   /* layer: */
   double layer_thickness;     /* h3, mm */
