@@ -51,6 +51,7 @@ typedef struct rs_record {
   double elastic_energy;                             /* N mm per mm */
   const double *px, *pn, *slip, *upl, *ustar, *tauc; /* [nx] */
   const signed char *regime;                         /* [nx]: 0 E, 1 H, 2 S, 3 P */
+  const double *mu; /* [nx]: mu(|v_s|) in the contact, NaN outside (not Coulomb) */
 } rs_record;
 
 /* Create the file, define everything, write x, set status = "running". The file is

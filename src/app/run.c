@@ -22,6 +22,7 @@ typedef struct run_state {
   rs_model m;
   rs_work w;
   double *y, *yp, *slip, *tauc;
+  double *mu; /* mu(|v_s|) per cell (NaN outside the contact), velocity-dependent laws */
   signed char *regime;
   rs_output *out;
   rs_fields *final; /* copies of the last record's fields, or NULL */
@@ -43,6 +44,8 @@ static int write_record(run_state *s, double t, rs_diag *d, rs_msg *msg)
   int status = rs_model_diagnostics(&s->m, &s->w, &in, s->y, s->yp, d, s->slip, s->tauc, s->regime);
   if (status != RS_OK) return rs_msg_set(msg, status, "%s", s->w.msg.text);
   if (s->final) rs_fields_copy(s->final, s->m.grid.n, s->y, s->w.pn, s->slip, s->tauc, s->regime);
+  for (int i = 0; i < s->m.grid.n; i++) /* each cell's bound g = mu(|v_s|) p_n */
+    s->mu[i] = s->w.pn[i] > 0.0 ? s->w.law[i].g / s->w.pn[i] : NAN;
   rs_record rec = {.time = t,
                    .Fx = d->Fx,
                    .Fn = d->Fn,
@@ -61,7 +64,8 @@ static int write_record(run_state *s, double t, rs_diag *d, rs_msg *msg)
                    .upl = s->y + rs_at_upl(L, 0, 0),
                    .ustar = s->y + rs_at_ustar(L, 0),
                    .tauc = s->tauc,
-                   .regime = s->regime};
+                   .regime = s->regime,
+                   .mu = s->mu};
   return s->out ? rs_output_write(s->out, &rec, msg) : RS_OK;
 }
 
@@ -86,6 +90,7 @@ static void free_state(run_state *s)
   free(s->yp);
   free(s->slip);
   free(s->tauc);
+  free(s->mu);
   free(s->regime);
   if (s->m.grid.x) rs_model_free(&s->m);
   if (s->ctx) SUNContext_Free(&s->ctx);
@@ -251,8 +256,10 @@ int rs_run(const rs_case *c, const rs_run_opts *o, rs_run_result *res, rs_msg *m
   s.yp = calloc((size_t)neq, sizeof *s.yp);
   s.slip = calloc((size_t)n, sizeof *s.slip);
   s.tauc = calloc((size_t)n, sizeof *s.tauc);
+  s.mu = calloc((size_t)n, sizeof *s.mu);
   s.regime = calloc((size_t)n, sizeof *s.regime);
-  if (!s.y || !s.yp || !s.slip || !s.tauc || !s.regime || rs_work_create(&s.w, &s.m) != RS_OK) {
+  if (!s.y || !s.yp || !s.slip || !s.tauc || !s.mu || !s.regime ||
+      rs_work_create(&s.w, &s.m) != RS_OK) {
     free_state(&s);
     return rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory for %d cells", n);
   }
@@ -302,7 +309,8 @@ int rs_run(const rs_case *c, const rs_run_opts *o, rs_run_result *res, rs_msg *m
    * whatever output.fields asks for (twin-disc runs cannot be restarted). */
   const unsigned asked = c->has_plasticity ? c->fields : (c->fields & ~(unsigned)RS_FIELD_TAUC);
   const unsigned state = RS_FIELD_PX | RS_FIELD_UPL | RS_FIELD_USTAR;
-  const unsigned fields = c->mode == RS_MODE_TRANSIENT && !rig ? asked | state : asked;
+  const unsigned fields = (c->mode == RS_MODE_TRANSIENT && !rig ? asked | state : asked) |
+                          (rs_friction_varies(&c->friction) ? (unsigned)RS_FIELD_MU : 0u);
   rs_output_spec spec = {.path = path,
                          .title = c->title ? c->title : "",
                          .case_text = c->yaml_text ? c->yaml_text : "",
@@ -313,7 +321,7 @@ int rs_run(const rs_case *c, const rs_run_opts *o, rs_run_result *res, rs_msg *m
                          .nx = (size_t)n,
                          .x = s.m.grid.x,
                          .fields = fields,
-                         .requested_fields = asked,
+                         .requested_fields = asked | (fields & RS_FIELD_MU),
                          .rig = rig ? &rig_spec : NULL};
   if (o->no_output)
     status = RS_OK;
