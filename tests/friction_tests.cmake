@@ -1,0 +1,22 @@
+# Velocity-dependent friction end to end (issue 14): cases/falling_friction.yaml as a sweep
+# (elastic and plastic creep curves) and as one run (the mu field), checked by
+# tests/check_falling_friction.py; and a transient case with a falling law refused (exit 2).
+set(RS_FF ${CMAKE_CURRENT_BINARY_DIR}/friction_out)
+add_test(NAME friction_falling_sweep
+         COMMAND ${RS_BIN} sweep ${RS_CASES}/falling_friction.yaml -o ${RS_FF}/sweep.nc --quiet)
+add_test(NAME friction_falling_run
+         COMMAND ${RS_BIN} run ${RS_CASES}/falling_friction.yaml --set plasticity.tau_c0=1e9
+                 --set rolling.creepage=-0.004 -o ${RS_FF}/run.nc --quiet)
+set_tests_properties(friction_falling_sweep friction_falling_run PROPERTIES FIXTURES_SETUP ff_out)
+add_test(NAME friction_falling_sweep_check
+         COMMAND ${SYSTEM_PYTHON3} ${RS_TESTS}/check_falling_friction.py sweep ${RS_FF}/sweep.nc
+                 ${RS_CASES}/falling_friction.yaml)
+add_test(NAME friction_falling_run_check
+         COMMAND ${SYSTEM_PYTHON3} ${RS_TESTS}/check_falling_friction.py run ${RS_FF}/run.nc
+                 ${RS_CASES}/falling_friction.yaml)
+set_tests_properties(friction_falling_sweep_check friction_falling_run_check
+                     PROPERTIES FIXTURES_REQUIRED ff_out)
+# exit 2 (invalid input) and no file written
+add_test(NAME friction_falling_transient_refused
+         COMMAND sh -c "\"$0\" run \"$1\" --set simulation.mode=transient --set simulation.end_time=1e-4 -o \"$2\" --quiet; rc=$?; test $rc -eq 2 && test ! -e \"$2\""
+                 ${RS_BIN} ${RS_CASES}/falling_friction.yaml ${RS_FF}/refused.nc)
