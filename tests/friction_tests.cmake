@@ -20,3 +20,14 @@ set_tests_properties(friction_falling_sweep_check friction_falling_run_check
 add_test(NAME friction_falling_transient_refused
          COMMAND sh -c "\"$0\" run \"$1\" --set simulation.mode=transient --set simulation.end_time=1e-4 -o \"$2\" --quiet; rc=$?; test $rc -eq 2 && test ! -e \"$2\""
                  ${RS_BIN} ${RS_CASES}/falling_friction.yaml ${RS_FF}/refused.nc)
+
+# Post-processing: mu along x and against |v_s| over the law (rollsim_post friction), and the
+# traction plot with each cell's bound mu(|v_s|) p_n.
+add_test(NAME friction_postproc_friction
+         COMMAND ${SYSTEM_PYTHON3} ${PROJECT_SOURCE_DIR}/postproc/rollsim_post.py friction
+                 ${RS_FF}/run.nc -o ${RS_FF}/friction.png --data ${RS_FF}/friction.csv)
+add_test(NAME friction_postproc_traction
+         COMMAND ${SYSTEM_PYTHON3} ${PROJECT_SOURCE_DIR}/postproc/rollsim_post.py traction
+                 ${RS_FF}/run.nc -o ${RS_FF}/traction.png)
+set_tests_properties(friction_postproc_friction friction_postproc_traction PROPERTIES
+                     FIXTURES_REQUIRED ff_out ENVIRONMENT "MPLBACKEND=Agg;MPLCONFIGDIR=${RS_FF}/mplconfig")
