@@ -131,10 +131,12 @@ static int run_transient(run_state *s, const rs_run_opts *o, rs_run_result *res,
   long k = (long)floor(t0 / c->output_interval + 1e-9) + 1; /* first output time after t0 */
   while (status == RS_OK && k <= nrec) {
     const double t_out = k == nrec ? t_end : k * c->output_interval;
-    /* A breakpoint that falls on an output time up to rounding is that output time
-     * (else IDA would be asked to restart a rounding error away from its stop). */
-    if (fabs(bp - t_out) <= 1e-9 * c->output_interval) bp = t_out;
-    const double target = fmin(t_out, bp);
+    /* A breakpoint that falls on an output time up to rounding is that output time: IDA
+     * goes to the breakpoint itself (its stop time; asked for the output time an ulp away
+     * it failed with IDA_ILL_INPUT, 2e-5 against 100 * 2e-7) and the record there is
+     * stored at the output time. */
+    const int on_output = fabs(bp - t_out) <= 1e-9 * c->output_interval;
+    const double target = on_output ? bp : fmin(t_out, bp);
     status = rs_transient_advance(tr, target, s->y, s->yp, msg);
     if (status != RS_OK && rig && rig->msg.text[0]) rs_msg_set(msg, status, "%s", rig->msg.text);
     if (status != RS_OK) {
@@ -142,12 +144,12 @@ static int run_transient(run_state *s, const rs_run_opts *o, rs_run_result *res,
       break;
     }
     t = target;
-    if (t == t_out) {
+    if (t == t_out || on_output) {
       rs_diag d;
-      status = write_record(s, t, &d, msg);
+      status = write_record(s, t_out, &d, msg);
       if (status == RS_OK) { /* the summary describes the last record in the file */
         res->final = d;
-        res->time = t;
+        res->time = t_out;
         res->records++;
       }
       k++;
