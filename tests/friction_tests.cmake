@@ -31,3 +31,12 @@ add_test(NAME friction_postproc_traction
                  ${RS_FF}/run.nc -o ${RS_FF}/traction.png)
 set_tests_properties(friction_postproc_friction friction_postproc_traction PROPERTIES
                      FIXTURES_REQUIRED ff_out ENVIRONMENT "MPLBACKEND=Agg;MPLCONFIGDIR=${RS_FF}/mplconfig")
+
+# A steady run from rest with a falling law and work hardening (the Table-1 contact of
+# cases/meierhofer.yaml, k_rel = 0.0387, xi = -1 %): continuation from xi = 0 with halved
+# steps converges and its result passes the steady check (exit 0).
+add_test(NAME friction_falling_hardening_from_rest
+         COMMAND ${RS_BIN} run ${RS_CASES}/meierhofer.yaml --set friction.mu=null
+                 --set friction.law=exponential --set friction.mu_kinetic=0.2
+                 --set friction.mu_excess=[0.1] --set friction.half_velocity=[100]
+                 --set rolling.creepage=-0.01 -o ${RS_FF}/hardening.nc --quiet)

@@ -199,7 +199,8 @@ static void print_summary(const rs_case *c, const cli_args *a, const rs_run_resu
            rs_friction_name(c->friction.kind), c->mu,
            a->restart_path ? "the one Newton reached from the --restart state"
                            : "the one connected to rest (continuation in the creepage from 0 in "
-                             "16 steps, each started on the secant through the last two)");
+                             "steps of 1/16, halved where Newton fails, each started on the "
+                             "secant through the last two)");
   const rs_stats *st = &res->stats;
   if (c->mode == RS_MODE_TRANSIENT)
     printf("  IDA steps %ld, Newton iterations %ld, failed solves %ld, error-test fails %ld\n"

@@ -483,9 +483,8 @@ static int solve_at(rs_steady *s, double *y, rs_stats *stats, rs_msg *msg)
     s->failed = 1;
     rs_msg_set(&s->fail, RS_ERR_SOLVER,
                "steady Newton did not converge at creepage %g with friction.law: %s (a falling "
-               "friction law can make Newton cycle between active sets, notably with work "
-               "hardening; approach this creepage by continuation, e.g. a sweep from a lower "
-               "one)",
+               "friction law can make Newton cycle between active sets; approach this "
+               "creepage by continuation, e.g. a sweep from a lower one)",
                rs_model_creepage(m, &s->in, y), rs_friction_name(m->par.friction.kind));
   }
   if (status != RS_OK && !s->failed) status = pseudo_time_steps(s, y, stats);
@@ -520,12 +519,14 @@ static int solve_at(rs_steady *s, double *y, rs_stats *stats, rs_msg *msg)
   return status;
 }
 
-/* Velocity-dependent friction from rest: continuation in the creepage from 0 in
- * CONTINUATION_STEPS equal steps, each Newton started on the secant through the last two
- * solutions. A falling law can have several steady states at one creepage; this follows
- * the branch connected to xi = 0 (the one `rollsim sweep` from a low creepage follows),
- * and Newton from p = 0 at a large creepage failed (plastic Table-1 contact, xi = -1 %). */
-enum { CONTINUATION_STEPS = 16 };
+/* Velocity-dependent friction from rest: continuation in the creepage from 0 in steps of
+ * 1/CONTINUATION_STEPS of it, each Newton started on the secant through the last two
+ * solutions; a step that fails is halved (down to 1/CONTINUATION_MIN of the creepage). A
+ * falling law can have several steady states at one creepage; this follows the branch
+ * connected to xi = 0 (the one `rollsim sweep` from a low creepage follows), and Newton
+ * from p = 0 at a large creepage failed (plastic Table-1 contact, xi = -1 %); halving let
+ * the 1600-cell elastic case converge where its first step of 1/16 failed. */
+enum { CONTINUATION_STEPS = 16, CONTINUATION_MIN = 1024 };
 static int continuation(rs_steady *s, double *y, rs_stats *stats, rs_msg *msg)
 {
   const int neq = s->m->lay.neq;
@@ -536,11 +537,14 @@ static int continuation(rs_steady *s, double *y, rs_stats *stats, rs_msg *msg)
     free(cur);
     return rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory (continuation)");
   }
-  int status = RS_OK;
+  int status = RS_OK, have_prev = 0;
+  double lam_prev = 0.0, lam_cur = 0.0, dl = 1.0 / CONTINUATION_STEPS;
   rs_stats total = {0};
-  for (int k = 1; k <= CONTINUATION_STEPS && status == RS_OK; k++) {
-    s->in.creepage = xi * k / CONTINUATION_STEPS;
-    for (int i = 0; i < neq; i++) y[i] = k > 1 ? 2.0 * cur[i] - prev[i] : 0.0; /* secant */
+  while (lam_cur < 1.0) {
+    const double lam = fmin(1.0, lam_cur + dl);
+    s->in.creepage = xi * lam;
+    const double f = have_prev ? (lam - lam_cur) / (lam_cur - lam_prev) : 0.0;
+    for (int i = 0; i < neq; i++) y[i] = cur[i] + f * (cur[i] - prev[i]); /* secant */
     rs_stats st = {0};
     status = solve_at(s, y, &st, msg);
     total.steps += st.steps;
@@ -553,9 +557,19 @@ static int continuation(rs_steady *s, double *y, rs_stats *stats, rs_msg *msg)
     total.refused += st.refused;
     total.jac_evals = st.jac_evals; /* the solver's running totals */
     total.klu_analyses = st.klu_analyses;
-    memcpy(prev, cur, (size_t)neq * sizeof *prev);
-    memcpy(cur, y, (size_t)neq * sizeof *cur);
+    if (status == RS_OK) {
+      memcpy(prev, cur, (size_t)neq * sizeof *prev);
+      memcpy(cur, y, (size_t)neq * sizeof *cur);
+      lam_prev = lam_cur;
+      lam_cur = lam;
+      have_prev = 1;
+    } else if (status == RS_ERR_SOLVER && dl > 1.5 / CONTINUATION_MIN) {
+      dl *= 0.5;
+    } else {
+      break;
+    }
   }
+  if (status != RS_OK) memcpy(y, cur, (size_t)neq * sizeof *y);
   s->in.creepage = xi;
   if (stats) *stats = total;
   free(prev);
