@@ -15,7 +15,11 @@
  *    roundoff of the sums). The law is exponential with v_h = 100 mm/s: mu(300 mm/s) =
  *    0.2125, between mu_k and mu(0), so the check sees the law, not a constant.
  * 3. For every law, the summary quantity F_x/F_n in full sliding lies between mu at the
- *    largest and at the smallest slip speed of the patch. */
+ *    largest and at the smallest slip speed of the patch.
+ * 4. Uniqueness where the creep curve falls (exponential, v_h = 20 mm/s, xi = -0.8 permil,
+ *    past the curve's maximum): Newton started from three different states - the
+ *    continuation from rest, the Coulomb solution with mu = mu(0), and full sliding at
+ *    mu_k (p = mu_k p_n) - reaches the same tractions to 1e-8 p0 (the Newton tolerance). */
 #include <stdlib.h>
 
 #include "rollsim/steady.h"
@@ -136,9 +140,60 @@ static void full_sliding(rs_friction_kind kind, const char *name)
   rs_model_free(&m);
 }
 
+/* Steady Newton of model m from the start y (not from rest: no continuation). */
+static int solve_from(rs_model *m, double *y)
+{
+  rs_msg msg = {{0}};
+  rs_steady *s = NULL;
+  rs_stats st = {0};
+  const int status = rs_steady_create(&s, m, NULL, &msg) == RS_OK
+                         ? rs_steady_solve(s, 0.0, y, &st, &msg)
+                         : RS_ERR_SOLVER;
+  rs_steady_free(s);
+  if (status != RS_OK) printf("     (steady from a given start: %s)\n", msg.text);
+  return status;
+}
+
+static void uniqueness(void)
+{
+  rs_case c;
+  rs_model mc, mf;
+  double *yc = NULL, *yf = NULL;
+  ts_carter_case(&c, 100);
+  c.creepage.value = -8e-4;
+  if (solve(&c, &mc, &yc)) return; /* Coulomb, mu = 0.3 */
+  set_exponential(&c, 20.0);
+  if (solve(&c, &mf, &yf)) return; /* continuation from rest */
+  const int n = mf.grid.n, neq = mf.lay.neq;
+  double *y = calloc((size_t)neq, sizeof *y);
+  const char *names[2] = {"the Coulomb solution", "full sliding at mu_k"};
+  for (int k = 0; k < 2; k++) {
+    for (int i = 0; i < neq; i++) y[i] = k == 0 ? yc[i] : 0.0;
+    if (k == 1)
+      for (int i = 0; i < n; i++) y[i] = c.friction.mu_kinetic * mf.pn[i];
+    double worst = INFINITY;
+    if (solve_from(&mf, y) == RS_OK) {
+      worst = 0.0;
+      for (int i = 0; i < n; i++) worst = fmax(worst, fabs(y[i] - yf[i]));
+    }
+    char what[160];
+    snprintf(what, sizeof what,
+             "falling part (xi = -0.8 permil): Newton from %s = continuation from rest, "
+             "max |dp| / p0",
+             names[k]);
+    ts_check(what, worst / mf.hertz_p0, 0.0, 1e-8);
+  }
+  free(y);
+  free(yc);
+  free(yf);
+  rs_model_free(&mc);
+  rs_model_free(&mf);
+}
+
 int main(void)
 {
   coulomb_limit();
+  uniqueness();
   full_sliding(RS_FRICTION_EXPONENTIAL, "exponential");
   full_sliding(RS_FRICTION_LINEAR, "linear");
   full_sliding(RS_FRICTION_RATIONAL, "rational");
