@@ -6,7 +6,8 @@ sweep SWEEP.nc CASE.yaml
     - elastic, xi = -2 %: every contact cell slips and F_x/F_n lies between mu at the
       largest and at the smallest slip speed |v_s| = |slip| V of the patch (the law is
       evaluated here from the case's keys, not by rollsim); the curve falls: its end is
-      below its maximum by more than 5 % (mu(0) = 0.5 against mu(600 mm/s) = 0.325);
+      below its maximum by more than 5 % (mu(0) = 0.5 against mu(600 mm/s) = 0.325); the
+      stored field mu equals the law at every contact cell (1e-9);
     - plastic: every point at most the yield bound tau_c0 sum_{p_n > 0} dx / F_n (|p| <=
       tau_c0 in every contact cell) to 1e-9, and below the elastic curve beyond xi = 0.
 run RUN.nc CASE.yaml
@@ -69,6 +70,9 @@ def sweep(path, case_path):
     check("elastic, xi = %g: F_x/F_n = %.5f within mu over the patch [%.5f, %.5f]"
           % (xi[-1], tc[e, -1], mus.min(), mus.max()),
           mus.min() - 1e-9 <= abs(tc[e, -1]) <= mus.max() + 1e-9)
+    mu_field = ds["mu"][e, -1, :].filled(np.nan)
+    check("elastic, xi = %g: stored mu = law(|v_s|) in every contact cell" % xi[-1],
+          np.max(np.abs(mu_field[inside] - mus)) <= 1e-9)
     peak = np.max(np.abs(tc[e]))
     check("elastic curve falls: end %.5f < 0.95 max %.5f" % (abs(tc[e, -1]), peak),
           abs(tc[e, -1]) < 0.95 * peak)

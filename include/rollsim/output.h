@@ -118,6 +118,7 @@ typedef struct rs_sweep_point {
   int converged;
   const double *px, *pn, *slip, *upl, *ustar, *tauc;
   const signed char *regime;
+  const double *mu; /* mu(|v_s|) (velocity-dependent friction) */
 } rs_sweep_point;
 
 /* Create the sweep file (an existing file of that name is kept as PATH~, see

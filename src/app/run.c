@@ -43,9 +43,10 @@ static int write_record(run_state *s, double t, rs_diag *d, rs_msg *msg)
   rs_model_inputs_at(&s->m, t, &in);
   int status = rs_model_diagnostics(&s->m, &s->w, &in, s->y, s->yp, d, s->slip, s->tauc, s->regime);
   if (status != RS_OK) return rs_msg_set(msg, status, "%s", s->w.msg.text);
-  if (s->final) rs_fields_copy(s->final, s->m.grid.n, s->y, s->w.pn, s->slip, s->tauc, s->regime);
   for (int i = 0; i < s->m.grid.n; i++) /* each cell's bound g = mu(|v_s|) p_n */
     s->mu[i] = s->w.pn[i] > 0.0 ? s->w.law[i].g / s->w.pn[i] : NAN;
+  if (s->final)
+    rs_fields_copy(s->final, s->m.grid.n, s->y, s->w.pn, s->slip, s->tauc, s->regime, s->mu);
   rs_record rec = {.time = t,
                    .Fx = d->Fx,
                    .Fn = d->Fn,

@@ -21,7 +21,8 @@ int rs_fields_alloc(rs_fields *f, int n)
   f->ustar = malloc(m * sizeof(double));
   f->tauc = malloc(m * sizeof(double));
   f->regime = malloc(m);
-  if (!f->px || !f->pn || !f->slip || !f->upl || !f->ustar || !f->tauc || !f->regime) {
+  f->mu = malloc(m * sizeof(double));
+  if (!f->px || !f->pn || !f->slip || !f->upl || !f->ustar || !f->tauc || !f->regime || !f->mu) {
     rs_fields_free(f);
     return RS_ERR_INTERNAL;
   }
@@ -38,12 +39,13 @@ void rs_fields_free(rs_fields *f)
   free(f->ustar);
   free(f->tauc);
   free(f->regime);
+  free(f->mu);
   memset(f, 0, sizeof *f);
 }
 
 /* y = [p | upl | ustar] (rollsim/model.h). */
 void rs_fields_copy(rs_fields *f, int n, const double *y, const double *pn, const double *slip,
-                    const double *tauc, const signed char *regime)
+                    const double *tauc, const signed char *regime, const double *mu)
 {
   const size_t bytes = (size_t)n * sizeof(double);
   memcpy(f->px, y, bytes);
@@ -53,6 +55,7 @@ void rs_fields_copy(rs_fields *f, int n, const double *y, const double *pn, cons
   memcpy(f->slip, slip, bytes);
   memcpy(f->tauc, tauc, bytes);
   memcpy(f->regime, regime, (size_t)n);
+  memcpy(f->mu, mu, bytes);
 }
 
 /* The grid of the case with the extra assignment `extra` (NULL: none). */
