@@ -221,7 +221,7 @@ def case_doc(keys_tsv, doc):
     rows = {}
     for line in text.splitlines():
         cells = [c.strip() for c in re.split(r"(?<!\\)\|", line)]  # a \| inside a cell stays
-        m = re.fullmatch(r"`([a-z0-9_.]+)`", cells[1]) if len(cells) >= 5 and cells[0] == "" else None
+        m = re.fullmatch(r"`([A-Za-z0-9_.]+)`", cells[1]) if len(cells) >= 5 and cells[0] == "" else None
         if m:
             rows[m.group(1)] = (cells[2], cells[3], cells[4])
     values = {k for k, (kind, _, _) in table.items() if kind not in ("section", "opaque")}

@@ -18,3 +18,8 @@ add_test(NAME test_twin_disc
   COMMAND ${SYSTEM_PYTHON3} ${RS_TESTS}/check_twin_disc.py ${RS_BIN}
     ${RS_TESTS}/cases/twin_disc_small.yaml ${RS_TESTS}/cases/twin_disc_plain.yaml
     ${RS_HIST}/twin_disc)
+
+# A history breakpoint an ulp away from an output time (used to fail with IDA_ILL_INPUT).
+add_test(NAME test_breakpoint_on_output
+  COMMAND ${SYSTEM_PYTHON3} ${RS_TESTS}/check_breakpoint_on_output.py ${RS_BIN}
+    ${RS_CASES}/carter2d.yaml ${RS_HIST}/breakpoint_on_output.nc)

@@ -16,6 +16,8 @@ rs_unit_test(test_nvector_fast)
 target_include_directories(test_nvector_fast PRIVATE ${PROJECT_SOURCE_DIR}/src)
 # The model's J v products (Newton-Krylov) against differences of the residual.
 rs_unit_test(test_jacobian_products)
+# Velocity-dependent friction: the Coulomb limit and full sliding (verification.md 14).
+rs_unit_test(test_falling_friction)
 # grid.x_range gives the same discrete problem as grid.extent with the same edges.
 rs_unit_test(test_grid_range)
 # 3D kernels: Boussinesq-Cerruti coefficients and FFT products, elliptic Hertz and the

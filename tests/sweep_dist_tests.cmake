@@ -49,3 +49,17 @@ if(RS_MPI)
       "rm -f mpi2.nc && '${RS_MPIRUN}' --oversubscribe --allow-run-as-root -n 2 '${RS_BIN}' sweep '${RS_DIST_CASE}' -o mpi2.nc --quiet --set 'sweep.plasticity.tau_c0=[200, 350]' --set 'sweep.plasticity.k_rel=[0.6, 0.0, -0.01]' --set 'sweep.rolling.creepage={linspace: [0, -0.02, 11]}' --set 'output.fields=[px, pn, tauc, regime]' && ${RS_DIST_CHECK} same serial.nc mpi2.nc --ranks 2")
   set_tests_properties(sweep_dist_mpi2 PROPERTIES FIXTURES_REQUIRED dist_serial)
 endif()
+
+# A velocity-dependent friction law: the profiles carry the mu field, which the farm's point
+# messages and merge must carry too (cases/falling_friction.yaml, 42 points).
+set(RS_DIST_FF ${RS_CASES}/falling_friction.yaml)
+add_test(NAME sweep_dist_friction_parts
+  COMMAND ${CMAKE_COMMAND} -E chdir ${RS_DIST} sh -c
+    "rm -f ff_serial.nc ff_p1.nc ff_p2.nc ff_merged.nc && '${RS_BIN}' sweep '${RS_DIST_FF}' -o ff_serial.nc --quiet && '${RS_BIN}' sweep '${RS_DIST_FF}' --part 1/2 -o ff_p1.nc --quiet && '${RS_BIN}' sweep '${RS_DIST_FF}' --part 2/2 -o ff_p2.nc --quiet && '${RS_BIN}' merge ff_merged.nc ff_p1.nc ff_p2.nc && ${RS_DIST_CHECK} same ff_serial.nc ff_merged.nc")
+set_tests_properties(sweep_dist_friction_parts PROPERTIES FIXTURES_SETUP dist_ff)
+if(RS_MPI)
+  add_test(NAME sweep_dist_friction_mpi2
+    COMMAND ${CMAKE_COMMAND} -E chdir ${RS_DIST} sh -c
+      "rm -f ff_mpi2.nc && '${RS_MPIRUN}' --oversubscribe --allow-run-as-root -n 2 '${RS_BIN}' sweep '${RS_DIST_FF}' -o ff_mpi2.nc --quiet && ${RS_DIST_CHECK} same ff_serial.nc ff_mpi2.nc --ranks 2")
+  set_tests_properties(sweep_dist_friction_mpi2 PROPERTIES FIXTURES_REQUIRED dist_ff)
+endif()

@@ -19,7 +19,10 @@ enum {
   RS_FIELD_UPL = 1 << 3,
   RS_FIELD_USTAR = 1 << 4,
   RS_FIELD_TAUC = 1 << 5,
-  RS_FIELD_REGIME = 1 << 6
+  RS_FIELD_REGIME = 1 << 6,
+  /* mu(|v_s|) per cell: written whenever the friction law is not Coulomb (not a choice of
+   * output.fields) */
+  RS_FIELD_MU = 1 << 7
 };
 
 /* One step of a twin-disc protocol: slip held (slip_start == slip_end) or ramped. */
@@ -74,8 +77,9 @@ typedef struct rs_case {
   double shear_modulus; /* G, N/mm^2 */
   double poisson_ratio; /* nu */
 
-  /* friction: (law: coulomb is the only law) */
-  double mu;
+  /* friction: */
+  double mu;            /* coulomb; with another law mu(0), the coefficient at rest */
+  rs_friction friction; /* the law (kind from friction.law) and its parameters */
 
   /* layer: */
   double layer_thickness;     /* h3, mm */

@@ -14,20 +14,7 @@
 #ifndef ROLLSIM_CONTACT_LAW_H
 #define ROLLSIM_CONTACT_LAW_H
 
-/* Friction law: Coulomb (mu constant); velocity-dependent laws plug in here with
- * mu(|v_s|) and its derivative. */
-typedef enum { RS_FRICTION_COULOMB = 0 } rs_friction_kind;
-typedef struct rs_friction {
-  rs_friction_kind kind;
-  double mu;
-} rs_friction;
-
-/* Coefficient of friction at slip speed |v_s| (mm/s). */
-static inline double rs_friction_mu(const rs_friction *f, double slip_speed)
-{
-  (void)slip_speed;
-  return f->mu;
-}
+#include "rollsim/friction.h"
 
 /* Local plasticity: yield limit tau_c = max(tau_c_min, tau_c0 + k_tau u*). */
 typedef struct rs_plasticity {
@@ -74,8 +61,14 @@ typedef struct rs_law_in {
   double flow[RS_MAX_COMP]; /* Du_pl/Dt, mm/s */
   double dustar;            /* Dustar/Dt, mm/s */
   double ustar;             /* mm */
-  double g;                 /* traction bound mu p_n */
+  double g;                 /* traction bound mu p_n (Coulomb, or at rest) */
   double r;                 /* semismooth scaling, traction per slip velocity */
+  /* Velocity-dependent friction (NULL or Coulomb: g above is the bound). Otherwise the
+   * bound is g = mu(eta) p_n with eta the slip speed along the bound's direction
+   * (eta = -s v_s, s the sign of p - r v_s): |v_s| at a solution, but smooth where
+   * slip starts (measured: |v_s| there made Newton cycle between the branches). */
+  const rs_friction *friction;
+  double pn; /* pressure, N/mm^2 */
 } rs_law_in;
 
 /* The residual rows of a cell, their active branches, and the local generalized
@@ -85,6 +78,7 @@ typedef struct rs_law_in {
 typedef struct rs_law_out {
   double R[RS_LAW_NROW];
   unsigned char branch;
+  double g; /* the traction bound the friction row used (mu(eta) p_n, or in->g) */
   /* the yield rows fix p without involving u* (yield without hardening): the traction
    * rows then determine the plastic flow (solvers eliminate on that unknown) */
   int pins_p;

@@ -57,6 +57,7 @@ typedef struct rs_record {
   double elastic_energy;                             /* N mm per mm */
   const double *px, *pn, *slip, *upl, *ustar, *tauc; /* [nx] */
   const signed char *regime;                         /* [nx]: 0 E, 1 H, 2 S, 3 P */
+  const double *mu; /* [nx]: mu(|v_s|) in the contact, NaN outside (not Coulomb) */
 } rs_record;
 
 /* Create the file, define everything, write x, set status = "running". The file is
@@ -129,7 +130,8 @@ typedef struct rs_sweep_point {
   int converged;
   const double *px, *pn, *slip, *upl, *ustar, *tauc;
   const signed char *regime;
-  int rank; /* the process that computed it (files with ranks > 0) */
+  int rank;         /* the process that computed it (files with ranks > 0) */
+  const double *mu; /* mu(|v_s|) (velocity-dependent friction) */
 } rs_sweep_point;
 
 /* Create the sweep file (an existing file of that name is kept as PATH~, see

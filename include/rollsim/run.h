@@ -15,6 +15,7 @@ typedef struct rs_fields {
   int n;
   double *px, *pn, *slip, *upl, *ustar, *tauc;
   signed char *regime;
+  double *mu; /* mu(|v_s|) per cell, NaN outside the contact (velocity-dependent laws) */
 } rs_fields;
 
 typedef struct rs_run_opts {

@@ -135,6 +135,19 @@ def cmd_traction(args):
     _finish(args, rec)
 
 
+def cmd_friction(args):
+    figure_format(args.output)
+    rec = Recorder()
+    with RunFile(args.file) as run:
+        if run.is_sweep():
+            raise PostError(f"{run.path}: friction needs the file of rollsim run (field mu)")
+        index = extract.record_indices(run, [args.time] if args.time is not None else None)[0]
+        prof = extract.friction_profile(run, index)
+        _warn_status(run)
+        _plots().plot_friction(prof, _title(args, run), args.output, rec)
+    _finish(args, rec)
+
+
 def cmd_regimes(args):
     figure_format(args.output)
     rec = Recorder()
@@ -388,6 +401,15 @@ def build_parser():
                         "p_y and |p| are drawn too")
     sweep_options(s)
     s.set_defaults(func=cmd_traction)
+
+    s = figure("friction", "velocity-dependent friction: mu along x and mu against |v_s|",
+               "mu of every contact cell along x, and against the cell's slip speed |v_s| "
+               "over the\nlaw's curve (from the file's case attribute); needs the field mu "
+               "(friction.law not coulomb).")
+    s.add_argument("file", metavar="FILE")
+    s.add_argument("--time", type=float, metavar="T",
+                   help="time in s; picks the nearest stored record (default: the last)")
+    s.set_defaults(func=cmd_friction)
 
     s = figure("regimes", "x-t map of the regime (E/H/S/P)",
                "x-t map of the contact regime: exterior, adhesion (H), slip, plastic.")

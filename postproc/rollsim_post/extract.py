@@ -81,8 +81,74 @@ class TractionProfile:
     row: int = None
 
 
+def friction_law(case):
+    """mu(|v_s|) of the case's friction law (interfaces.md "Friction laws") as a function of
+    the slip speed in mm/s, or None for Coulomb."""
+    fr = case.get("friction") if isinstance(case, dict) else None
+    law = fr.get("law", "coulomb") if isinstance(fr, dict) else "coulomb"
+    if law in (None, "coulomb"):
+        return None
+
+    def listed(v):
+        return [float(x) for x in (v if isinstance(v, list) else [v])]
+
+    if law == "polach":
+        ms, a, b = float(fr["mu_static"]), float(fr["A"]), float(fr["B"])
+        return lambda s: ms * ((1 - a) * np.exp(-b * np.abs(s)) + a)
+    mk, ex, vh = float(fr["mu_kinetic"]), listed(fr["mu_excess"]), listed(fr["half_velocity"])
+
+    def mu(s):
+        s = np.abs(np.asarray(s, dtype=np.float64))
+        out = mk + 0 * s
+        for i, (d, v) in enumerate(zip(ex, vh)):
+            if law == "exponential":
+                out = out + d * np.exp(-np.log(2) * s / v)
+            elif law == "linear":
+                out = out + d * np.maximum(0, 1 - s / (2 * v))
+            elif i == 0:
+                out = out + d / (1 + s / v)
+            else:
+                out = out + d / (1 + (s / v) ** 2)
+        return out
+    return mu
+
+
+@dataclass
+class FrictionProfile:
+    """mu of every cell (the file's mu field) and its slip speed |v_s| at one record."""
+    index: int
+    time: float
+    x: np.ndarray
+    mu: np.ndarray
+    slip_speed: np.ndarray  # mm/s
+    law: object             # mu(|v_s|), or None
+    law_name: str
+
+
+def friction_profile(run, index):
+    if not run.has("mu"):
+        raise PostError(f"{run.path}: no field mu (written by rollsim run when friction.law is "
+                        "not coulomb)")
+    if not run.has("slip"):
+        raise PostError(f"{run.path}: no field slip (list it in output.fields)")
+    V = float(run.variable("velocity")[index])
+    slip = np.ma.filled(np.ma.asarray(run.variable("slip")[index, :], np.float64), np.nan)
+    case = run.case()
+    return FrictionProfile(
+        index=int(index), time=float(run.variable("time")[index]), x=run.values("x"),
+        mu=np.ma.filled(np.ma.asarray(run.variable("mu")[index, :], np.float64), np.nan),
+        slip_speed=np.abs(slip * V if V > 0 else slip), law=friction_law(case),
+        law_name=str(case.get("friction", {}).get("law", "coulomb")))
+
+
 def traction_profile(run, index, mu=None):
-    """The TractionProfile of record `index`; mu from the case attribute unless given."""
+    """The TractionProfile of record `index`; mu from the case attribute unless given; with a
+    velocity-dependent law (the file holds the field mu) the bound is each cell's mu p_n."""
+    if mu is None and run.has("mu"):
+        prof = traction_profile(run, index, mu=float("nan"))
+        field = np.ma.filled(np.ma.asarray(run.variable("mu")[index, :], np.float64), np.nan)
+        prof.g = np.where(prof.pn > 0, field * prof.pn, 0.0)
+        return prof
     mu = run.mu() if mu is None else float(mu)
     px = run.variable("px")[index, :]
     pn = run.variable("pn")[index, :]

@@ -88,7 +88,8 @@ def plot_traction(profiles, title, out, rec=None):
         point = {"time": p.time}
         if p.y is not None:
             point["row_y"] = p.y   # (a column "y" would clash with the plotted y)
-        rec.line(ax, k, p.x, p.g, "--", color="#0072b2", lw=1.2, series=f"g = μ p_n (μ = {p.mu:g})",
+        g_label = "g = μ(|v_s|) p_n" if np.isnan(p.mu) else f"g = μ p_n (μ = {p.mu:g})"
+        rec.line(ax, k, p.x, p.g, "--", color="#0072b2", lw=1.2, series=g_label,
                  quantity="g", point=point)
         rec.line(ax, k, p.x, -p.g, "--", color="#0072b2", lw=1.2, alpha=0.6, series="−g",
                  quantity="-g", point=point)
@@ -486,3 +487,33 @@ def plot_rig(rig, title, out):
     if title:
         fig.suptitle(title, fontsize=11)
     save(fig, out)
+
+
+def plot_friction(prof, title, out, rec=None):
+    """Velocity-dependent friction at one record: mu along x (left) and mu against the slip
+    speed |v_s| of every contact cell over the law's curve (right)."""
+    rec = rec or Recorder()
+    fig, (a1, a2) = plt.subplots(1, 2, figsize=(10.0, 3.8), layout="constrained")
+    inside = np.isfinite(prof.mu)
+    point = {"time": prof.time}
+    rec.line(a1, 0, prof.x[inside], prof.mu[inside], "-", color="black", lw=1.6, series="mu",
+             quantity="mu", point=point)
+    a1.set_xlabel("x [mm]  (rolling: material enters at the right)")
+    a1.set_ylabel("μ")
+    a1.set_title(f"μ along the contact (record {prof.index})", fontsize=10)
+    a1.grid(alpha=0.25)
+    s = prof.slip_speed[inside]
+    if prof.law is not None and s.size:
+        curve = np.linspace(0.0, max(float(np.nanmax(s)) * 1.1, 1e-9), 200)
+        rec.line(a2, 1, curve, prof.law(curve), "-", color="#0072b2", lw=1.2,
+                 series=f"law ({prof.law_name})", quantity="mu_law", point=point)
+    rec.line(a2, 1, s, prof.mu[inside], "o", color="black", ms=3, series="cells",
+             quantity="mu", point=point)
+    a2.set_xlabel("slip speed |v_s| [mm/s]")
+    a2.set_ylabel("μ")
+    a2.set_title("μ against slip speed, every contact cell", fontsize=10)
+    a2.grid(alpha=0.25)
+    a2.legend(fontsize=8)
+    fig.suptitle(title, fontsize=11)
+    fig.savefig(out)
+    plt.close(fig)

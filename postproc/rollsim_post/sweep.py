@@ -131,6 +131,8 @@ def is_elastic(run, point, pn=None):
         return True
     tau_c0 = value_at(run, point, "plasticity.tau_c0")
     mu = value_at(run, point, "friction.mu")
+    if run.has("mu"):  # velocity-dependent friction: the largest mu of the point's cells
+        mu = float(np.nanmax(field_at(run, "mu", point)))
     if pn is not None and np.size(pn):
         p_max = float(np.nanmax(pn))
     else:
@@ -175,10 +177,14 @@ class SweepProfile:
 
 
 def sweep_profile(run, point, mu=None):
-    mu = value_at(run, point, "friction.mu") if mu is None else float(mu)
     px, pn = field_at(run, "px", point), field_at(run, "pn", point)
     elastic = is_elastic(run, point, pn)
-    prof = SweepProfile(point, mu, run.values("x"), px, pn, mu * pn, elastic=elastic)
+    if mu is None and run.has("mu"):  # each cell's bound mu(|v_s|) p_n
+        g = np.where(pn > 0, field_at(run, "mu", point) * pn, 0.0)
+        prof = SweepProfile(point, float("nan"), run.values("x"), px, pn, g, elastic=elastic)
+    else:
+        mu = value_at(run, point, "friction.mu") if mu is None else float(mu)
+        prof = SweepProfile(point, mu, run.values("x"), px, pn, mu * pn, elastic=elastic)
     if run.has("tauc") and not elastic:
         prof.tauc = field_at(run, "tauc", point)
     if run.has("regime"):

@@ -25,7 +25,8 @@ void rs_model_params_from_case(const rs_case *c, rs_model_params *p)
   p->poisson_ratio = c->poisson_ratio;
   p->layer_thickness = c->layer_thickness;
   p->layer_shear_modulus = c->layer_shear_modulus;
-  p->friction = (rs_friction){.kind = RS_FRICTION_COULOMB, .mu = c->mu};
+  p->friction = c->friction;
+  p->friction.mu = c->mu;
   p->plasticity = (rs_plasticity){
       .on = c->has_plasticity, .tau_c0 = c->tau_c0, .k_tau = c->k_tau, .tau_c_min = c->tau_c_min};
   /* shallow: rs_model_create copies the histories */

@@ -66,7 +66,12 @@ int rs_cost_watch_update(rs_cost_watch *w, double t, long steps, FILE *err);
 int rs_fields_alloc(rs_fields *f, int n);
 void rs_fields_free(rs_fields *f);
 void rs_fields_copy(rs_fields *f, int n, const double *y, const double *pn, const double *slip,
-                    const double *tauc, const signed char *regime);
+                    const double *tauc, const signed char *regime, const double *mu);
+/* The profile fields a sweep of case c stores: output.fields, tau_c only with plasticity,
+ * mu with a velocity-dependent friction law; none in 3D (a 3D sweep file holds the forces
+ * and counts; a warning says so on stderr when `warn` and fields were asked for). */
+unsigned rs_sweep_profile_fields(const rs_case *c, int warn);
+
 /* Whether every point of the sweep has the grid of the base case (*common; the profiles
  * then share one x axis): the model of the base case and of each swept value (the other
  * keys at the base case's values) are compared. Common: x (malloc'ed) and n hold the

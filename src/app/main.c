@@ -224,6 +224,14 @@ static void print_summary(const rs_case *c, const cli_args *a, const rs_run_resu
            d->Mz, d->creepage, d->lateral_creepage, d->spin);
   printf("  cells E/H/S/P = %d/%d/%d/%d\n", d->count[RS_EXTERIOR], d->count[RS_ADHESION],
          d->count[RS_SLIP], d->count[RS_PLASTIC]);
+  /* A falling law can have several steady states: say which one this is. */
+  if (rs_friction_varies(&c->friction) && c->mode == RS_MODE_STEADY)
+    printf("  friction law %s (mu = %g at rest); steady branch: %s\n",
+           rs_friction_name(c->friction.kind), c->mu,
+           a->restart_path ? "the one Newton reached from the --restart state"
+                           : "the one connected to rest (continuation in the creepage from 0 in "
+                             "steps of 1/16, halved where Newton fails, each started on the "
+                             "secant through the last two)");
   const rs_stats *st = &res->stats;
   if (c->mode == RS_MODE_TRANSIENT)
     printf("  IDA steps %ld, Newton iterations %ld, failed solves %ld, error-test fails %ld\n"

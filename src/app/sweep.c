@@ -206,6 +206,8 @@ static int steady_point(const rs_case *c, steady_chain *ch, double **y, int *ny,
     memcpy(f->px, *y + rs_at_p(L, 0, 0), bytes);
     memcpy(f->upl, *y + rs_at_upl(L, 0, 0), bytes);
     memcpy(f->ustar, *y + rs_at_ustar(L, 0), bytes);
+    for (int i = 0; i < ch->m.grid.n; i++) /* each cell's bound g = mu(|v_s|) p_n */
+      f->mu[i] = ch->w.pn[i] > 0.0 ? ch->w.law[i].g / ch->w.pn[i] : NAN;
     memcpy(f->pn, ch->w.pn, bytes);
   }
   sum->nonlin_iters += stats.nonlin_iters;
@@ -246,13 +248,8 @@ int rs_sweep_run(const rs_sweep *s, const char *case_path, const char *const *se
   }
   for (int i = 0; i < nsets; i++) all[i] = sets[i];
   /* Profiles (output.fields) when every point has the base case's grid. */
-  const unsigned fields =
-      base.has_plasticity ? base.fields : base.fields & ~(unsigned)RS_FIELD_TAUC;
-  if (fields && base.dimension == 3) {
-    fprintf(stderr, "rollsim sweep: warning: output.fields not stored: a 3D sweep file holds "
-                    "the forces and counts of every point; rollsim run gives a point's fields "
-                    "(output.fields: [] silences this)\n");
-  } else if (fields) {
+  const unsigned fields = rs_sweep_profile_fields(&base, 1);
+  if (fields) {
     char why[512];
     int common = 0;
     status = rs_sweep_common_grid(s, case_path, sets, nsets, &common, &grid_x, &grid_n, why,
@@ -357,7 +354,8 @@ int rs_sweep_run(const rs_sweep *s, const char *case_path, const char *const *se
                               .upl = buf.upl,
                               .ustar = buf.ustar,
                               .tauc = buf.tauc,
-                              .regime = buf.regime};
+                              .regime = buf.regime,
+                              .mu = buf.mu};
       res->points_done++;
     } else if (ps == RS_ERR_SOLVER) {
       pt.Fx = pt.Fn = pt.creepage = pt.velocity = NAN;

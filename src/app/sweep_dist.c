@@ -80,6 +80,7 @@ static void pack(dist_run *r, size_t line, size_t j, int status, const rs_diag *
                              r->buf.upl, r->buf.ustar, r->buf.tauc};
     for (int f = 0; f < 6; f++) memcpy(m + PT_HEAD + (size_t)f * r->nx, rows[f], r->nx * sizeof *m);
     for (size_t i = 0; i < r->nx; i++) m[PT_HEAD + 6 * r->nx + i] = r->buf.regime[i];
+    memcpy(m + PT_HEAD + 7 * r->nx, r->buf.mu, r->nx * sizeof *m); /* mu(|v_s|) per cell */
   }
 }
 
@@ -116,6 +117,7 @@ static int write_point(dist_run *r, const double *m, int rank)
       pt.upl = f + 3 * r->nx;
       pt.ustar = f + 4 * r->nx;
       pt.tauc = f + 5 * r->nx;
+      pt.mu = f + 7 * r->nx;
       regime = malloc(r->nx);
       if (!regime) return rs_msg_set(&r->msg, RS_ERR_INTERNAL, "out of memory");
       for (size_t i = 0; i < r->nx; i++) regime[i] = (signed char)f[6 * r->nx + i];
@@ -299,8 +301,7 @@ int rs_sweep_run_dist(const rs_sweep *s, const char *case_path, const char *cons
   }
   for (int i = 0; i < nsets; i++) r.all[i] = sets[i];
   /* Profiles (output.fields) as rs_sweep_run stores them. */
-  const unsigned fields =
-      base.has_plasticity ? base.fields : base.fields & ~(unsigned)RS_FIELD_TAUC;
+  const unsigned fields = rs_sweep_profile_fields(&base, rank == 0);
   if (fields) {
     char why[512];
     int common = 0;
@@ -319,7 +320,7 @@ int rs_sweep_run_dist(const rs_sweep *s, const char *case_path, const char *cons
   }
   r.with_fields = grid_x != NULL;
   r.nx = r.with_fields ? (size_t)grid_n : 0;
-  r.msglen = PT_HEAD + 7 * (int)r.nx;
+  r.msglen = PT_HEAD + 8 * (int)r.nx;
   r.msgbuf = calloc((size_t)r.msglen, sizeof *r.msgbuf);
   if (!r.msgbuf) {
     status = rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory");

@@ -21,7 +21,8 @@ int rs_fields_alloc(rs_fields *f, int n)
   f->ustar = malloc(m * sizeof(double));
   f->tauc = malloc(m * sizeof(double));
   f->regime = malloc(m);
-  if (!f->px || !f->pn || !f->slip || !f->upl || !f->ustar || !f->tauc || !f->regime) {
+  f->mu = malloc(m * sizeof(double));
+  if (!f->px || !f->pn || !f->slip || !f->upl || !f->ustar || !f->tauc || !f->regime || !f->mu) {
     rs_fields_free(f);
     return RS_ERR_INTERNAL;
   }
@@ -38,12 +39,13 @@ void rs_fields_free(rs_fields *f)
   free(f->ustar);
   free(f->tauc);
   free(f->regime);
+  free(f->mu);
   memset(f, 0, sizeof *f);
 }
 
 /* y = [p | upl | ustar] (rollsim/model.h). */
 void rs_fields_copy(rs_fields *f, int n, const double *y, const double *pn, const double *slip,
-                    const double *tauc, const signed char *regime)
+                    const double *tauc, const signed char *regime, const double *mu)
 {
   const size_t bytes = (size_t)n * sizeof(double);
   memcpy(f->px, y, bytes);
@@ -53,6 +55,22 @@ void rs_fields_copy(rs_fields *f, int n, const double *y, const double *pn, cons
   memcpy(f->slip, slip, bytes);
   memcpy(f->tauc, tauc, bytes);
   memcpy(f->regime, regime, (size_t)n);
+  memcpy(f->mu, mu, bytes);
+}
+
+unsigned rs_sweep_profile_fields(const rs_case *c, int warn)
+{
+  const unsigned fields =
+      (c->has_plasticity ? c->fields : c->fields & ~(unsigned)RS_FIELD_TAUC) |
+      (c->fields && rs_friction_varies(&c->friction) ? (unsigned)RS_FIELD_MU : 0u);
+  if (fields && c->dimension == 3) {
+    if (warn)
+      fprintf(stderr, "rollsim sweep: warning: output.fields not stored: a 3D sweep file holds "
+                      "the forces and counts of every point; rollsim run gives a point's fields "
+                      "(output.fields: [] silences this)\n");
+    return 0;
+  }
+  return fields;
 }
 
 /* The grid of the case with the extra assignment `extra` (NULL: none). */

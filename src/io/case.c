@@ -450,6 +450,74 @@ static char *default_output_file(const char *path)
   return file;
 }
 
+/* The friction law (interfaces.md "Friction laws"): each law's own keys, none of another
+ * law's; lists of one or two terms of equal length; a positive coefficient at rest. Stored
+ * in c->friction; c->mu becomes mu(0) for the velocity-dependent laws (the coefficient at
+ * rest: warnings, the summary's F_x/(mu F_n)). */
+static int resolve_friction(const resolver *r, rs_case_input *in)
+{
+  rs_case *c = &in->c;
+  rs_friction *f = &c->friction;
+  static const char *const keys[] = {
+      "friction.mu",        "friction.mu_kinetic", "friction.mu_excess", "friction.half_velocity",
+      "friction.mu_static", "friction.A",          "friction.B"};
+  /* owner[k]: bit per law (coulomb 1, linear 2, exponential 4, rational 8, polach 16) */
+  static const unsigned owner[] = {1, 14, 14, 14, 16, 16, 16};
+  const char *law = rs_friction_name(f->kind);
+  const yaml_node_t *law_node = given(r, "friction.law");
+  for (int k = 0; k < 7; k++) {
+    const yaml_node_t *n = given(r, keys[k]);
+    if (n && !(owner[k] & (1u << f->kind)))
+      return rs_case_error(r->d, n, keys[k],
+                           "belongs to %s, not to friction.law: %s (remove it, or set it to null "
+                           "when switching the law with --set)",
+                           owner[k] == 1    ? "the Coulomb law"
+                           : owner[k] == 16 ? "the Polach law"
+                                            : "the linear, exponential and rational laws",
+                           law);
+    if (!n && (owner[k] & (1u << f->kind)) && f->kind != RS_FRICTION_COULOMB)
+      return rs_case_error(r->d, law_node, keys[k], "is required by friction.law: %s", law);
+  }
+  if (f->kind == RS_FRICTION_COULOMB) return RS_OK;
+  if (f->kind != RS_FRICTION_POLACH) {
+    if (in->mu_excess.n != in->half_velocity.n)
+      return rs_case_error(r->d, given(r, "friction.half_velocity"), "friction.half_velocity",
+                           "has %d value%s but friction.mu_excess has %d: one half velocity per "
+                           "term",
+                           in->half_velocity.n, in->half_velocity.n == 1 ? "" : "s",
+                           in->mu_excess.n);
+    f->terms = in->mu_excess.n;
+    for (int i = 0; i < f->terms; i++) {
+      f->mu_excess[i] = in->mu_excess.v[i];
+      f->half_velocity[i] = in->half_velocity.v[i];
+    }
+  }
+  const double mu0 = rs_friction_mu(f, 0.0);
+  if (!(mu0 > 0.0))
+    return rs_case_error(r->d, law_node, "friction.law",
+                         "%s gives mu = %g at rest: the coefficient of friction must be > 0", law,
+                         mu0);
+  if (c->dimension == 3)
+    return rs_case_error(r->d, law_node, "friction.law",
+                         "%s: velocity-dependent friction is implemented for 2D line contact "
+                         "only (contact.dimension: 2); 3D has the Coulomb law",
+                         law);
+  if (c->mode == RS_MODE_TRANSIENT)
+    return rs_case_error(
+        r->d, law_node, "friction.law",
+        "%s needs simulation.mode: steady. A falling friction law without friction memory makes "
+        "the transient ill-posed (the rate of a slipping traction grows without bound: the time "
+        "step collapses); friction memory (friction.memory_distance), which makes it well-posed, "
+        "is not implemented yet",
+        law);
+  if (given(r, "rolling.tangential_force"))
+    return rs_case_error(r->d, given(r, "rolling.tangential_force"), "rolling.tangential_force",
+                         "is not available with friction.law: %s (prescribe rolling.creepage)",
+                         law);
+  c->mu = mu0;
+  return RS_OK;
+}
+
 static int resolve(const rs_case_doc *d, rs_case_input *in, const yaml_node_t **where)
 {
   resolver r = {d, where};
@@ -471,7 +539,8 @@ static int resolve(const rs_case_doc *d, rs_case_input *in, const yaml_node_t **
                              ? "must be > 0 N/mm, got %g"
                              : "must stay > 0 N/mm over the run, reaches %g N/mm",
                          rs_history_min(&c->normal_load, 0.0, c->end_time));
-  if ((status = resolve_force(&r, c)) != RS_OK || (status = resolve_grid(&r, c)) != RS_OK)
+  if ((status = resolve_friction(&r, in)) != RS_OK || (status = resolve_force(&r, c)) != RS_OK ||
+      (status = resolve_grid(&r, c)) != RS_OK)
     return status;
   if (c->mode == RS_MODE_STEADY && !(rs_history_min(&c->velocity, 0.0, c->end_time) > 0))
     return rs_case_error(d, given(&r, "rolling.velocity"), "rolling.velocity",
@@ -590,16 +659,31 @@ static int steady_skips(const char *path)
   return 0;
 }
 
+/* Whether a friction.* key belongs to the law. */
+static int friction_key_used(const char *path, rs_friction_kind kind)
+{
+  if (!strcmp(path, "friction.mu")) return 1; /* printed as mu at rest otherwise */
+  const int polach = kind == RS_FRICTION_POLACH, coulomb = kind == RS_FRICTION_COULOMB;
+  if (!strcmp(path, "friction.mu_static") || !strcmp(path, "friction.A") ||
+      !strcmp(path, "friction.B"))
+    return polach;
+  return !polach && !coulomb; /* mu_kinetic, mu_excess, half_velocity */
+}
+
 void rs_case_print(const rs_case *c, FILE *out)
 {
   const int three = c->dimension == 3;
-  rs_case_input in = {.c = *c,
-                      .k_rel = c->k_tau / (c->shear_modulus + c->k_tau),
-                      .radius = {three ? 2 : 1, {c->radius, c->radius_y}},
-                      .curvature = {2, {0.5 / c->radius, three ? 0.5 / c->radius_y : 0.0}},
-                      .cells = {three ? 2 : 1, {c->cells, c->cells_y}},
-                      .extent = {three ? 2 : 1, {c->extent, c->extent_y}},
-                      .force_n = three ? 2 : 1};
+  rs_case_input in = {
+      .c = *c,
+      .k_rel = c->k_tau / (c->shear_modulus + c->k_tau),
+      .radius = {three ? 2 : 1, {c->radius, c->radius_y}},
+      .curvature = {2, {0.5 / c->radius, three ? 0.5 / c->radius_y : 0.0}},
+      .cells = {three ? 2 : 1, {c->cells, c->cells_y}},
+      .extent = {three ? 2 : 1, {c->extent, c->extent_y}},
+      .force_n = three ? 2 : 1,
+      .mu_excess = {c->friction.terms, {c->friction.mu_excess[0], c->friction.mu_excess[1]}},
+      .half_velocity = {c->friction.terms,
+                        {c->friction.half_velocity[0], c->friction.half_velocity[1]}}};
   char num[32];
   for (size_t i = 0; i < rs_case_nkeys; i++) {
     const rs_case_key *k = &rs_case_keys[i];
@@ -675,6 +759,17 @@ void rs_case_print(const rs_case *c, FILE *out)
                 rs_case_fmt(c->x_range[1], hi, sizeof hi));
       else
         fprintf(out, "%s: null  # mm (not given: grid.extent)\n", k->path);
+      continue;
+    }
+    if (!strncmp(k->path, "friction.", 9) && strcmp(k->path, "friction.law") &&
+        !friction_key_used(k->path, c->friction.kind)) {
+      fprintf(out, "%s: null  # not used by friction.law: %s\n", k->path,
+              rs_friction_name(c->friction.kind));
+      continue;
+    }
+    if (!strcmp(k->path, "friction.mu") && c->friction.kind != RS_FRICTION_COULOMB) {
+      fprintf(out, "%s: null  # mu at rest = %s (from the law)\n", k->path,
+              rs_case_fmt(c->mu, num, sizeof num));
       continue;
     }
     if (!strcmp(k->path, "grid.extent") && c->grid_from_range) {

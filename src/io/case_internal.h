@@ -103,6 +103,7 @@ typedef struct rs_case_input {
   rs_case c;
   double k_rel;
   rs_case_vec radius, curvature, cells, extent;
+  rs_case_vec mu_excess, half_velocity; /* friction: one or two terms */
   int force_n; /* rolling.tangential_force: 1 history, or 2 ([Fx, Fy], 3D) */
 } rs_case_input;
 

@@ -10,14 +10,16 @@
 
 _Static_assert(sizeof(rs_mode) == sizeof(int) && sizeof(rs_scaling) == sizeof(int) &&
                    sizeof(rs_normal_solution) == sizeof(int) &&
-                   sizeof(rs_initial_state) == sizeof(int),
+                   sizeof(rs_initial_state) == sizeof(int) &&
+                   sizeof(rs_friction_kind) == sizeof(int),
                "choice keys are stored through int *");
 
 static const char *const normal_solution_names[] = {"discrete", "hertz", NULL};
 static const char *const mode_names[] = {"transient", "steady", NULL};
 static const char *const initial_state_names[] = {"rest", "steady", NULL};
 static const char *const scaling_names[] = {"auto", "difference", "self", NULL};
-static const char *const law_names[] = {"coulomb", NULL};
+static const char *const law_names[] = {"coulomb",  "linear", "exponential",
+                                        "rational", "polach", NULL};
 const char *const rs_case_field_names[] = {"px",    "pn",   "slip",   "upl",
                                            "ustar", "tauc", "regime", NULL};
 
@@ -53,8 +55,20 @@ const rs_case_key rs_case_keys[] = {
      RS_KEY_LO_OPEN | RS_KEY_HI_OPEN, NULL},
 
     {"friction", RS_KEY_SECTION, 0, "", 0, 0, 0, NULL},
-    {"friction.law", RS_KEY_CHOICE, RS_KEY_NO_FIELD, "", 0, 0, 0, law_names},
-    {"friction.mu", RS_KEY_NUMBER, F(c.mu), "", 0, 1000, RS_KEY_LO_OPEN | RS_KEY_HI_ABSURD, NULL},
+    {"friction.law", RS_KEY_CHOICE, F(c.friction.kind), "", 0, 0, RS_KEY_NULLABLE, law_names},
+    {"friction.mu", RS_KEY_NUMBER, F(c.mu), "", 0, 1000,
+     RS_KEY_LO_OPEN | RS_KEY_HI_ABSURD | RS_KEY_NULLABLE, NULL},
+    {"friction.mu_kinetic", RS_KEY_NUMBER, F(c.friction.mu_kinetic), "", 0, 10,
+     RS_KEY_HI_ABSURD | RS_KEY_NULLABLE, NULL},
+    {"friction.mu_excess", RS_KEY_VECTOR, F(mu_excess), "", 0, 10,
+     RS_KEY_HI_ABSURD | RS_KEY_NULLABLE, NULL},
+    {"friction.half_velocity", RS_KEY_VECTOR, F(half_velocity), "mm/s", 0, 1e12,
+     RS_KEY_LO_OPEN | RS_KEY_HI_ABSURD | RS_KEY_NULLABLE, NULL},
+    {"friction.mu_static", RS_KEY_NUMBER, F(c.friction.mu_static), "", 0, 10,
+     RS_KEY_LO_OPEN | RS_KEY_HI_ABSURD | RS_KEY_NULLABLE, NULL},
+    {"friction.A", RS_KEY_NUMBER, F(c.friction.polach_a), "", 0, 1, RS_KEY_NULLABLE, NULL},
+    {"friction.B", RS_KEY_NUMBER, F(c.friction.polach_b), "s/mm", 0, 1e6,
+     RS_KEY_HI_ABSURD | RS_KEY_NULLABLE, NULL},
 
     {"layer", RS_KEY_SECTION, 0, "", 0, 0, 0, NULL},
     {"layer.thickness", RS_KEY_NUMBER, F(c.layer_thickness), "mm", 0, 1e9, RS_KEY_HI_ABSURD, NULL},

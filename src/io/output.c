@@ -61,6 +61,9 @@ const rs_field_var rs_field_vars[RS_N_FIELDS] = {
     {RS_FIELD_USTAR, "ustar", "mm", "accumulated plastic deformation", offsetof(rs_record, ustar)},
     {RS_FIELD_TAUC, "tauc", "N/mm2", "current yield limit", offsetof(rs_record, tauc)},
     {RS_FIELD_REGIME, "regime", "1", "contact regime of the cell", 0},
+    {RS_FIELD_MU, "mu", "1",
+     "coefficient of friction mu(|v_s|) of the cell (NaN outside the contact)",
+     offsetof(rs_record, mu)},
 };
 
 /* Scalars per output time (model.md §7). Units depend on the dimension: per unit width

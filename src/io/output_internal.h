@@ -19,7 +19,7 @@ typedef struct rs_field_var {
   const char *long_name;
   size_t member; /* offsetof(rs_record, array), for the double fields */
 } rs_field_var;
-#define RS_N_FIELDS     7
+#define RS_N_FIELDS     8
 #define RS_REGIME_FIELD 6
 extern const rs_field_var rs_field_vars[RS_N_FIELDS];
 

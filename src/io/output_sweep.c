@@ -264,7 +264,9 @@ static int write_fields(rs_sweep_output *o, const size_t *start, const rs_sweep_
   }
   fstart[o->naxes] = 0;
   fcount[o->naxes] = o->nx;
-  const double *rows[RS_N_FIELDS - 1] = {pt->px, pt->pn, pt->slip, pt->upl, pt->ustar, pt->tauc};
+  /* in the order of rs_field_vars (the regime's slot unused) */
+  const double *rows[RS_N_FIELDS] = {pt->px,    pt->pn,   pt->slip, pt->upl,
+                                     pt->ustar, pt->tauc, NULL,     pt->mu};
   int err = 0;
   for (int f = 0; f < RS_N_FIELDS && !err; f++) {
     if (o->field_id[f] < 0) continue;

@@ -24,9 +24,12 @@ typedef struct part_file {
 static const char *const scalar_names[] = {
     "Fx",     "Fn",        "creepage",         "velocity",      "n_exterior",     "n_adhesion",
     "n_slip", "n_plastic", "frictional_power", "plastic_power", "elastic_energy", "converged"};
-static const char *const field_names[] = {"px", "pn", "slip", "upl", "ustar", "tauc", "regime"};
-static const unsigned field_bits[] = {RS_FIELD_PX,    RS_FIELD_PN,   RS_FIELD_SLIP,  RS_FIELD_UPL,
-                                      RS_FIELD_USTAR, RS_FIELD_TAUC, RS_FIELD_REGIME};
+/* regime (index 6) is bytes; mu (7) only with a velocity-dependent friction law */
+static const char *const field_names[] = {"px",    "pn",   "slip",   "upl",
+                                          "ustar", "tauc", "regime", "mu"};
+static const unsigned field_bits[] = {RS_FIELD_PX,    RS_FIELD_PN,   RS_FIELD_SLIP,   RS_FIELD_UPL,
+                                      RS_FIELD_USTAR, RS_FIELD_TAUC, RS_FIELD_REGIME, RS_FIELD_MU};
+#define N_MERGE_FIELDS 8
 
 static int open_part(part_file *p, rs_msg *msg)
 {
@@ -100,7 +103,7 @@ int rs_sweep_merge(const char *out_path, const char *const *paths, int nparts, c
     if (status == RS_OK) keys[a][klen] = '\0';
     key_ptrs[a] = keys[a];
   }
-  for (int f = 0; status == RS_OK && f < 7; f++) {
+  for (int f = 0; status == RS_OK && f < N_MERGE_FIELDS; f++) {
     int id;
     if (nc_inq_varid(ncid, field_names[f], &id) == NC_NOERR) fields |= field_bits[f];
   }
@@ -184,7 +187,7 @@ int rs_sweep_merge(const char *out_path, const char *const *paths, int nparts, c
     if (status == RS_OK && rs_sweep_output_backup(out))
       snprintf(res->backup, sizeof res->backup, "%s", rs_sweep_output_backup(out));
   }
-  double *rows = status == RS_OK && nx ? malloc(6 * nx * sizeof *rows) : NULL;
+  double *rows = status == RS_OK && nx ? malloc(N_MERGE_FIELDS * nx * sizeof *rows) : NULL;
   signed char *regime = status == RS_OK && nx ? malloc(nx) : NULL;
   if (status == RS_OK && nx && (!rows || !regime))
     status = rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory");
@@ -218,8 +221,9 @@ int rs_sweep_merge(const char *out_path, const char *const *paths, int nparts, c
                          .elastic_energy = d[10],
                          .converged = (int)d[11]};
     if (!err && fields && pt.converged) {
-      const double **dst[6] = {&pt.px, &pt.pn, &pt.slip, &pt.upl, &pt.ustar, &pt.tauc};
-      for (int f = 0; f < 7 && !err; f++) {
+      const double **dst[N_MERGE_FIELDS] = {&pt.px,    &pt.pn,   &pt.slip, &pt.upl,
+                                            &pt.ustar, &pt.tauc, NULL,     &pt.mu};
+      for (int f = 0; f < N_MERGE_FIELDS && !err; f++) {
         int vid;
         if (!(fields & field_bits[f])) continue;
         err = nc_inq_varid(id, field_names[f], &vid);

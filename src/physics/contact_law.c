@@ -48,7 +48,8 @@ void rs_contact_law(const rs_plasticity *pl, const rs_law_in *in, int jac, rs_la
   const int Rf = rs_law_row_f(0), Rpl = rs_law_row_pl(nc, 0), Rs = rs_law_row_star(nc);
   const int P = rs_law_var_p(0), VS = rs_law_var_vs(nc, 0), FL = rs_law_var_flow(nc, 0);
   const int DUS = rs_law_var_dustar(nc), US = rs_law_var_ustar(nc);
-  const double p = in->p[0], vs = in->vs[0], flow = in->flow[0], r = in->r, g = in->g;
+  const double p = in->p[0], vs = in->vs[0], flow = in->flow[0], r = in->r;
+  double g = in->g, dg = 0.0; /* the bound and d g / d eta */
   const double tauc = rs_yield_limit(pl, in->ustar);
   unsigned char br = 0;
   int slip = 0, yield = 0;
@@ -67,6 +68,12 @@ void rs_contact_law(const rs_plasticity *pl, const rs_law_in *in, int jac, rs_la
      * agrees with the plain projections, so F stays continuous there. */
     arg_f = p - r * vs;
     arg_pl = p + r * flow;
+    if (in->friction && rs_friction_varies(in->friction)) {
+      /* g = mu(eta) p_n, eta = -s v_s: the slip speed along the bound's direction s */
+      const double eta = -sign_of(arg_f) * vs;
+      g = rs_friction_eval(in->friction, eta, &dg) * in->pn;
+      dg *= in->pn;
+    }
     slip = fabs(arg_f) > g;
     yield = fabs(arg_pl) > tauc;
     if (slip && yield && !(rs_yield_slope(pl, in->ustar) > 0.0 && g > pl->tau_c0)) {
@@ -88,15 +95,20 @@ void rs_contact_law(const rs_plasticity *pl, const rs_law_in *in, int jac, rs_la
   }
   out->R[Rs] = r * (in->dustar - fabs(flow));
   out->branch = br;
+  out->g = g;
   out->pins_p = 0;
   if (!jac) return;
 
   memset(out->present, 0, sizeof out->present);
-  /* Friction row: 1 on p at the bound or outside the contact, r on v_s otherwise. */
+  /* Friction row: 1 on p at the bound or outside the contact, r on v_s otherwise. At a
+   * velocity-dependent bound, R_f = p - s g(eta) with eta = -s v_s also has
+   * d R_f / d v_s = s^2 g'(eta) = g'(eta) (model.md §11: dense through Du_el/Dt). */
   if (br & (RS_BRANCH_EXTERIOR | RS_BRANCH_SLIP))
     put(out, Rf, P, 1.0);
   else
     put(out, Rf, VS, r);
+  if ((br & RS_BRANCH_SLIP) && in->friction && rs_friction_varies(in->friction))
+    put(out, Rf, VS, dg);
   /* Plasticity row: p - tau_c(u*) sign at the yield limit (the u* term kept when it is
    * zero: the pattern follows the branches), r Du_pl/Dt outside, -r Du_pl/Dt inside. */
   if (br & RS_BRANCH_YIELD) {
@@ -153,6 +165,7 @@ static void disk_law(const rs_plasticity *pl, const rs_law_in *in, int jac, rs_l
   }
   out->R[rs_law_row_star(NC)] = r * (in->dustar - mnorm);
   out->branch = br;
+  out->g = g;
   out->pins_p = 0;
   if (!jac) return;
 

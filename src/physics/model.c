@@ -371,7 +371,9 @@ void rs_model_cell_law(const rs_model *m, const rs_work *w, const double *y, int
                   .dustar = w->dustar[I],
                   .ustar = y[rs_at_ustar(L, I)],
                   .g = w->bound[I],
-                  .r = w->r};
+                  .r = w->r,
+                  .friction = &m->par.friction,
+                  .pn = w->pn[I]};
   for (int c = 0; c < L->ncomp; c++) {
     in.p[c] = y[rs_at_p(L, c, I)];
     in.vs[c] = w->vslip[c * L->n + I];

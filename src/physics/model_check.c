@@ -91,7 +91,8 @@ static int check_cells(const rs_model *m, const rs_work *w, const double *y, dou
       pv += p[c] * vs[c];
       pf += p[c] * flow[c];
     }
-    const double pa = sqrt(pn2), va = sqrt(vs2), fa = sqrt(fl2), g = w->bound[i];
+    /* each cell's own bound: mu(|v_s|) p_n with velocity-dependent friction */
+    const double pa = sqrt(pn2), va = sqrt(vs2), fa = sqrt(fl2), g = w->law[i].g;
     const double tauc = rs_model_yield_limit(m, y[rs_at_ustar(L, i)]);
     const double px = p[0], cos_tol = nc > 1 ? 1e-6 : 0.0;
     if (!(w->pn[i] > 0.0)) {

@@ -447,15 +447,11 @@ static int grid_sequencing(rs_steady *s, double *y, rs_stats *stats)
   return status == RS_OK || status == RS_START_ONLY ? status : RS_ERR_SOLVER;
 }
 
-int rs_steady_solve(rs_steady *s, double t, double *y, rs_stats *stats, rs_msg *msg)
+/* The steady solve at the inputs in s->in. */
+static int solve_at(rs_steady *s, double *y, rs_stats *stats, rs_msg *msg)
 {
   const rs_model *m = s->m;
   const int neq = m->lay.neq;
-  rs_model_inputs_at(m, t, &s->in);
-  if (!(s->in.velocity > 0.0))
-    return rs_msg_set(msg, RS_ERR_INPUT,
-                      "steady rolling needs a rolling velocity > 0 (got %g mm/s at t = %g s)",
-                      s->in.velocity, t);
   s->failed = 0;
   int kin_flag = 0;
   s->cj = 0.0;
@@ -479,8 +475,20 @@ int rs_steady_solve(rs_steady *s, double t, double *y, rs_stats *stats, rs_msg *
     status = grid_sequencing(s, y, stats);
   /* Pseudo-time from the interpolated coarse solution when there is one (a few steps
    * settle the trailing end of the plastic zone), else from the caller's start. */
+  /* Velocity-dependent friction: no rolling fallbacks. Without friction memory the
+   * transient of a falling law is ill-posed (its steps collapse), so they would only
+   * take long to fail; say so at once. */
+  const int varies = rs_friction_varies(&m->par.friction);
+  if (status != RS_OK && !s->failed && varies) {
+    s->failed = 1;
+    rs_msg_set(&s->fail, RS_ERR_SOLVER,
+               "steady Newton did not converge at creepage %g with friction.law: %s (a falling "
+               "friction law can make Newton cycle between active sets; approach this "
+               "creepage by continuation, e.g. a sweep from a lower one)",
+               rs_model_creepage(m, &s->in, y), rs_friction_name(m->par.friction.kind));
+  }
   if (status != RS_OK && !s->failed) status = pseudo_time_steps(s, y, stats);
-  int rolled = 0; /* the result comes from rolling the material (the physical path) */
+  int rolled = varies; /* the result comes from rolling the material (the physical path) */
   if (status == RS_ERR_SOLVER && !s->failed) {
     memcpy(y, start, (size_t)neq * sizeof *y);
     status = pseudo_transient(s, y, stats, msg);
@@ -509,4 +517,77 @@ int rs_steady_solve(rs_steady *s, double t, double *y, rs_stats *stats, rs_msg *
     stats->klu_analyses = rs_linsys_analyses(&s->ls);
   }
   return status;
+}
+
+/* Velocity-dependent friction from rest: continuation in the creepage from 0 in steps of
+ * 1/CONTINUATION_STEPS of it, each Newton started on the secant through the last two
+ * solutions; a step that fails is halved (down to 1/CONTINUATION_MIN of the creepage). A
+ * falling law can have several steady states at one creepage; this follows the branch
+ * connected to xi = 0 (the one `rollsim sweep` from a low creepage follows), and Newton
+ * from p = 0 at a large creepage failed (plastic Table-1 contact, xi = -1 %); halving let
+ * the 1600-cell elastic case converge where its first step of 1/16 failed. */
+enum { CONTINUATION_STEPS = 16, CONTINUATION_MIN = 1024 };
+static int continuation(rs_steady *s, double *y, rs_stats *stats, rs_msg *msg)
+{
+  const int neq = s->m->lay.neq;
+  const double xi = s->in.creepage;
+  double *prev = calloc((size_t)neq, sizeof *prev), *cur = calloc((size_t)neq, sizeof *cur);
+  if (!prev || !cur) {
+    free(prev);
+    free(cur);
+    return rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory (continuation)");
+  }
+  int status = RS_OK, have_prev = 0;
+  double lam_prev = 0.0, lam_cur = 0.0, dl = 1.0 / CONTINUATION_STEPS;
+  rs_stats total = {0};
+  while (lam_cur < 1.0) {
+    const double lam = fmin(1.0, lam_cur + dl);
+    s->in.creepage = xi * lam;
+    const double f = have_prev ? (lam - lam_cur) / (lam_cur - lam_prev) : 0.0;
+    for (int i = 0; i < neq; i++) y[i] = cur[i] + f * (cur[i] - prev[i]); /* secant */
+    rs_stats st = {0};
+    status = solve_at(s, y, &st, msg);
+    total.steps += st.steps;
+    total.nonlin_iters += st.nonlin_iters;
+    total.nonlin_fails += st.nonlin_fails;
+    total.err_test_fails += st.err_test_fails;
+    total.res_evals += st.res_evals;
+    total.lin_solves += st.lin_solves;
+    total.factorizations += st.factorizations;
+    total.refused += st.refused;
+    total.jac_evals = st.jac_evals; /* the solver's running totals */
+    total.klu_analyses = st.klu_analyses;
+    if (status == RS_OK) {
+      memcpy(prev, cur, (size_t)neq * sizeof *prev);
+      memcpy(cur, y, (size_t)neq * sizeof *cur);
+      lam_prev = lam_cur;
+      lam_cur = lam;
+      have_prev = 1;
+    } else if (status == RS_ERR_SOLVER && dl > 1.5 / CONTINUATION_MIN) {
+      dl *= 0.5;
+    } else {
+      break;
+    }
+  }
+  if (status != RS_OK) memcpy(y, cur, (size_t)neq * sizeof *y);
+  s->in.creepage = xi;
+  if (stats) *stats = total;
+  free(prev);
+  free(cur);
+  return status;
+}
+
+int rs_steady_solve(rs_steady *s, double t, double *y, rs_stats *stats, rs_msg *msg)
+{
+  const rs_model *m = s->m;
+  rs_model_inputs_at(m, t, &s->in);
+  if (!(s->in.velocity > 0.0))
+    return rs_msg_set(msg, RS_ERR_INPUT,
+                      "steady rolling needs a rolling velocity > 0 (got %g mm/s at t = %g s)",
+                      s->in.velocity, t);
+  int cold = 1;
+  for (int k = 0; k < m->lay.ncomp * m->lay.n && cold; k++) cold = y[k] == 0.0;
+  if (cold && rs_friction_varies(&m->par.friction) && !m->par.force_control)
+    return continuation(s, y, stats, msg);
+  return solve_at(s, y, stats, msg);
 }
