@@ -73,6 +73,7 @@ static int step(element *e, const rs_plasticity *pl, const double u[2], double d
                     .ustar = e->ustar + dt * z[4],
                     .g = 1e12,
                     .r = KE * dt};
+    memset(&out, 0, sizeof out); /* the law sets only the entries present on its branch */
     rs_contact_law(pl, &in, 1, &out);
     double F[5], A[5][5] = {{0}};
     for (int c = 0; c < 2; c++) { /* elastic element: p - k_e (u - u_pl) */
