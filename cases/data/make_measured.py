@@ -65,6 +65,7 @@ def main():
                 head = "creepage,traction_coefficient"
     rng = random.Random(a.seed)
     noisy = [m + a.sigma * rng.gauss(0.0, 1.0) for m in mu]
+    os.makedirs(os.path.dirname(os.path.abspath(a.out)), exist_ok=True)
     with open(a.out, "w") as f:
         f.write("# Synthetic measurements made by cases/data/make_measured.py (not a rig):\n")
         f.write("# %s at its own parameter values%s,\n" % (
