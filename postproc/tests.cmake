@@ -68,11 +68,14 @@ set_tests_properties(pp_make_synthetic PROPERTIES FIXTURES_SETUP pp_synthetic)
 # Size threshold 20 kB: an empty set of axes with tick labels at these sizes and 150 dpi is
 # 14 kB as PNG; every figure with data here is 30-130 kB.
 
+# Every figure also writes the series it draws (--data OUT.csv); the pp_drawn_* tests below
+# compare them with the netCDF files.
 function(pp_figure name fixtures out)
   add_test(NAME ${name}
     COMMAND ${PP_CHECK} --out ${PP_OUT}/${out} --min-bytes 20000 -- ${PP_RUN} ${ARGN}
-      -o ${PP_OUT}/${out})
-  set_tests_properties(${name} PROPERTIES FIXTURES_REQUIRED "${fixtures}" ENVIRONMENT "${PP_ENV}")
+      -o ${PP_OUT}/${out} --data ${PP_OUT}/${out}.csv)
+  set_tests_properties(${name} PROPERTIES FIXTURES_REQUIRED "${fixtures}" ENVIRONMENT "${PP_ENV}"
+    FIXTURES_SETUP ${name})
 endfunction()
 
 pp_figure(pp_fig_traction pp_default traction.png traction ${PP_DEFAULT} --time 3e-4 1.3e-3)
@@ -89,6 +92,23 @@ list(GET PP_CREEP_FILES 0 PP_STEADY)
 pp_figure(pp_fig_history_steady pp_creep history_steady.png history ${PP_STEADY})
 
 pp_figure(pp_fig_rig pp_rig rig.png rig ${PP_RIG})
+
+# What the 2D figures draw (their --data CSV) against the files, read independently.
+set(PP_DRAWN ${SYSTEM_PYTHON3} ${PP_TESTS}/check_drawn.py)
+add_test(NAME pp_drawn_traction COMMAND ${PP_DRAWN} traction ${PP_DEFAULT}
+  ${PP_OUT}/traction.png.csv 0.3 3e-4 1.3e-3)
+add_test(NAME pp_drawn_traction_plastic COMMAND ${PP_DRAWN} traction ${PP_PLASTIC}
+  ${PP_OUT}/traction_plastic.png.csv 0.5)
+add_test(NAME pp_drawn_regimes COMMAND ${PP_DRAWN} regimes ${PP_DEFAULT} ${PP_OUT}/regimes.png.csv)
+add_test(NAME pp_drawn_regimes_plastic COMMAND ${PP_DRAWN} regimes ${PP_PLASTIC}
+  ${PP_OUT}/regimes_plastic.png.csv)
+add_test(NAME pp_drawn_plastic COMMAND ${PP_DRAWN} plastic ${PP_PLASTIC} ${PP_OUT}/plastic.png.csv)
+add_test(NAME pp_drawn_creepcurve COMMAND ${PP_DRAWN} creep ${PP_OUT}/creepcurve.png.csv
+  ${PP_CREEP_FILES})
+add_test(NAME pp_drawn_rig COMMAND ${PP_DRAWN} rig ${PP_RIG} ${PP_OUT}/rig.png.csv)
+foreach(t traction traction_plastic regimes regimes_plastic plastic creepcurve rig)
+  set_tests_properties(pp_drawn_${t} PROPERTIES FIXTURES_REQUIRED pp_fig_${t})
+endforeach()
 
 # Format from the extension: SVG and PDF carry their signatures.
 add_test(NAME pp_fig_svg COMMAND ${PP_CHECK} --out ${PP_OUT}/history.svg --min-bytes 20000

@@ -177,7 +177,7 @@ def cmd_regimes(args):
         else:
             fmap, flags = extract.regime_map(run)
             _warn_status(run)
-            _plots().plot_regimes(fmap, flags, _title(args, run), args.output)
+            _plots().plot_regimes(fmap, flags, _title(args, run), args.output, rec)
     _finish(args, rec)
 
 
@@ -325,15 +325,18 @@ def cmd_plastic(args):
         ustar = extract.field_map(run, "ustar")
         tauc = extract.field_map(run, "tauc")
         _warn_status(run)
-        _plots().plot_plastic(ustar, tauc, _title(args, run), args.output)
+        _plots().plot_plastic(ustar, tauc, _title(args, run), args.output, rec)
+    _finish(args, rec)
 
 
 def cmd_rig(args):
     figure_format(args.output)
+    rec = Recorder()
     with RunFile(args.file) as run:
         rig = extract.rig_results(run)
         _warn_status(run)
-        _plots().plot_rig(rig, _title(args, run), args.output)
+        _plots().plot_rig(rig, _title(args, run), args.output, rec)
+    _finish(args, rec)
 
 
 def cmd_fit(args):

@@ -182,6 +182,8 @@ class FieldMap:
     x_edges: np.ndarray
     t_edges: np.ndarray
     values: np.ndarray  # (n_time, n_x)
+    x: np.ndarray = None  # (n_x,) cell centres, mm
+    t: np.ndarray = None  # (n_time,) record times, s
 
 
 def field_map(run, name):
@@ -189,8 +191,9 @@ def field_map(run, name):
     dims = run.dims(name)
     if dims != ("time", "x"):
         raise PostError(f"{run.path}: variable '{name}' has dimensions {dims}, expected (time, x)")
-    return FieldMap(name, run.units(name), run.long_name(name), cell_edges(run.values("x")),
-                    cell_edges(run.values("time")), run.values(name))
+    x, t = run.values("x"), run.values("time")
+    return FieldMap(name, run.units(name), run.long_name(name), cell_edges(x), cell_edges(t),
+                    run.values(name), x, t)
 
 
 def regime_map(run):

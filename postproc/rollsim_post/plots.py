@@ -121,8 +121,15 @@ def plot_traction(profiles, title, out, rec=None):
 
 # ---- x-t maps ------------------------------------------------------------------------------
 
-def plot_regimes(fmap, flags, title, out):
+def _record_map(rec, panel, title, fmap, factor):
+    """The cells of an x-t map as drawn: x, time in the axis' unit, the colour's value."""
+    X, T = np.meshgrid(fmap.x, fmap.t * factor)
+    rec.add_map(panel, title, fmap.long_name, fmap.name, None, X, T, fmap.values)
+
+
+def plot_regimes(fmap, flags, title, out, rec=None):
     """x-t map of the regime with categorical colours and a legend."""
+    rec = rec or Recorder()
     values, meanings = flags
     codes = sorted(values)
     colours = [_regime_style(dict(zip(values, meanings))[c])[1] for c in codes]
@@ -138,21 +145,24 @@ def plot_regimes(fmap, flags, title, out):
     ax.legend(handles=_regime_legend(flags, skip=()), loc="upper center",
               bbox_to_anchor=(0.5, -0.12), ncol=len(codes), fontsize=9, frameon=False)
     ax.set_title(title, fontsize=11)
+    _record_map(rec, 0, title, fmap, factor)
     save(fig, out)
 
 
-def plot_plastic(ustar, tauc, title, out):
+def plot_plastic(ustar, tauc, title, out, rec=None):
     """u* and tau_c over x and t, two pcolormesh panels with colour bars."""
+    rec = rec or Recorder()
     factor, unit = time_axis(ustar.t_edges)
     fig, axes = plt.subplots(1, 2, figsize=(11.0, 4.6), sharey=True,
                              layout="constrained")
-    for ax, fmap, cmap in ((axes[0], ustar, "viridis"), (axes[1], tauc, "magma")):
+    for k, (ax, fmap, cmap) in enumerate(((axes[0], ustar, "viridis"), (axes[1], tauc, "magma"))):
         mesh = ax.pcolormesh(fmap.x_edges, fmap.t_edges * factor, fmap.values, cmap=cmap,
                              shading="flat")
         bar = fig.colorbar(mesh, ax=ax)
         bar.set_label(f"{fmap.name} [{fmap.units}]")
         ax.set_title(fmap.long_name, fontsize=10)
         ax.set_xlabel("x [mm]")
+        _record_map(rec, k, fmap.long_name, fmap, factor)
     axes[0].set_ylabel(f"time [{unit}]")
     fig.suptitle(title, fontsize=11)
     save(fig, out)
@@ -467,23 +477,28 @@ def plot_sweep_plastic(panels, title, out, rec=None):
     save(fig, out)
 
 
-def plot_rig(rig, title, out):
+def plot_rig(rig, title, out, rec=None):
     """Twin-disc: traction coefficient per protocol step against slip (a rig's curve),
     and per revolution with the slip on a second axis."""
+    rec = rec or Recorder()
     fig, (a1, a2) = plt.subplots(1, 2, figsize=(11.0, 4.4), layout="constrained")
-    a1.plot(100.0 * rig.step_slip, rig.step_mu, "o-", ms=5)
+    a1.set_title("per protocol step", fontsize=10)
+    a2.set_title("per revolution (mean)", fontsize=10)
+    rec.line(a1, 0, 100.0 * rig.step_slip, rig.step_mu, "o-", ms=5, series="step",
+             quantity="traction_coefficient")
     a1.set_xlabel("slip (V1 - V2)/V [%] (mean over the step's window)")
     a1.set_ylabel("traction coefficient F_x / F_n [1]")
-    a1.set_title("per protocol step", fontsize=10)
     a1.grid(alpha=0.25)
-    a2.plot(rig.rev_index, rig.rev_mu, "-", color="C0")
+    rec.line(a2, 1, rig.rev_index, rig.rev_mu, "-", color="C0", series="revolution",
+             quantity="traction_coefficient")
     a2.set_xlabel("revolution of disc 1")
     a2.set_ylabel("traction coefficient F_x / F_n [1]", color="C0")
     a2.grid(alpha=0.25)
     b = a2.twinx()
+    rec.add(1, a2.get_title(), "revolution", "slip_percent", None, rig.rev_index,
+            100.0 * rig.rev_slip)
     b.plot(rig.rev_index, 100.0 * rig.rev_slip, "--", color="C1")
     b.set_ylabel("slip [%]", color="C1")
-    a2.set_title("per revolution (mean)", fontsize=10)
     if title:
         fig.suptitle(title, fontsize=11)
     save(fig, out)
