@@ -9,7 +9,7 @@
 #              (default: a temporary directory, removed)
 #
 # Builds nothing: configure and build first (cmake -S . -B build && cmake --build build).
-# About 5 s in all. Writes into OUTDIR:
+# About 15 s in all. Writes into OUTDIR:
 #   default_history.png     cases/default.yaml: elastic Carter start-up from rest (rollsim run)
 #   fig7_carter_plastic.png cases/carter_plast.yaml: the paper's Figure 7, p_x with g and tau_c
 #                           for k_rel = 0.98, 0.6, 0, -0.333 (steady)
@@ -17,6 +17,11 @@
 #                           1 %, elastic and plastic tractions (steady)
 #   fig9_creep_curves.png   cases/creep_curves.yaml: Figure 9, creep curves per tau_c0, one
 #                           colour per k_rel, the elastic curve dashed (steady, 820 points)
+#   hertz3d_creep.png       cases/hertz3d_creep.yaml: 3D F_x, F_y, M_z against xi at two eta
+#                           and two spins (steady, 68 points, 30 x 30 cells)
+#   hertz3d_traction.png    the same ellipse with a plastic layer at xi = -0.1 %, eta = 0.05 %,
+#                           spin 1e-4 1/mm: |p| with arrows and the Hertz ellipse (steady)
+#   hertz3d_regimes.png     its regimes (adhesion, slip, plastic)
 set -eu
 
 ROOT=$(cd "$(dirname "$0")/.." && pwd)
@@ -57,4 +62,21 @@ fi
     --title "Creep curves with local plasticity (Table 1 contact, R = 11.75 mm, 100 cells)" \
     -o "$OUT/fig9_creep_curves.png" --data "$DATA/fig9.csv"
 
-echo "wrote $OUT/default_history.png $OUT/fig7_carter_plastic.png $OUT/fig8_meierhofer.png $OUT/fig9_creep_curves.png"
+# 3D: creep curves of the elliptic contact, and one partial-slip point of it mapped over the
+# patch with a plastic layer (tau_c0 = 150 N/mm2, below the friction bound mu p0 = 250; k_rel 0.3).
+"$RS" sweep "$ROOT/cases/hertz3d_creep.yaml" -o "$DATA/hertz3d_creep.nc" --quiet >/dev/null
+"$PY" "$POST" creep3d "$DATA/hertz3d_creep.nc" -o "$OUT/hertz3d_creep.png" \
+    --data "$DATA/hertz3d_creep.csv"
+"$RS" run "$ROOT/cases/hertz3d_creep.yaml" --set sweep=null --set rolling.creepage=-0.001 \
+    --set rolling.lateral_creepage=0.0005 --set rolling.spin=0.0001 \
+    --set plasticity.tau_c0=150 --set plasticity.k_rel=0.3 \
+    --set "output.fields=[px,pn,slip,regime,ustar,tauc]" \
+    --set "title=\"3D ellipse with a plastic layer: xi -0.1 %, eta 0.05 %, spin 1e-4 1/mm\"" \
+    -o "$DATA/hertz3d_plastic.nc" --quiet >/dev/null
+"$PY" "$POST" map "$DATA/hertz3d_plastic.nc" --field traction \
+    -o "$OUT/hertz3d_traction.png" --data "$DATA/hertz3d_traction.csv"
+"$PY" "$POST" map "$DATA/hertz3d_plastic.nc" --field regime \
+    -o "$OUT/hertz3d_regimes.png" --data "$DATA/hertz3d_regimes.csv"
+
+echo "wrote $OUT/default_history.png $OUT/fig7_carter_plastic.png $OUT/fig8_meierhofer.png $OUT/fig9_creep_curves.png" \
+    "$OUT/hertz3d_creep.png $OUT/hertz3d_traction.png $OUT/hertz3d_regimes.png"
