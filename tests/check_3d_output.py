@@ -174,6 +174,31 @@ simulation: {mode: transient, end_time: 4.0e-4, output_interval: 2.0e-5}
     for v in ("Fx", "Fy", "Mz"):
         check(f"restart = uninterrupted run: {v} (1e-6 of mu F_n)",
               abs(a[v].values[-1] - b[v].values[-1]) <= 1e-6 * 3000.0 * (4.0 if v == "Mz" else 1))
+    # --append: the same continuation written into the first file itself: its records, then
+    # those of the restart into a new file after that file's first (the restart record)
+    nhalf = xr.open_dataset(half).time.size
+    run(binary, ["run", path, "--quiet", "--restart", half, "--append"])
+    c = xr.open_dataset(half)
+    k = b.time.size - 1
+    check("append: the first part's records and the continuation's", c.time.size == nhalf + k,
+          f"{nhalf} + {k} -> {c.time.size}")
+    same = c.time.size == nhalf + k and all(
+        np.array_equal(c[v].values[nhalf:], b[v].values[1:], equal_nan=True)
+        for v in ("time", "px", "py", "pn", "ustar", "Fx", "Fy", "Mz", "spin", "lateral_creepage"))
+    check("append: the new records = the restart into a new file (bit for bit)", same)
+    # a 3D case cannot continue a 2D file: exit 2, the file untouched
+    flat = os.path.join(work, "flat.nc")
+    carter = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "cases", "carter2d.yaml")
+    run(binary, ["run", carter, "-o", flat, "--quiet",
+                 "--set", "simulation.mode=transient", "--set", "simulation.rolled_distance=0.5"])
+    before = open(flat, "rb").read()
+    r = subprocess.run([binary, "run", path, "--quiet", "--restart", flat, "--append"],
+                       capture_output=True, text=True)
+    check("append of a 3D case to a 2D file: exit 2 naming the file", r.returncode == 2 and
+          "flat.nc" in r.stderr, r.stderr.strip())
+    check("append refused: the 2D file untouched", open(flat, "rb").read() == before)
+    check("append: a line added to the history", c.attrs["history"].count("\n") >= 1)
+    check("append: status complete", "complete" in c.attrs["status"])
 
 
 def part_sweep(binary, work):

@@ -70,13 +70,13 @@ const char *rs_output_backup(const rs_output *out);
 
 /* Continue an existing time-history file (rollsim run --restart OLD.nc --append):
  * open it for writing, check that it is a rollsim time-history file on the grid x[nx]
- * holding every field of `fields` (it may hold more: those are written too), append
- * `history_line` to its history attribute (one line per command that wrote to the
- * file) and set status "running". Records then go after the last one (rs_output_write).
- * RS_ERR_INPUT for a file of another layout (message names the file and what differs),
- * RS_ERR_OUTPUT for I/O errors. */
-int rs_output_open_append(rs_output **out, const char *path, size_t nx, const double *x,
-                          unsigned fields, const char *history_line, rs_msg *msg);
+ * (3D: and y[ny], ny > 1; 2D: ny = 1, y unused) holding every field of `fields` (it may hold more:
+ * those are written too), append `history_line` to its history attribute (one line per command that
+ * wrote to the file) and set status "running". Records then go after the last one
+ * (rs_output_write). RS_ERR_INPUT for a file of another layout (message names the file and what
+ * differs), RS_ERR_OUTPUT for I/O errors. */
+int rs_output_open_append(rs_output **out, const char *path, size_t nx, const double *x, size_t ny,
+                          const double *y, unsigned fields, const char *history_line, rs_msg *msg);
 /* Append one record and sync it to disk. */
 int rs_output_write(rs_output *out, const rs_record *rec, rs_msg *msg);
 /* Twin-disc: mean traction coefficient F_x/F_n and mean slip over the averaging window

@@ -344,7 +344,8 @@ int rs_run(const rs_case *c, const rs_run_opts *o, rs_run_result *res, rs_msg *m
   if (o->no_output)
     status = RS_OK;
   else if (o->append)
-    status = rs_output_open_append(&s.out, path, (size_t)n, s.m.grid.x, fields, history, msg);
+    status = rs_output_open_append(&s.out, path, (size_t)s.m.grid.nx, s.m.grid.x,
+                                   (size_t)s.m.grid.ny, s.m.grid.y, fields, history, msg);
   else
     status = rs_output_create(&s.out, &spec, msg);
   if (status == RS_OK && s.out && rs_output_backup(s.out))

@@ -103,7 +103,7 @@ const char *rs_field_name(int f, int three_d, int comp)
 {
   static const char *const names3d[RS_N_FIELDS][2] = {
       {"px", "py"},    {"pn", NULL},   {"slip_x", "slip_y"}, {"upl_x", "upl_y"},
-      {"ustar", NULL}, {"tauc", NULL}, {"regime", NULL}};
+      {"ustar", NULL}, {"tauc", NULL}, {"regime", NULL},     {"mu", NULL}};
   if (f < 0 || f >= RS_N_FIELDS || comp < 0 || comp > 1) return NULL;
   if (!three_d) return comp == 0 ? rs_field_vars[f].name : NULL;
   return names3d[f][comp];

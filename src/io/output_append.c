@@ -25,7 +25,7 @@ static int layout_error(const char *path, rs_msg *msg, const char *what)
 static int var_over(int ncid, const char *name, int ndims, const int *dims)
 {
   int id, n, d[NC_MAX_VAR_DIMS];
-  if (nc_inq_varid(ncid, name, &id) || nc_inq_varndims(ncid, id, &n) || n != ndims ||
+  if (!name || nc_inq_varid(ncid, name, &id) || nc_inq_varndims(ncid, id, &n) || n != ndims ||
       nc_inq_vardimid(ncid, id, d))
     return -1;
   for (int i = 0; i < n; i++)
@@ -33,57 +33,88 @@ static int var_over(int ncid, const char *name, int ndims, const int *dims)
   return id;
 }
 
-static int check_layout(rs_output *out, size_t nx, const double *x, unsigned fields, rs_msg *msg)
+/* The grid coordinate `name` of the file (dimension and variable of that name) equals
+ * the case's c[n], to 1e-12 of its largest value. */
+static int check_coordinate(rs_output *out, const char *name, int dim, size_t n, const double *c,
+                            int *var_id, rs_msg *msg)
+{
+  size_t len = 0;
+  if (nc_inq_dimlen(out->ncid, dim, &len) || len != n)
+    return rs_msg_set(msg, RS_ERR_INPUT,
+                      "--append %s: its grid has %zu cells along %s, the case has %zu", out->path,
+                      len, name, n);
+  if ((*var_id = var_over(out->ncid, name, 1, &dim)) < 0)
+    return rs_msg_set(msg, RS_ERR_INPUT, "--append %s: no coordinate variable %s(%s)", out->path,
+                      name, name);
+  double *old = malloc(n * sizeof *old);
+  if (!old) return rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory");
+  double cmax = 0.0;
+  int same = nc_get_var_double(out->ncid, *var_id, old) == NC_NOERR;
+  for (size_t i = 0; i < n; i++) cmax = fmax(cmax, fabs(c[i]));
+  for (size_t i = 0; same && i < n; i++) same = fabs(old[i] - c[i]) <= 1e-12 * cmax;
+  free(old);
+  if (!same)
+    return rs_msg_set(msg, RS_ERR_INPUT, "--append %s: its grid %s differs from the case's",
+                      out->path, name);
+  return RS_OK;
+}
+
+static int check_layout(rs_output *out, size_t nx, const double *x, size_t ny, const double *y,
+                        unsigned fields, rs_msg *msg)
 {
   const int ncid = out->ncid;
   const char *path = out->path;
-  int format = 0, time_dim, x_dim, unlimited = -1, id;
-  size_t len_x, nrec;
+  const int three_d = ny > 1;
+  int format = 0, time_dim, x_dim, y_dim = -1, unlimited = -1, id;
+  size_t nrec;
   if (nc_inq_format(ncid, &format) || format != NC_FORMAT_64BIT_OFFSET ||
       nc_inq_dimid(ncid, "time", &time_dim) || nc_inq_dimid(ncid, "x", &x_dim) ||
       nc_inq_unlimdim(ncid, &unlimited) || unlimited != time_dim ||
-      nc_inq_dimlen(ncid, x_dim, &len_x) || nc_inq_dimlen(ncid, time_dim, &nrec))
+      nc_inq_dimlen(ncid, time_dim, &nrec))
     return layout_error(path, msg,
                         "not a rollsim time-history file (netCDF 64-bit offset, "
                         "unlimited dimension time, dimension x)");
-  if (nc_inq_dimid(ncid, "y", &id) == NC_NOERR)
-    return layout_error(path, msg,
-                        "a 3D file cannot be continued in place yet (restart into a new file: "
-                        "leave out --append)");
+  const int file_3d = nc_inq_dimid(ncid, "y", &y_dim) == NC_NOERR;
+  if (file_3d != three_d)
+    return rs_msg_set(msg, RS_ERR_INPUT, "--append %s: a %s file, but the case is %s", path,
+                      file_3d ? "3D" : "2D", three_d ? "3D (contact.dimension: 3)" : "2D");
   if (nc_inq_varid(ncid, "step_traction_coefficient", &id) == NC_NOERR)
     return layout_error(path, msg,
                         "a twin_disc: run cannot be continued (the plastic state "
                         "around the discs is not stored in the output file)");
-  if (len_x != nx)
-    return rs_msg_set(msg, RS_ERR_INPUT, "--append %s: its grid has %zu cells, the case has %zu",
-                      path, len_x, nx);
-  if ((out->time_id = var_over(ncid, "time", 1, &time_dim)) < 0 ||
-      (out->x_id = var_over(ncid, "x", 1, &x_dim)) < 0)
-    return layout_error(path, msg, "no coordinate variables time(time) and x(x)");
-  double *xold = malloc(nx * sizeof *xold);
-  if (!xold) return rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory");
-  double xmax = 0.0;
-  int same = nc_get_var_double(ncid, out->x_id, xold) == NC_NOERR;
-  for (size_t i = 0; i < nx; i++) xmax = fmax(xmax, fabs(x[i]));
-  for (size_t i = 0; same && i < nx; i++) same = fabs(xold[i] - x[i]) <= 1e-12 * xmax;
-  free(xold);
-  if (!same) return layout_error(path, msg, "its grid x differs from the case's");
-  const int dims2[2] = {time_dim, x_dim};
+  if ((out->time_id = var_over(ncid, "time", 1, &time_dim)) < 0)
+    return layout_error(path, msg, "no coordinate variable time(time)");
+  int status = check_coordinate(out, "x", x_dim, nx, x, &out->x_id, msg);
+  out->y_id = -1;
+  if (status == RS_OK && three_d)
+    status = check_coordinate(out, "y", y_dim, ny, y, &out->y_id, msg);
+  if (status != RS_OK) return status;
+  const int dims[3] = {time_dim, three_d ? y_dim : x_dim, x_dim};
+  const int ndims = three_d ? 3 : 2;
   out->fields = 0;
   for (int f = 0; f < RS_N_FIELDS; f++) {
-    out->field_id[f] = var_over(ncid, rs_field_vars[f].name, 2, dims2);
-    if (out->field_id[f] >= 0)
+    out->field_id[f] = var_over(ncid, rs_field_name(f, three_d, 0), ndims, dims);
+    const char *second = three_d && rs_field_is_vector(f) ? rs_field_name(f, 1, 1) : NULL;
+    out->field_id2[f] = second ? var_over(ncid, second, ndims, dims) : -1;
+    if (out->field_id[f] >= 0 && (!second || out->field_id2[f] >= 0))
       out->fields |= rs_field_vars[f].bit;
     else if (fields & rs_field_vars[f].bit)
       return rs_msg_set(msg, RS_ERR_INPUT,
-                        "--append %s: has no (time, x) variable '%s' that the case's "
+                        "--append %s: has no %s variable '%s'%s%s that the case's "
                         "output.fields asks for (continue into a new file: leave out --append)",
-                        path, rs_field_vars[f].name);
+                        path, three_d ? "(time, y, x)" : "(time, x)", rs_field_name(f, three_d, 0),
+                        second ? " and " : "", second ? second : "");
+    else
+      out->field_id[f] = out->field_id2[f] = -1;
   }
   for (int s = 0; s < RS_N_SCALARS; s++)
     if ((out->scalar_id[s] = var_over(ncid, rs_scalar_vars[s].name, 1, &time_dim)) < 0)
       return rs_msg_set(msg, RS_ERR_INPUT, "--append %s: has no variable %s(time)", path,
                         rs_scalar_vars[s].name);
+  for (int s = 0; three_d && s < RS_N_SCALARS_3D; s++)
+    if ((out->scalar3_id[s] = var_over(ncid, rs_scalar_vars_3d[s].name, 1, &time_dim)) < 0)
+      return rs_msg_set(msg, RS_ERR_INPUT, "--append %s: has no variable %s(time)", path,
+                        rs_scalar_vars_3d[s].name);
   out->records = nrec;
   if (nrec == 0) return layout_error(path, msg, "holds no records");
   return RS_OK;
@@ -119,8 +150,8 @@ static int update_header(rs_output *out, const char *history_line, rs_msg *msg)
   return err ? rs_output_nc_failure(msg, out->path, "updating history and status", err) : RS_OK;
 }
 
-int rs_output_open_append(rs_output **outp, const char *path, size_t nx, const double *x,
-                          unsigned fields, const char *history_line, rs_msg *msg)
+int rs_output_open_append(rs_output **outp, const char *path, size_t nx, const double *x, size_t ny,
+                          const double *y, unsigned fields, const char *history_line, rs_msg *msg)
 {
   *outp = NULL;
   rs_output *out = calloc(1, sizeof *out);
@@ -129,7 +160,8 @@ int rs_output_open_append(rs_output **outp, const char *path, size_t nx, const d
     return rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory");
   }
   out->nx = nx;
-  out->ny = 1;
+  out->ny = ny > 1 ? ny : 1;
+  out->three_d = ny > 1;
   for (int f = 0; f < RS_N_FIELDS; f++) out->field_id2[f] = -1;
   for (int k = 0; k < RS_N_SCALARS_3D; k++) out->scalar3_id[k] = -1;
   size_t block = RS_IO_BLOCK;
@@ -137,7 +169,7 @@ int rs_output_open_append(rs_output **outp, const char *path, size_t nx, const d
   int status = err ? rs_msg_set(msg, RS_ERR_INPUT, "--append %s: cannot open for writing: %s", path,
                                 nc_strerror(err))
                    : RS_OK;
-  if (status == RS_OK) status = check_layout(out, nx, x, fields, msg);
+  if (status == RS_OK) status = check_layout(out, nx, x, out->ny, y, fields, msg);
   if (status == RS_OK) status = update_header(out, history_line, msg);
   if (status != RS_OK) {
     if (!err) (void)nc_close(out->ncid);
