@@ -178,7 +178,10 @@ static int steady_point(const rs_case *c, steady_chain *ch, double **y, int *ny,
     free(*y);
     *y = calloc((size_t)ch->m.lay.neq, sizeof **y);
     *ny = ch->m.lay.neq;
-    if (!*y) status = rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory");
+    if (!*y)
+      status = rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory");
+    else
+      rs_model_rest_state(&ch->m, *y);
   }
   rs_stats stats = {0};
   if (status == RS_OK && chained) {

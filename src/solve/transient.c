@@ -133,6 +133,8 @@ int rs_transient_create(rs_transient **out, const rs_model *m, SUNContext ctx, d
   double *at = N_VGetArrayPointer(tr->atol);
   for (int k = 0; k < rs_at_upl(L, 0, 0); k++) at[k] = o->atol;
   for (int k = rs_at_upl(L, 0, 0); k < rs_at_extra(L, 0); k++) at[k] = 1e-4 * o->rtol * m->hertz_a;
+  /* friction memory: mu is of order 0.1 to 1 */
+  for (int k = 0; k < L->n && L->memory; k++) at[rs_at_mu(L, k)] = 1e-3 * o->rtol;
   /* With force control the creepage is an algebraic unknown fixed by a constraint on
    * differential ones (sum p dA = F_x): left out of the error test, as IDA allows. */
   if (L->nextra > 0) {
