@@ -524,6 +524,11 @@ static int resolve_friction(const resolver *r, rs_case_input *in)
     return rs_case_error(r->d, given(r, "rolling.tangential_force"), "rolling.tangential_force",
                          "is not available with friction.law: %s (prescribe rolling.creepage)",
                          law);
+  if (c->rig.on && rs_friction_has_memory(f))
+    return rs_case_error(r->d, given(r, "friction.memory_distance"), "friction.memory_distance",
+                         "is not available in a twin_disc: run: the memory state is not carried "
+                         "around the discs (material would re-enter the contact fresh at every "
+                         "revolution)");
   c->mu = mu0;
   return RS_OK;
 }
