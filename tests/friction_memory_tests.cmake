@@ -46,13 +46,23 @@ set_tests_properties(friction_memory_limit PROPERTIES FIXTURES_SETUP fm_limit)
 add_test(NAME friction_memory_limit_check COMMAND ${RS_FM_CHECK} limit ${RS_FM}/limit.nc)
 set_tests_properties(friction_memory_limit_check PROPERTIES FIXTURES_REQUIRED fm_limit)
 
+# ... and on 400 cells, where the steady solver uses Newton-Krylov with the near-field
+# preconditioner (memory rows in the band pattern)
+add_test(NAME friction_memory_krylov
+         COMMAND ${RS_BIN} sweep ${RS_FM_CASE} --set simulation.mode=steady --set grid.cells=400
+                 --set rolling.creepage=-0.004 --set friction.half_velocity=[200]
+                 --set "sweep.friction.memory_distance=[0, 1e-9]" -o ${RS_FM}/krylov.nc --quiet)
+set_tests_properties(friction_memory_krylov PROPERTIES FIXTURES_SETUP fm_krylov)
+add_test(NAME friction_memory_krylov_check COMMAND ${RS_FM_CHECK} near ${RS_FM}/krylov.nc 1e-6 2e-4)
+set_tests_properties(friction_memory_krylov_check PROPERTIES FIXTURES_REQUIRED fm_krylov)
+
 # (e) the Coulomb limit with memory: half velocity 1e12 mm/s against Coulomb mu = 0.5,
 # transient (the creepage step, to 100 us) and steady (xi = -0.2 %)
 add_test(NAME friction_memory_coulomb_runs
          COMMAND sh -c "set -e; \"$0\" run \"$1\" --set friction.half_velocity=[1e12] --set simulation.end_time=1e-4 -o \"$2/coulomb_memory.nc\" --quiet; \"$0\" run \"$1\" --set friction.half_velocity=[1e12] --set simulation.mode=steady --set rolling.creepage=-0.002 -o \"$2/coulomb_memory_steady.nc\" --quiet"
                  ${RS_BIN} ${RS_FM_CASE} ${RS_FM})
 add_test(NAME friction_memory_coulomb_reference
-         COMMAND sh -c "set -e; c=\"$1\"; b=\"$0\"; d=\"$2\"; shift 3; \"$b\" run \"$c\" \"$@\" --set simulation.end_time=1e-4 -o \"$d/coulomb.nc\" --quiet; \"$b\" run \"$c\" \"$@\" --set simulation.mode=steady --set rolling.creepage=-0.002 -o \"$d/coulomb_steady.nc\" --quiet"
+         COMMAND sh -c "set -e; c=\"$1\"; b=\"$0\"; d=\"$2\"; shift 2; \"$b\" run \"$c\" \"$@\" --set simulation.end_time=1e-4 -o \"$d/coulomb.nc\" --quiet; \"$b\" run \"$c\" \"$@\" --set simulation.mode=steady --set rolling.creepage=-0.002 -o \"$d/coulomb_steady.nc\" --quiet"
                  ${RS_BIN} ${RS_FM_CASE} ${RS_FM} ${RS_FM_COULOMB})
 set_tests_properties(friction_memory_coulomb_runs friction_memory_coulomb_reference
                      PROPERTIES FIXTURES_SETUP fm_coulomb)

@@ -48,6 +48,9 @@ static void check_model(const char *name, rs_case *c)
     ts_failures++;
     return;
   }
+  if (c->friction.memory_distance > 0.0)
+    ts_check_true("friction memory: a state mu per cell in the layout",
+                  m.lay.memory == 1 && m.lay.neq == 4 * m.grid.n);
   const int neq = m.lay.neq;
   double *y = calloc((size_t)neq, sizeof *y), *yp = calloc((size_t)neq, sizeof *yp);
   double *v = malloc((size_t)neq * sizeof *v), *jv = malloc((size_t)neq * sizeof *jv);
