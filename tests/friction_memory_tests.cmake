@@ -82,3 +82,14 @@ add_test(NAME friction_memory_restart_without_mu
                  -- ${RS_BIN} run ${RS_FM_CASE} --restart ${RS_FM}/coulomb.nc
                  -o ${RS_FM}/refused.nc --quiet)
 set_tests_properties(friction_memory_restart_without_mu PROPERTIES FIXTURES_REQUIRED fm_coulomb)
+
+# A memory distance too short for the contact (5 um here: the friction weakens faster than
+# the contact unloads when the adhesion zone vanishes, no quasi-static solution follows):
+# the step would collapse without bound; the floor on the step makes it a failure (exit 3)
+# within seconds that says what to change.
+add_test(NAME friction_memory_too_short
+         COMMAND ${SYSTEM_PYTHON3} ${RS_TESTS}/cli_expect.py --exit 3
+                 --stderr "memory_distance" --stderr "loses its solution"
+                 -- ${RS_BIN} run ${RS_FM_CASE} --set friction.memory_distance=0.005
+                 -o ${RS_FM}/too_short.nc --quiet)
+set_tests_properties(friction_memory_too_short PROPERTIES TIMEOUT 120)
