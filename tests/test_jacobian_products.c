@@ -48,6 +48,9 @@ static void check_model(const char *name, rs_case *c)
     ts_failures++;
     return;
   }
+  if (c->friction.memory_distance > 0.0)
+    ts_check_true("friction memory: a state mu per cell in the layout",
+                  m.lay.memory == 1 && m.lay.neq == 4 * m.grid.n);
   const int neq = m.lay.neq;
   double *y = calloc((size_t)neq, sizeof *y), *yp = calloc((size_t)neq, sizeof *yp);
   double *v = malloc((size_t)neq * sizeof *v), *jv = malloc((size_t)neq * sizeof *jv);
@@ -190,6 +193,26 @@ int main(void)
   ts_table1_case(&c, 100, 200.0, 0.0387, -0.01);
   set_law(&c, RS_FRICTION_EXPONENTIAL, 100.0); /* slip speeds up to ~300 mm/s */
   check_model("plastic Table-1 contact, exponential friction, xi = -1 %, 100 cells", &c);
+  /* Friction memory (model.md §11): the memory rows r (d_c Dmu/Dt + max(|v_s|, s0)
+   * (mu - mu_law(eta))) are dense through v_s, and the bound mu p_n of a slipping cell
+   * depends on the state mu: d_c = 0.05 mm (a few contact lengths of sliding on Carter's
+   * contact), s0 = 1 mm/s below most slip speeds and 5 mm/s above many. */
+  const double s0s[2] = {1.0, 5.0};
+  for (int k = 0; k < 2; k++) {
+    char name[128];
+    ts_carter_case(&c, 100);
+    set_law(&c, RS_FRICTION_EXPONENTIAL, 10.0);
+    c.friction.memory_distance = 0.05;
+    c.friction.memory_velocity = s0s[k];
+    snprintf(name, sizeof name, "elastic Carter, exponential friction with memory (s0 = %g mm/s)",
+             s0s[k]);
+    check_model(name, &c);
+  }
+  ts_table1_case(&c, 100, 200.0, 0.0387, -0.01);
+  set_law(&c, RS_FRICTION_RATIONAL, 100.0);
+  c.friction.memory_distance = 0.002;
+  c.friction.memory_velocity = 1.0;
+  check_model("plastic Table-1 contact, rational friction with memory, xi = -1 %", &c);
   ts_carter_case(&c, 100);
   check_model("elastic Carter, 100 cells", &c);
   ts_fig7_case(&c, 100, 0.6);

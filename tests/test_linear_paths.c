@@ -18,7 +18,8 @@
  * rtol 100 times smaller: max_t |F_dense - F_klu| <= max_t |F_klu - F_ref|; and that
  * error is below 100 rtol max|F_x| (a few rtol expected), so that a broken reference
  * cannot make room for a broken path. Cases: Carter elastic start-up, and the
- * Figure 7 plastic case (k_rel = 0.6), 100 cells, 6 contact lengths rolled. */
+ * Figure 7 plastic case (k_rel = 0.6), 100 cells, 6 contact lengths rolled. Both parts
+ * also with friction memory (the memory rows dense in the contact). */
 #include "rollsim/model.h"
 #include "rollsim/steady.h"
 #include "test_support.h"
@@ -29,7 +30,7 @@ static int solve(const rs_model *m, rs_linear lin, double *y, rs_diag *d, rs_sta
 {
   rs_msg msg = {{0}};
   rs_steady *s = NULL;
-  memset(y, 0, (size_t)m->lay.neq * sizeof *y);
+  rs_model_rest_state(m, y);
   memset(st, 0, sizeof *st);
   int status = rs_steady_create_with(&s, m, NULL, lin, &msg);
   if (status == RS_OK) status = rs_steady_solve(s, 0.0, y, st, &msg);
@@ -94,6 +95,7 @@ static int transient_fx(const rs_model *m, rs_linear lin, double rtol, double t_
   double *y = calloc((size_t)m->lay.neq, sizeof *y), *yp = calloc((size_t)m->lay.neq, sizeof *yp);
   rs_work w;
   int status = y && yp ? rs_work_create(&w, m) : RS_ERR_INTERNAL;
+  if (status == RS_OK) rs_model_rest_state(m, y);
   if (status == RS_OK) status = ts_consistent_rates(m, &w, 0.0, y, yp, &msg);
   rs_transient_opts o = {.rtol = rtol,
                          .atol = 1e-9,
@@ -177,6 +179,25 @@ int main(void)
   fail |= compare_transient("Carter elastic start-up, 100 cells", &c, 6.0);
   ts_fig7_case(&c, 100, 0.6);
   fail |= compare_transient("Carter plastic k_rel = 0.6 start-up, 100 cells", &c, 6.0);
+  /* Friction memory (model.md §11): the memory rows are dense in the contact and the
+   * Schur solver eliminates them on mu; the three steady paths and the two transient ones
+   * must agree as above. Exponential law mu(0) = 0.3, mu_k = 0.2, v_h = 10 mm/s,
+   * d_c = 0.05 mm (long enough that the weakening stays below the elastic stiffness). */
+  const rs_friction memory = {.kind = RS_FRICTION_EXPONENTIAL,
+                              .mu_kinetic = 0.2,
+                              .terms = 1,
+                              .mu_excess = {0.1},
+                              .half_velocity = {10.0},
+                              .memory_distance = 0.05,
+                              .memory_velocity = 1.0};
+  ts_carter_case(&c, 100);
+  c.friction = memory;
+  c.mu = 0.3;
+  fail |= compare("Carter elastic, exponential friction with memory, 100 cells", &c);
+  ts_carter_case(&c, 100);
+  c.friction = memory;
+  c.mu = 0.3;
+  fail |= compare_transient("Carter elastic start-up, exponential friction with memory", &c, 6.0);
   if (fail) ts_failures++;
   printf("%s\n", ts_failures ? "FAILED" : "all passed");
   return ts_failures ? 1 : 0;

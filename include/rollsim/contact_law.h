@@ -40,9 +40,10 @@ enum { RS_BRANCH_EXTERIOR = 1, RS_BRANCH_SLIP = 2, RS_BRANCH_YIELD = 4 };
 /* Most components per cell (3D). */
 #define RS_MAX_COMP 2
 /* Local variables of a cell, in this order: p (ncomp), v_s (ncomp), Du_pl/Dt (ncomp),
- * Dustar/Dt, u*. Local rows: R_f (ncomp), R_pl (ncomp), R_*. */
-#define RS_LAW_NVAR (3 * RS_MAX_COMP + 2)
-#define RS_LAW_NROW (2 * RS_MAX_COMP + 1)
+ * Dustar/Dt, u*, and with friction memory mu, Dmu/Dt. Local rows: R_f (ncomp), R_pl
+ * (ncomp), R_*, and with friction memory R_mu. */
+#define RS_LAW_NVAR (3 * RS_MAX_COMP + 4)
+#define RS_LAW_NROW (2 * RS_MAX_COMP + 2)
 static inline int rs_law_var_p(int c) { return c; }
 static inline int rs_law_var_vs(int ncomp, int c) { return ncomp + c; }
 static inline int rs_law_var_flow(int ncomp, int c) { return 2 * ncomp + c; }
@@ -51,6 +52,9 @@ static inline int rs_law_var_ustar(int ncomp) { return 3 * ncomp + 1; }
 static inline int rs_law_row_f(int c) { return c; }
 static inline int rs_law_row_pl(int ncomp, int c) { return ncomp + c; }
 static inline int rs_law_row_star(int ncomp) { return 2 * ncomp; }
+static inline int rs_law_var_mu(int ncomp) { return 3 * ncomp + 2; }
+static inline int rs_law_var_dmu(int ncomp) { return 3 * ncomp + 3; }
+static inline int rs_law_row_mu(int ncomp) { return 2 * ncomp + 1; }
 
 /* A cell's local quantities. */
 typedef struct rs_law_in {
@@ -69,6 +73,13 @@ typedef struct rs_law_in {
    * slip starts (measured: |v_s| there made Newton cycle between the branches). */
   const rs_friction *friction;
   double pn; /* pressure, N/mm^2 */
+  /* Friction memory (friction has memory; 1 component): the state mu of the cell and
+   * its material rate. The bound is then g = mu p_n (in->g is ignored) and the row
+   *   R_mu = r (d_c Dmu/Dt + max(|v_s|, s0) (mu - mu_law(eta)))   in the contact,
+   *   R_mu = r d_c Dmu/Dt                                         outside,
+   * with eta the slip speed along the bound's direction as above. */
+  int memory;
+  double mu, dmu; /* -, 1/s */
 } rs_law_in;
 
 /* The residual rows of a cell, their active branches, and the local generalized

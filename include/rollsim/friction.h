@@ -29,6 +29,10 @@ typedef struct rs_friction {
   double mu_excess[RS_FRICTION_MAX_TERMS];     /* added to mu_kinetic at rest */
   double half_velocity[RS_FRICTION_MAX_TERMS]; /* mm/s */
   double mu_static, polach_a, polach_b;        /* polach; B in s/mm */
+  /* Friction memory (model.md §11, CONTACT's M-law): mu is a state per cell with
+   * d_c Dmu/Dt = -max(|v_s|, s0) (mu - mu_law(|v_s|)); d_c = 0: no memory. */
+  double memory_distance; /* d_c, mm */
+  double memory_velocity; /* s0, mm/s */
 } rs_friction;
 
 /* Coefficient of friction at slip speed s (mm/s), and d mu / d s into *slope (may be
@@ -45,6 +49,12 @@ static inline double rs_friction_mu(const rs_friction *f, double s)
 static inline int rs_friction_varies(const rs_friction *f)
 {
   return f->kind != RS_FRICTION_COULOMB;
+}
+
+/* 1 if mu is a state with memory (a velocity-dependent law with d_c > 0). */
+static inline int rs_friction_has_memory(const rs_friction *f)
+{
+  return f->kind != RS_FRICTION_COULOMB && f->memory_distance > 0.0;
 }
 
 /* Name of a law as the case file spells it. */

@@ -126,12 +126,14 @@ typedef struct rs_work {
   double *vslip;         /* slip velocity v_s [ncomp n] */
   double *dupl;          /* Du_pl/Dt [ncomp n] */
   double *dustar;        /* Dustar/Dt [n] */
+  double *dmu;           /* Dmu/Dt with friction memory [n] (else NULL) */
   unsigned char *branch; /* RS_BRANCH_* flags per cell [n] */
   rs_law_out *law;       /* per cell: rows and local Jacobian of the last evaluation [n] */
-  /* Row structure of the last Jacobian (rs_model_jacobian), per traction row k < ncomp n:
-   * dense[k] = 1 if the row couples to every traction through the elastic operator (it
-   * involves v_s); pivot[k] = the unknown a direct solver eliminates on it (the
-   * traction, or the plastic displacement when the cell's yield rows fix the traction). */
+  /* Row structure of the last Jacobian (rs_model_jacobian), per row k < neq: dense[k] = 1
+   * if the row couples to every traction through the elastic operator (it involves v_s:
+   * traction rows, and with friction memory the memory rows in the contact); pivot[k] =
+   * the unknown a direct solver eliminates on a dense row (the traction, or the plastic
+   * displacement when the cell's yield rows fix the traction; mu for a memory row). */
   unsigned char *dense;
   int *pivot;
   double r;                   /* scaling of the last evaluation */
@@ -185,6 +187,10 @@ int rs_model_jv(const rs_model *m, const rs_work *w, rs_work *wlin, const rs_inp
  * sum p' dA = F'(t), which also gives the creepage: its unknown in y is set. */
 int rs_model_consistent_rates(const rs_model *m, rs_work *w, const rs_inputs *in, double *y,
                               double *yp, rs_msg *msg);
+
+/* The state at rest into y [neq]: no traction, fresh material (u_pl = u* = 0; with
+ * friction memory mu = mu_law(0)), extras 0. */
+void rs_model_rest_state(const rs_model *m, double *y);
 
 /* Make the tractions of y admissible (after a jump of an input history): p = 0 outside
  * the contact, |p| <= g inside (a cell whose bound dropped keeps its direction). */

@@ -15,6 +15,7 @@ typedef struct rs_restart_grid {
   const double *x, *y; /* cell centres, mm [nx], [ny] (2D: y unused) */
   int ncomp;           /* tangential components: 1 (2D) or 2 (3D) */
   int nextra;          /* prescribed-force creepages to read: 0, 1 or 2 */
+  int memory;          /* 1: also the friction-memory state, from the field mu */
 } rs_restart_grid;
 
 /* Read the last record of the time-history file at path. The file's x (and in 3D y)
@@ -22,12 +23,13 @@ typedef struct rs_restart_grid {
  * relative (to the largest). A file whose status is still "running" (a killed run) is
  * fine: its last complete record is used. On success *t_last is that record's time (s),
  * p and upl [ncomp n] (x components first, then y: px/py, upl_x/upl_y in 3D) and ustar
- * [n] its state, n = nx ny; extras [nextra] the creepage (and the lateral creepage) of
+ * [n] its state, n = nx ny; with g->memory mu [n] the friction-memory state (field mu);
+ * extras [nextra] the creepage (and the lateral creepage) of
  * that record (force control). Returns RS_OK or RS_ERR_INPUT (missing or unreadable
  * file, no records, a missing field, a grid mismatch, non-finite values) with a message
  * naming the file. */
 int rs_restart_read(const char *path, const rs_restart_grid *g, double *t_last, double *p,
-                    double *upl, double *ustar, double *extras, rs_msg *msg);
+                    double *upl, double *ustar, double *mu, double *extras, rs_msg *msg);
 
 /* The history and status attributes of the file at path (malloc'ed; "" when absent),
  * for the history of a run that continues it. RS_ERR_INPUT when it cannot be read. */

@@ -24,7 +24,7 @@ typedef struct run_state {
   rs_model m;
   rs_work w;
   double *y, *yp, *slip, *tauc;
-  double *mu; /* mu(|v_s|) per cell (NaN outside the contact), velocity-dependent laws */
+  double *mu; /* mu(|v_s|) per cell (NaN outside the contact), or the memory state */
   signed char *regime;
   rs_output *out;
   rs_fields *final; /* copies of the last record's fields, or NULL */
@@ -49,6 +49,8 @@ static int write_record(run_state *s, double t, rs_diag *d, rs_msg *msg)
   if (status != RS_OK) return rs_msg_set(msg, status, "%s", s->w.msg.text);
   for (int i = 0; i < s->m.grid.n; i++) /* each cell's bound g = mu(|v_s|) p_n */
     s->mu[i] = s->w.pn[i] > 0.0 ? s->w.law[i].g / s->w.pn[i] : NAN;
+  for (int i = 0; i < s->m.grid.n && L->memory; i++) /* friction memory: the state, everywhere */
+    s->mu[i] = s->y[rs_at_mu(L, i)];
   if (s->final && L->ncomp == 1)
     rs_fields_copy(s->final, s->m.grid.n, s->y, s->w.pn, s->slip, s->tauc, s->regime, s->mu);
   rs_record rec = {.time = t,
@@ -204,10 +206,12 @@ static int read_restart(run_state *s, const rs_run_opts *o, const char *out_path
                              .x = s->m.grid.x,
                              .y = s->m.grid.y,
                              .ncomp = L->ncomp,
-                             .nextra = L->nextra};
+                             .nextra = L->nextra,
+                             .memory = L->memory};
   int status =
       rs_restart_read(o->restart_path, &g, t0, s->y + rs_at_p(L, 0, 0), s->y + rs_at_upl(L, 0, 0),
-                      s->y + rs_at_ustar(L, 0), L->nextra ? s->y + rs_at_extra(L, 0) : NULL, msg);
+                      s->y + rs_at_ustar(L, 0), L->memory ? s->y + rs_at_mu(L, 0) : NULL,
+                      L->nextra ? s->y + rs_at_extra(L, 0) : NULL, msg);
   if (status != RS_OK) return status;
   if (c->mode == RS_MODE_STEADY) { /* the stored state starts Newton at the case's inputs */
     *t0 = 0.0;
@@ -279,6 +283,7 @@ int rs_run(const rs_case *c, const rs_run_opts *o, rs_run_result *res, rs_msg *m
     free_state(&s);
     return rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory for %d cells", n);
   }
+  rs_model_rest_state(&s.m, s.y);
   const char *path = o->append && o->restart_path ? o->restart_path
                      : o->output_path             ? o->output_path
                                                   : c->output_file;

@@ -178,7 +178,10 @@ static int steady_point(const rs_case *c, steady_chain *ch, double **y, int *ny,
     free(*y);
     *y = calloc((size_t)ch->m.lay.neq, sizeof **y);
     *ny = ch->m.lay.neq;
-    if (!*y) status = rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory");
+    if (!*y)
+      status = rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory");
+    else
+      rs_model_rest_state(&ch->m, *y);
   }
   rs_stats stats = {0};
   if (status == RS_OK && chained) {
@@ -208,6 +211,8 @@ static int steady_point(const rs_case *c, steady_chain *ch, double **y, int *ny,
     memcpy(f->ustar, *y + rs_at_ustar(L, 0), bytes);
     for (int i = 0; i < ch->m.grid.n; i++) /* each cell's bound g = mu(|v_s|) p_n */
       f->mu[i] = ch->w.pn[i] > 0.0 ? ch->w.law[i].g / ch->w.pn[i] : NAN;
+    for (int i = 0; i < ch->m.grid.n && L->memory; i++) /* friction memory: the state */
+      f->mu[i] = (*y)[rs_at_mu(L, i)];
     memcpy(f->pn, ch->w.pn, bytes);
   }
   sum->nonlin_iters += stats.nonlin_iters;

@@ -26,6 +26,8 @@ static void set_defaults(rs_case_input *in)
   c->shear_modulus = 82000.0;
   c->poisson_ratio = 0.28;
   c->mu = 0.5;
+  c->friction.memory_distance = 0.0;
+  c->friction.memory_velocity = 1.0;
   c->layer_thickness = 0.0;
   c->layer_shear_modulus = 1.0;
   c->tau_c0 = 35.0;
@@ -478,6 +480,14 @@ static int resolve_friction(const resolver *r, rs_case_input *in)
     if (!n && (owner[k] & (1u << f->kind)) && f->kind != RS_FRICTION_COULOMB)
       return rs_case_error(r->d, law_node, keys[k], "is required by friction.law: %s", law);
   }
+  /* friction memory: a state of the velocity-dependent laws only */
+  static const char *const memory_keys[] = {"friction.memory_distance", "friction.memory_velocity"};
+  for (int k = 0; k < 2 && f->kind == RS_FRICTION_COULOMB; k++)
+    if (given(r, memory_keys[k]))
+      return rs_case_error(r->d, given(r, memory_keys[k]), memory_keys[k],
+                           "is friction memory of a velocity-dependent law; with friction.law: "
+                           "coulomb mu is constant and has no memory (remove it, or choose "
+                           "friction.law: linear, exponential, rational or polach)");
   if (f->kind == RS_FRICTION_COULOMB) return RS_OK;
   if (f->kind != RS_FRICTION_POLACH) {
     if (in->mu_excess.n != in->half_velocity.n)
@@ -502,18 +512,23 @@ static int resolve_friction(const resolver *r, rs_case_input *in)
                          "%s: velocity-dependent friction is implemented for 2D line contact "
                          "only (contact.dimension: 2); 3D has the Coulomb law",
                          law);
-  if (c->mode == RS_MODE_TRANSIENT)
+  if (c->mode == RS_MODE_TRANSIENT && !rs_friction_has_memory(f))
     return rs_case_error(
         r->d, law_node, "friction.law",
         "%s needs simulation.mode: steady. A falling friction law without friction memory makes "
         "the transient ill-posed (the rate of a slipping traction grows without bound: the time "
-        "step collapses); friction memory (friction.memory_distance), which makes it well-posed, "
-        "is not implemented yet",
+        "step collapses); friction memory makes it well-posed: set friction.memory_distance > 0 "
+        "mm",
         law);
   if (given(r, "rolling.tangential_force"))
     return rs_case_error(r->d, given(r, "rolling.tangential_force"), "rolling.tangential_force",
                          "is not available with friction.law: %s (prescribe rolling.creepage)",
                          law);
+  if (c->rig.on && rs_friction_has_memory(f))
+    return rs_case_error(r->d, given(r, "friction.memory_distance"), "friction.memory_distance",
+                         "is not available in a twin_disc: run: the memory state is not carried "
+                         "around the discs (material would re-enter the contact fresh at every "
+                         "revolution)");
   c->mu = mu0;
   return RS_OK;
 }
@@ -664,6 +679,7 @@ static int friction_key_used(const char *path, rs_friction_kind kind)
 {
   if (!strcmp(path, "friction.mu")) return 1; /* printed as mu at rest otherwise */
   const int polach = kind == RS_FRICTION_POLACH, coulomb = kind == RS_FRICTION_COULOMB;
+  if (!strncmp(path, "friction.memory_", 16)) return !coulomb;
   if (!strcmp(path, "friction.mu_static") || !strcmp(path, "friction.A") ||
       !strcmp(path, "friction.B"))
     return polach;

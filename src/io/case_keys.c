@@ -69,6 +69,10 @@ const rs_case_key rs_case_keys[] = {
     {"friction.A", RS_KEY_NUMBER, F(c.friction.polach_a), "", 0, 1, RS_KEY_NULLABLE, NULL},
     {"friction.B", RS_KEY_NUMBER, F(c.friction.polach_b), "s/mm", 0, 1e6,
      RS_KEY_HI_ABSURD | RS_KEY_NULLABLE, NULL},
+    {"friction.memory_distance", RS_KEY_NUMBER, F(c.friction.memory_distance), "mm", 0, 1e6,
+     RS_KEY_HI_ABSURD | RS_KEY_NULLABLE, NULL},
+    {"friction.memory_velocity", RS_KEY_NUMBER, F(c.friction.memory_velocity), "mm/s", 0, 1e12,
+     RS_KEY_LO_OPEN | RS_KEY_HI_ABSURD | RS_KEY_NULLABLE, NULL},
 
     {"layer", RS_KEY_SECTION, 0, "", 0, 0, 0, NULL},
     {"layer.thickness", RS_KEY_NUMBER, F(c.layer_thickness), "mm", 0, 1e9, RS_KEY_HI_ABSURD, NULL},

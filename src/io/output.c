@@ -62,7 +62,8 @@ const rs_field_var rs_field_vars[RS_N_FIELDS] = {
     {RS_FIELD_TAUC, "tauc", "N/mm2", "current yield limit", offsetof(rs_record, tauc)},
     {RS_FIELD_REGIME, "regime", "1", "contact regime of the cell", 0},
     {RS_FIELD_MU, "mu", "1",
-     "coefficient of friction mu(|v_s|) of the cell (NaN outside the contact)",
+     "coefficient of friction of the cell: mu(|v_s|) (NaN outside the contact), or with "
+     "friction memory the memory state (carried outside the contact too)",
      offsetof(rs_record, mu)},
 };
 

@@ -57,7 +57,7 @@ static int check_coordinate(int ncid, const char *path, const char *name, int th
 }
 
 static int read_file(int ncid, const char *path, const rs_restart_grid *g, double *t_last,
-                     double *p, double *upl, double *ustar, double *extras, rs_msg *msg)
+                     double *p, double *upl, double *ustar, double *mu, double *extras, rs_msg *msg)
 {
   const int three = g->ncomp == 2;
   const size_t n = g->nx * (three ? g->ny : 1);
@@ -87,12 +87,15 @@ static int read_file(int ncid, const char *path, const rs_restart_grid *g, doubl
                       path, *t_last);
 
   /* The state fields and where they go. */
-  const state_field fields2[3] = {{"px", p}, {"upl", upl}, {"ustar", ustar}};
+  const state_field fields2[4] = {{"px", p}, {"upl", upl}, {"ustar", ustar}, {"mu", mu}};
   const state_field fields3[5] = {
       {"px", p}, {"py", p + n}, {"upl_x", upl}, {"upl_y", upl + n}, {"ustar", ustar}};
   const state_field *fields = three ? fields3 : fields2;
-  const int nf = three ? 5 : 3;
-  const char *needed = three ? "px, py, upl_x, upl_y and ustar" : "px, upl and ustar";
+  const int memory = !three && g->memory;
+  const int nf = three ? 5 : 3 + memory;
+  const char *needed = three    ? "px, py, upl_x, upl_y and ustar"
+                       : memory ? "px, upl, ustar and, with friction memory, mu"
+                                : "px, upl and ustar";
   for (int f = 0; f < nf; f++) {
     const char *name = fields[f].name;
     if ((err = nc_inq_varid(ncid, name, &var)))
@@ -132,13 +135,13 @@ static int read_file(int ncid, const char *path, const rs_restart_grid *g, doubl
 }
 
 int rs_restart_read(const char *path, const rs_restart_grid *g, double *t_last, double *p,
-                    double *upl, double *ustar, double *extras, rs_msg *msg)
+                    double *upl, double *ustar, double *mu, double *extras, rs_msg *msg)
 {
   if (!path || !*path) return rs_msg_set(msg, RS_ERR_INPUT, "restart: no file given");
   int ncid;
   int err = nc_open(path, NC_NOWRITE, &ncid);
   if (err) return nc_fail(msg, path, "cannot open", err);
-  int status = read_file(ncid, path, g, t_last, p, upl, ustar, extras, msg);
+  int status = read_file(ncid, path, g, t_last, p, upl, ustar, mu, extras, msg);
   nc_close(ncid);
   return status;
 }

@@ -68,7 +68,9 @@ void rs_contact_law(const rs_plasticity *pl, const rs_law_in *in, int jac, rs_la
      * agrees with the plain projections, so F stays continuous there. */
     arg_f = p - r * vs;
     arg_pl = p + r * flow;
-    if (in->friction && rs_friction_varies(in->friction)) {
+    if (in->memory) {
+      g = in->mu * in->pn; /* the state, not the law: no dependence on v_s */
+    } else if (in->friction && rs_friction_varies(in->friction)) {
       /* g = mu(eta) p_n, eta = -s v_s: the slip speed along the bound's direction s */
       const double eta = -sign_of(arg_f) * vs;
       g = rs_friction_eval(in->friction, eta, &dg) * in->pn;
@@ -94,6 +96,21 @@ void rs_contact_law(const rs_plasticity *pl, const rs_law_in *in, int jac, rs_la
     out->R[Rpl] = yield ? p - tauc * sign_of(arg_pl) : -r * flow;
   }
   out->R[Rs] = r * (in->dustar - fabs(flow));
+  /* Friction memory: relaxation towards the law at the slip speed eta (smooth where slip
+   * starts, |v_s| at a solution), over the distance d_c of sliding. */
+  const int Rm = rs_law_row_mu(nc), MU = rs_law_var_mu(nc), DMU = rs_law_var_dmu(nc);
+  double mlaw = 0.0, mslope = 0.0, speed = 0.0, dspeed = 0.0, deta = 0.0;
+  if (in->memory) {
+    const double dc = in->friction->memory_distance, s0 = in->friction->memory_velocity;
+    out->R[Rm] = r * dc * in->dmu;
+    if (in->in_contact) {
+      deta = -sign_of(arg_f);
+      mlaw = rs_friction_eval(in->friction, deta * vs, &mslope);
+      speed = fabs(vs) > s0 ? fabs(vs) : s0;
+      dspeed = fabs(vs) > s0 ? sign_of(vs) : 0.0;
+      out->R[Rm] += r * speed * (in->mu - mlaw);
+    }
+  }
   out->branch = br;
   out->g = g;
   out->pins_p = 0;
@@ -107,7 +124,9 @@ void rs_contact_law(const rs_plasticity *pl, const rs_law_in *in, int jac, rs_la
     put(out, Rf, P, 1.0);
   else
     put(out, Rf, VS, r);
-  if ((br & RS_BRANCH_SLIP) && in->friction && rs_friction_varies(in->friction))
+  if ((br & RS_BRANCH_SLIP) && in->memory)
+    put(out, Rf, MU, -sign_of(arg_f) * in->pn); /* R_f = p - s mu p_n */
+  else if ((br & RS_BRANCH_SLIP) && in->friction && rs_friction_varies(in->friction))
     put(out, Rf, VS, dg);
   /* Plasticity row: p - tau_c(u*) sign at the yield limit (the u* term kept when it is
    * zero: the pattern follows the branches), r Du_pl/Dt outside, -r Du_pl/Dt inside. */
@@ -124,6 +143,16 @@ void rs_contact_law(const rs_plasticity *pl, const rs_law_in *in, int jac, rs_la
   const double sig = flow != 0.0 ? sign_of(flow) : sign_of(p);
   put(out, Rs, FL, -r * sig);
   put(out, Rs, DUS, r);
+  /* Memory row: r d_c on Dmu/Dt; in the contact r max(|v_s|, s0) on mu and
+   * r [max'(|v_s|) (mu - mu_law) - max(|v_s|, s0) mu_law'(eta) d eta/d v_s] on v_s (the
+   * dense term through Du_el/Dt). */
+  if (in->memory) {
+    put(out, Rm, DMU, r * in->friction->memory_distance);
+    if (!(br & RS_BRANCH_EXTERIOR)) {
+      put(out, Rm, MU, r * speed);
+      put(out, Rm, VS, r * (dspeed * (in->mu - mlaw) - speed * mslope * deta));
+    }
+  }
 }
 
 static void disk_law(const rs_plasticity *pl, const rs_law_in *in, int jac, rs_law_out *out)

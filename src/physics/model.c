@@ -50,7 +50,8 @@ static int build_grid(rs_model *m, int nx, double x_lo, double x_hi, int ny, dou
   int status = rs_grid_create(&m->grid, nx, x_lo, x_hi, ny, y_lo, y_hi, msg);
   if (status != RS_OK) return status;
   const int n = m->grid.n, ncomp = m->par.dimension == 3 ? 2 : 1;
-  m->lay = rs_layout_make(n, ncomp, m->par.force_control ? ncomp : 0);
+  m->lay = rs_layout_make(n, ncomp, m->par.force_control ? ncomp : 0,
+                          rs_friction_has_memory(&m->par.friction));
   m->gap = malloc((size_t)n * sizeof *m->gap);
   m->pn = malloc((size_t)n * sizeof *m->pn);
   m->bound = malloc((size_t)n * sizeof *m->bound);
@@ -231,8 +232,13 @@ int rs_work_create(rs_work *w, const rs_model *m)
   w->dustar = calloc(n, sizeof *w->dustar);
   w->branch = calloc(n, sizeof *w->branch);
   w->law = calloc(n, sizeof *w->law);
-  w->dense = calloc(nc * n, sizeof *w->dense);
-  w->pivot = calloc(nc * n, sizeof *w->pivot);
+  const size_t neq = (size_t)m->lay.neq;
+  w->dense = calloc(neq, sizeof *w->dense);
+  w->pivot = calloc(neq, sizeof *w->pivot);
+  if (m->lay.memory && !(w->dmu = calloc(n, sizeof *w->dmu))) {
+    rs_work_free(w);
+    return RS_ERR_INTERNAL;
+  }
   w->pn_buf = calloc(n, sizeof *w->pn_buf);
   w->bound_buf = calloc(n, sizeof *w->bound_buf);
   w->inflow = calloc((nc + 1) * (size_t)m->grid.ny, sizeof *w->inflow);
@@ -254,6 +260,7 @@ void rs_work_free(rs_work *w)
   free(w->vslip);
   free(w->dupl);
   free(w->dustar);
+  free(w->dmu);
   free(w->branch);
   free(w->law);
   free(w->dense);
@@ -341,12 +348,16 @@ void rs_model_kinematics(const rs_model *m, rs_work *w, const rs_inputs *in, con
         w->uel[(size_t)c * px * ny + iy * px + ix] += c3 * p[c * n + I];
         w->ueldot[c * n + I] += c3 * yp[rs_at_p(L, c, I)];
       }
+  /* friction memory: fresh material enters at mu_law(0) (nothing in the linear part) */
+  const double *mu = L->memory ? y + rs_at_mu(L, 0) : NULL;
+  const double mu_in = in->linear ? 0.0 : rs_friction_mu(&m->par.friction, 0.0);
   for (int iy = 0; iy < ny; iy++) {
     const double *in_row = w->inflow + iy * (nc + 1); /* u_pl components, then u* */
     for (int ix = 0; ix < nx; ix++) {
       const int I = iy * nx + ix, up = rs_grid_upstream(g, I);
       const double us_next = up >= 0 ? us[up] : in_row[nc];
       w->dustar[I] = yp[rs_at_ustar(L, I)] - a * (us_next - us[I]);
+      if (mu) w->dmu[I] = yp[rs_at_mu(L, I)] - a * ((up >= 0 ? mu[up] : mu_in) - mu[I]);
       for (int c = 0; c < nc; c++) {
         const double *upl = y + rs_at_upl(L, c, 0);
         const double *u = w->uel + (size_t)c * px * ny + iy * px;
@@ -373,7 +384,10 @@ void rs_model_cell_law(const rs_model *m, const rs_work *w, const double *y, int
                   .g = w->bound[I],
                   .r = w->r,
                   .friction = &m->par.friction,
-                  .pn = w->pn[I]};
+                  .pn = w->pn[I],
+                  .memory = L->memory,
+                  .mu = L->memory ? y[rs_at_mu(L, I)] : 0.0,
+                  .dmu = L->memory ? w->dmu[I] : 0.0};
   for (int c = 0; c < L->ncomp; c++) {
     in.p[c] = y[rs_at_p(L, c, I)];
     in.vs[c] = w->vslip[c * L->n + I];
@@ -407,6 +421,7 @@ int rs_model_evaluate(const rs_model *m, rs_work *w, const rs_inputs *in, const 
       F[rs_at_upl(L, c, i)] = o->R[rs_law_row_pl(L->ncomp, c)];
     }
     F[rs_at_ustar(L, i)] = o->R[rs_law_row_star(L->ncomp)];
+    if (L->memory) F[rs_at_mu(L, i)] = o->R[rs_law_row_mu(L->ncomp)];
   }
   /* Force rows, scaled to a mean traction over the contact (2a in 2D, pi a b in 3D). */
   for (int k = 0; F && k < L->nextra; k++) {

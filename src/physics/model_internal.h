@@ -9,7 +9,8 @@
 #include "rollsim/model.h"
 
 /* Transport terms shared by residual, Jacobian, rates and diagnostics: u_el on the
- * padded grid, its rate, and the material derivatives of u_el, u_pl, u*:
+ * padded grid, its rate, and the material derivatives of u_el, u_pl, u* (and mu with
+ * friction memory, fresh material entering at mu_law(0)):
  *   (D f/Dt)_I = f'_I - V (f_up(I) - f_I)/dx   (first-order upwind, model.md §5)
  *   v_s = V w + v_shift + Du_el/Dt + Du_pl/Dt,  u_el = A p + (h3/G3) p.
  * With in->linear the rigid slip and the inflow state are left out (the linear part,
@@ -35,6 +36,13 @@ int rs_model_evaluate(const rs_model *m, rs_work *w, const rs_inputs *in, const 
 /* The local law of cell I from the kinematics in w (jac: also its local Jacobian). */
 void rs_model_cell_law(const rs_model *m, const rs_work *w, const double *y, int I, int jac,
                        rs_law_out *out);
+
+/* Traction bound of cell I in w's evaluation: mu p_n with mu the memory state of y, or the
+ * bound of the memoryless model (the law at rest). */
+static inline double rs_model_bound(const rs_model *m, const rs_work *w, const double *y, int I)
+{
+  return m->lay.memory ? y[rs_at_mu(&m->lay, I)] * w->pn[I] : w->bound[I];
+}
 
 static inline double rs_sign_of(double v) { return v > 0.0 ? 1.0 : (v < 0.0 ? -1.0 : 0.0); }
 

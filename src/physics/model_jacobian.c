@@ -7,6 +7,8 @@
  *   Du_pl,c/Dt(I)  -> cj + a on u_pl,c(I), -a on u_pl,c(up)
  *   Dustar/Dt(I)   -> cj + a on u*(I), -a on u*(up)
  *   u*(I)          -> 1 on u*(I)
+ *   Dmu/Dt(I)      -> cj + a on mu(I), -a on mu(up)            (friction memory)
+ *   mu(I)          -> 1 on mu(I)
  * with a = V/dx and up the upstream neighbour (model.md §5). The same chain gives exact
  * J v products: the local rows applied to the kinematics of v. */
 #include <math.h>
@@ -41,15 +43,19 @@ int64_t rs_model_jac_capacity(const rs_model *m, int band)
   /* traction rows: near field, own plastic displacements, extras; plasticity rows: at
    * most the traction, u* and two plastic displacements; u* rows: four entries; force
    * rows: every traction and the extras */
-  return nc * n * (near + 2 * nc + L->nextra) + nc * n * (2 + 2 * nc) + n * (2 * nc + 2) +
-         L->nextra * (nc * n + L->nextra);
+  int64_t cap = nc * n * (near + 2 * nc + L->nextra) + nc * n * (2 + 2 * nc) + n * (2 * nc + 2) +
+                L->nextra * (nc * n + L->nextra);
+  /* friction memory: mu(I) in each traction row; memory rows as traction rows plus mu(I),
+   * mu(up) */
+  if (L->memory) cap += nc * n + n * (near + 2 * nc + L->nextra + 2);
+  return cap;
 }
 
 /* The sparse columns of a local row (everything but the tractions), in column order:
  * u_pl,c(I), u_pl,c(up) per component, u*(I), u*(up), the extras. */
 typedef struct sparse_cols {
-  double upl[RS_MAX_COMP][2], us[2], extra[RS_MAX_COMP];
-  unsigned char has_upl[RS_MAX_COMP][2], has_us[2], has_extra[RS_MAX_COMP];
+  double upl[RS_MAX_COMP][2], us[2], mu[2], extra[RS_MAX_COMP];
+  unsigned char has_upl[RS_MAX_COMP][2], has_us[2], has_mu[2], has_extra[RS_MAX_COMP];
 } sparse_cols;
 
 static void add(double *v, unsigned char *has, double x)
@@ -154,6 +160,14 @@ static void put_row(const rs_model *m, const rs_law_out *o, int lr, int I, const
     add(&s.us[1], &s.has_us[1], o->jac[lr][dus] * -a);
   }
   if (o->present[lr][us]) add(&s.us[0], &s.has_us[0], o->jac[lr][us]);
+  if (L->memory) {
+    const int mu = rs_law_var_mu(nc), dmu = rs_law_var_dmu(nc);
+    if (o->present[lr][dmu]) {
+      add(&s.mu[0], &s.has_mu[0], o->jac[lr][dmu] * (cj + a));
+      add(&s.mu[1], &s.has_mu[1], o->jac[lr][dmu] * -a);
+    }
+    if (o->present[lr][mu]) add(&s.mu[0], &s.has_mu[0], o->jac[lr][mu]);
+  }
   /* Near field: a traction row keeps its own plastic displacements (and the extras),
    * zeros included, so that the pattern does not depend on the branches. */
   const int fixed = traction_row && band > 0;
@@ -164,6 +178,9 @@ static void put_row(const rs_model *m, const rs_law_out *o, int lr, int I, const
   }
   if (s.has_us[0]) csr_put(J, rs_at_ustar(L, I), s.us[0]);
   if (up >= 0 && s.has_us[1]) csr_put(J, rs_at_ustar(L, up), s.us[1]);
+  /* near field with memory: a traction row keeps mu(I) (present at the bound only) */
+  if (s.has_mu[0] || (fixed && L->memory)) csr_put(J, rs_at_mu(L, I), s.mu[0]);
+  if (up >= 0 && s.has_mu[1]) csr_put(J, rs_at_mu(L, up), s.mu[1]);
   for (int k = 0; k < L->nextra; k++)
     if (s.has_extra[k] || fixed) csr_put(J, rs_at_extra(L, k), s.extra[k]);
   csr_next_row(J);
@@ -183,6 +200,11 @@ int rs_model_jacobian(const rs_model *m, rs_work *w, const rs_inputs *in, const 
       for (int b = 0; b < nc; b++) w->dense[k] |= w->law[i].present[row][rs_law_var_vs(nc, b)];
       w->pivot[k] = w->law[i].pins_p ? rs_at_upl(L, c, i) : k;
     }
+    if (L->memory) { /* a memory row in the contact involves v_s: eliminated on mu */
+      const int k = rs_at_mu(L, i);
+      w->dense[k] = w->law[i].present[rs_law_row_mu(nc)][rs_law_var_vs(nc, 0)];
+      w->pivot[k] = k;
+    }
   }
   /* Rows in the order of the unknowns (rollsim/layout.h). */
   J->nrows = 0;
@@ -193,6 +215,9 @@ int rs_model_jacobian(const rs_model *m, rs_work *w, const rs_inputs *in, const 
   for (int c = 0; c < nc; c++)
     for (int i = 0; i < n; i++) put_row(m, &w->law[i], rs_law_row_pl(nc, c), i, in, cj, band, 0, J);
   for (int i = 0; i < n; i++) put_row(m, &w->law[i], rs_law_row_star(nc), i, in, cj, band, 0, J);
+  /* Memory rows: in the near field like traction rows (a pattern fixed by the contact) */
+  for (int i = 0; i < n && L->memory; i++)
+    put_row(m, &w->law[i], rs_law_row_mu(nc), i, in, cj, band, 1, J);
   /* Force rows: (dA sum p_k - F_k)/(2a). */
   const double force_row = m->grid.area / m->contact_measure;
   for (int k = 0; k < L->nextra; k++) {
@@ -223,13 +248,19 @@ int rs_model_jv(const rs_model *m, const rs_work *w, rs_work *wlin, const rs_inp
     }
     d[rs_law_var_dustar(nc)] = wlin->dustar[i];
     d[rs_law_var_ustar(nc)] = v[rs_at_ustar(L, i)];
-    for (int lr = 0; lr < 2 * nc + 1; lr++) {
+    const int mem = L->memory;
+    if (mem) {
+      d[rs_law_var_mu(nc)] = v[rs_at_mu(L, i)];
+      d[rs_law_var_dmu(nc)] = wlin->dmu[i];
+    }
+    for (int lr = 0; lr < 2 * nc + 1 + mem; lr++) {
       double sum = 0.0;
-      for (int q = 0; q < 3 * nc + 2; q++)
+      for (int q = 0; q < 3 * nc + 2 + 2 * mem; q++)
         if (o->present[lr][q]) sum += o->jac[lr][q] * d[q];
-      const int row = lr < nc       ? rs_at_p(L, lr, i)
-                      : lr < 2 * nc ? rs_at_upl(L, lr - nc, i)
-                                    : rs_at_ustar(L, i);
+      const int row = lr < nc        ? rs_at_p(L, lr, i)
+                      : lr < 2 * nc  ? rs_at_upl(L, lr - nc, i)
+                      : lr == 2 * nc ? rs_at_ustar(L, i)
+                                     : rs_at_mu(L, i);
       Jv[row] = sum;
     }
   }

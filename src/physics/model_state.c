@@ -166,6 +166,46 @@ done:
   return status;
 }
 
+/* Friction memory: mu' from d_c Dmu/Dt = -max(|v_s|, s0) (mu - mu_law(|v_s|)) in the
+ * contact, Dmu/Dt = 0 outside, Dmu/Dt = mu' - a (mu_up - mu) (fresh material at
+ * mu_law(0)), on the kinematics in w. */
+static void memory_rates(const rs_model *m, const rs_work *w, const rs_inputs *in, const double *y,
+                         double *yp)
+{
+  const rs_layout *L = &m->lay;
+  const rs_friction *f = &m->par.friction;
+  const double a = in->velocity / m->grid.dx, mu_in = rs_friction_mu(f, 0.0);
+  for (int i = 0; i < L->n; i++) {
+    const int up = rs_grid_upstream(&m->grid, i);
+    const double mu = y[rs_at_mu(L, i)], mu_next = up >= 0 ? y[rs_at_mu(L, up)] : mu_in;
+    double dmu = 0.0;
+    if (w->pn[i] > 0.0) {
+      const double speed = fabs(w->vslip[i]);
+      dmu = -fmax(speed, f->memory_velocity) / f->memory_distance * (mu - rs_friction_mu(f, speed));
+    }
+    yp[rs_at_mu(L, i)] = dmu + a * (mu_next - mu);
+  }
+}
+
+/* Friction memory: the rates of the cells at the bound (not in mask), p' = s g' with
+ * g = mu p_n: mu' p_n, plus mu p_n' with a load history (pn_up: p_n at the load + h). */
+static void bound_rates(const rs_model *m, const rs_work *w, const double *y,
+                        const unsigned char *mask, const double *pn_up, const rs_inputs *in,
+                        double *yp)
+{
+  const rs_layout *L = &m->lay;
+  const double *us = y + rs_at_ustar(L, 0);
+  for (int i = 0; i < L->n; i++) {
+    if (mask[i] || rs_contact_state(&m->par.plasticity, w->pn[i] > 0.0, traction_norm(L, y, i),
+                                    rs_model_bound(m, w, y, i), us[i]) != RS_STATE_AT_BOUND)
+      continue;
+    double gdot = yp[rs_at_mu(L, i)] * w->pn[i];
+    if (in->load_rate != 0.0)
+      gdot += y[rs_at_mu(L, i)] * (pn_up[i] - w->pn[i]) / (1e-6 * in->load) * in->load_rate;
+    yp[rs_at_p(L, 0, i)] = rs_sign_of(y[rs_at_p(L, 0, i)]) * gdot;
+  }
+}
+
 int rs_model_consistent_rates(const rs_model *m, rs_work *w, const rs_inputs *in, double *y,
                               double *yp, rs_msg *msg)
 {
@@ -184,17 +224,19 @@ int rs_model_consistent_rates(const rs_model *m, rs_work *w, const rs_inputs *in
     goto done;
   }
   /* Cells at the traction bound follow it: p' = (p/|p|) g'(t) (a load history moves g;
-   * g' by a difference quotient of the normal solution in the load). */
+   * g' by a difference quotient of the normal solution in the load). With friction memory
+   * g = mu p_n also moves with mu' (memory_rates, below). */
   if (in->load_rate != 0.0) {
     const double h = 1e-6 * in->load, mu = rs_friction_mu(&m->par.friction, 0.0);
     status = rs_model_pressure(m, &w->ew, in->load + h, pn_up, NULL, msg);
     if (status != RS_OK) goto done;
     for (int i = 0; i < n; i++) {
       const double pnorm = traction_norm(L, y, i);
-      if (rs_contact_state(&m->par.plasticity, w->pn[i] > 0.0, pnorm, w->bound[i], us[i]) !=
-          RS_STATE_AT_BOUND)
+      if (rs_contact_state(&m->par.plasticity, w->pn[i] > 0.0, pnorm, rs_model_bound(m, w, y, i),
+                           us[i]) != RS_STATE_AT_BOUND)
         continue;
-      const double gdot = mu * (pn_up[i] - w->pn[i]) / h * in->load_rate;
+      const double mu_i = L->memory ? y[rs_at_mu(L, i)] : mu;
+      const double gdot = mu_i * (pn_up[i] - w->pn[i]) / h * in->load_rate;
       for (int c = 0; c < nc; c++) {
         const double pc = y[rs_at_p(L, c, i)];
         yp[rs_at_p(L, c, i)] =
@@ -202,27 +244,39 @@ int rs_model_consistent_rates(const rs_model *m, rs_work *w, const rs_inputs *in
       }
     }
   }
-  rs_model_kinematics(m, w, in, y, yp); /* with p' = 0 inside: v_s holds all but A p'_H */
   int h = 0;
   for (int i = 0; i < n; i++)
-    if (rs_contact_state(&m->par.plasticity, w->pn[i] > 0.0, traction_norm(L, y, i), w->bound[i],
-                         us[i]) == RS_STATE_INSIDE) {
+    if (rs_contact_state(&m->par.plasticity, w->pn[i] > 0.0, traction_norm(L, y, i),
+                         rs_model_bound(m, w, y, i), us[i]) == RS_STATE_INSIDE) {
       adh[h++] = i;
       mask[i] = 1;
     }
-  /* Adhesion: v_s = 0 with Du_pl/Dt = 0, i.e. (A + c3 I) p'_H = -v_s(p'_H = 0). */
-  if (h > 0)
-    status = nc == 1 ? adhesion_rates_2d(m, w, in, adh, h, y, yp, msg)
-                     : adhesion_rates_3d(m, w, in, mask, y, yp, msg);
-  if (status != RS_OK) goto done;
-  rs_model_kinematics(m, w, in, y, yp);
+  /* With friction memory the rates of cells at the bound, p' = s (mu' p_n + mu p_n'),
+   * depend on the slip velocities through mu', and these on the adhesion rates: a few
+   * fixed-point passes (from rest no cell is at the bound and one pass is exact). */
+  const int passes = L->memory ? 4 : 1;
+  for (int pass = 0; pass < passes; pass++) {
+    if (pass > 0) {
+      memory_rates(m, w, in, y, yp);
+      bound_rates(m, w, y, mask, pn_up, in, yp);
+      for (int k = 0; k < h; k++) yp[rs_at_p(L, 0, adh[k])] = 0.0;
+    }
+    rs_model_kinematics(m, w, in, y, yp); /* with p' = 0 inside: v_s holds all but A p'_H */
+    /* Adhesion: v_s = 0 with Du_pl/Dt = 0, i.e. (A + c3 I) p'_H = -v_s(p'_H = 0). */
+    if (h > 0)
+      status = nc == 1 ? adhesion_rates_2d(m, w, in, adh, h, y, yp, msg)
+                       : adhesion_rates_3d(m, w, in, mask, y, yp, msg);
+    if (status != RS_OK) goto done;
+    rs_model_kinematics(m, w, in, y, yp);
+  }
+  if (L->memory) memory_rates(m, w, in, y, yp);
   rs_model_inflow(m, in, w->inflow);
   /* Transport of u_pl and u*: Du/Dt = 0, except plastic flow where |p| is at a yield
    * limit below the bound (flow takes up the slip velocity left over). */
   for (int i = 0; i < n; i++) {
     const int at_yield =
-        rs_contact_state(&m->par.plasticity, w->pn[i] > 0.0, traction_norm(L, y, i), w->bound[i],
-                         us[i]) == RS_STATE_AT_YIELD;
+        rs_contact_state(&m->par.plasticity, w->pn[i] > 0.0, traction_norm(L, y, i),
+                         rs_model_bound(m, w, y, i), us[i]) == RS_STATE_AT_YIELD;
     const int up = rs_grid_upstream(&m->grid, i);
     const double *in_row = w->inflow + rs_grid_row(&m->grid, i) * (nc + 1);
     double flow_norm2 = 0.0, flow1 = 0.0;
@@ -243,6 +297,14 @@ done:
   return status;
 }
 
+void rs_model_rest_state(const rs_model *m, double *y)
+{
+  const rs_layout *L = &m->lay;
+  memset(y, 0, (size_t)L->neq * sizeof *y);
+  const double mu0 = rs_friction_mu(&m->par.friction, 0.0);
+  for (int i = 0; i < L->n && L->memory; i++) y[rs_at_mu(L, i)] = mu0;
+}
+
 int rs_model_project_state(const rs_model *m, rs_work *w, const rs_inputs *in, double *y,
                            rs_msg *msg)
 {
@@ -250,7 +312,8 @@ int rs_model_project_state(const rs_model *m, rs_work *w, const rs_inputs *in, d
   if (status != RS_OK) return status;
   const rs_layout *L = &m->lay;
   for (int i = 0; i < m->grid.n; i++) {
-    const double g = w->pn[i] > 0.0 ? w->bound[i] : 0.0, pnorm = traction_norm(L, y, i);
+    const double g = w->pn[i] > 0.0 ? rs_model_bound(m, w, y, i) : 0.0;
+    const double pnorm = traction_norm(L, y, i);
     if (!(pnorm > g)) continue;
     for (int c = 0; c < L->ncomp; c++) { /* onto the bound, keeping the direction */
       double *p = y + rs_at_p(L, c, i);

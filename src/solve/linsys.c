@@ -24,7 +24,9 @@ int rs_linsys_create(rs_linsys *ls, const rs_model *m, N_Vector tmpl, SUNContext
 
 int rs_linsys_use_reduced(rs_linsys *ls, const rs_model *m, const rs_work *w, SUNContext ctx)
 {
-  const int neq = m->lay.neq, ntraction = m->lay.ncomp * m->lay.n;
+  /* rows that may be dense: the traction rows, with friction memory every row (the
+   * memory rows in the contact are dense too; w->dense flags them) */
+  const int neq = m->lay.neq, ntraction = m->lay.memory ? neq : m->lay.ncomp * m->lay.n;
   if (m->lay.nextra != 0 || ls->reduced) return RS_ERR_INTERNAL;
   ls->placeholder = SUNSparseMatrix(neq, neq, 1, CSR_MAT, ctx);
   ls->reduced = rs_lsreduced_create(ntraction, neq, w->dense, w->pivot, ls->J, ls->LS, ctx);

@@ -13,7 +13,7 @@
 
 typedef struct red_content {
   int n, neq;
-  const unsigned char *dense; /* [n]: traction row i is dense (from the model, per setup) */
+  const unsigned char *dense; /* [n]: row i is dense (from the model, per setup) */
   const int *pivot;           /* [n]: the unknown eliminated on dense row i */
   SUNLinearSolver fallback;
   SUNMatrix J;

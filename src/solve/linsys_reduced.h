@@ -24,8 +24,10 @@
 #include <sundials/sundials_linearsolver.h>
 #include <sundials/sundials_matrix.h>
 
-/* neq: size of the system; n: traction rows (rows 0..n-1); dense, pivot: the model's
- * row structure for them, read at every setup (rs_work dense/pivot, owned by the
+/* neq: size of the system; n: the rows that may be dense (rows 0..n-1: the traction
+ * rows, or every row with friction memory, whose memory rows in the contact involve the
+ * slip velocity too and are eliminated on mu); dense, pivot: the model's row structure
+ * for them, read at every setup (rs_work dense/pivot, owned by the
  * caller, filled by the assembly before the setup). J: the CSR SUNSparseMatrix the
  * Jacobian is assembled in; the solver always works on J, whatever matrix the
  * caller passes to setup and solve: KINSOL zeroes the whole matrix it is given

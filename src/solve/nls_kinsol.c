@@ -139,6 +139,12 @@ static int nls_solve(SUNNonlinearSolver nls, N_Vector y0, N_Vector ycor, N_Vecto
     /* the force row (force control) is a mean traction: the strictest traction weight */
     fs[i] = i < ntraction ? wv[i] : i < ncell ? wv[i] / diag_transport : wmax;
   }
+  if (L->memory) { /* memory rows: diagonal r (d_c (cj + V/dx) + s0) at least */
+    const rs_friction *f = &m->par.friction;
+    const double diag_memory =
+        r * (f->memory_distance * (cj + in->velocity / m->grid.dx) + f->memory_velocity);
+    for (int i = rs_at_mu(L, 0); i < ncell; i++) fs[i] = wv[i] / diag_memory;
+  }
   KINSetFuncNormTol(c->kmem, 0.01 * tol);
   KINSetScaledStepTol(c->kmem, 0.01 * tol);
   N_VConst(0.0, ycor);

@@ -212,6 +212,8 @@ int rs_steady_create_with(rs_steady **out, const rs_model *m, SUNContext ctx, rs
   for (int k = 0; k < rs_at_upl(L, 0, 0); k++) us[k] = 1.0 / pref;
   for (int k = rs_at_upl(L, 0, 0); k < rs_at_extra(L, 0); k++) us[k] = 1.0 / uref;
   for (int i = 0; i < neq; i++) fs[i] = 1.0 / pref;
+  for (int i = 0; i < n && L->memory; i++) /* friction memory: mu itself */
+    us[rs_at_mu(L, i)] = 1.0 / rs_friction_mu(&m->par.friction, 0.0);
   for (int k = 0; k < L->nextra; k++) /* creepage: its saturation value mu a/R sets the scale */
     us[rs_at_extra(L, k)] = m->par.radius / (rs_friction_mu(&m->par.friction, 0.0) * m->hertz_a);
 
@@ -363,6 +365,7 @@ static int pseudo_transient(rs_steady *s, double *y, rs_stats *stats, rs_msg *ms
                          .max_newton = 10,
                          .t_stop = INFINITY,
                          .frozen = &frozen};
+  if (status == RS_OK) rs_model_rest_state(m, z);
   if (status == RS_OK) status = rs_model_consistent_rates(m, &w, &frozen, z, zp, msg);
   if (status == RS_OK) status = rs_transient_create(&tr, m, s->ctx, 0.0, z, zp, &o, msg);
   int kin_flag = 0;
@@ -545,6 +548,8 @@ static int continuation(rs_steady *s, double *y, rs_stats *stats, rs_msg *msg)
     free(cur);
     return rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory (continuation)");
   }
+  rs_model_rest_state(s->m, prev);
+  rs_model_rest_state(s->m, cur);
   int status = RS_OK, have_prev = 0;
   double lam_prev = 0.0, lam_cur = 0.0, dl = 1.0 / CONTINUATION_STEPS;
   rs_stats total = {0};

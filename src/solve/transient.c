@@ -133,6 +133,8 @@ int rs_transient_create(rs_transient **out, const rs_model *m, SUNContext ctx, d
   double *at = N_VGetArrayPointer(tr->atol);
   for (int k = 0; k < rs_at_upl(L, 0, 0); k++) at[k] = o->atol;
   for (int k = rs_at_upl(L, 0, 0); k < rs_at_extra(L, 0); k++) at[k] = 1e-4 * o->rtol * m->hertz_a;
+  /* friction memory: mu is of order 0.1 to 1 */
+  for (int k = 0; k < L->n && L->memory; k++) at[rs_at_mu(L, k)] = 1e-3 * o->rtol;
   /* With force control the creepage is an algebraic unknown fixed by a constraint on
    * differential ones (sum p dA = F_x): left out of the error test, as IDA allows. */
   if (L->nextra > 0) {
@@ -169,6 +171,15 @@ int rs_transient_create(rs_transient **out, const rs_model *m, SUNContext ctx, d
   RS_SUN_CHECK(IDASetErrHandlerFn(tr->ida, rs_sundials_silent, NULL), msg, what);
   if (isfinite(o->t_stop)) RS_SUN_CHECK(IDASetStopTime(tr->ida, o->t_stop), msg, what);
   if (o->max_step > 0.0) RS_SUN_CHECK(IDASetMaxStep(tr->ida, o->max_step), msg, what);
+  /* Friction memory: a memory distance too short for the contact lets the friction weaken
+   * faster than the contact unloads; where the adhesion zone vanishes the quasi-static
+   * problem then loses its solution and the step collapses without bound. A floor of
+   * 1e-6 of a cell passage (of the time scale without rolling) makes that a failure. */
+  if (L->memory) {
+    const double V = rs_history_max_abs(&m->par.velocity, t0, fmax(m->par.end_time, t0));
+    const double passage = V > 0.0 ? m->grid.dx / V : m->par.time_scale;
+    RS_SUN_CHECK(IDASetMinStep(tr->ida, 1e-6 * passage), msg, what);
+  }
   if (id) {
     RS_SUN_CHECK(IDASetId(tr->ida, id), msg, what);
     RS_SUN_CHECK(IDASetSuppressAlg(tr->ida, SUNTRUE), msg, what);
@@ -236,8 +247,13 @@ int rs_transient_advance(rs_transient *tr, double tout, double *y, double *yp, r
                       : flag == IDA_ERR_FAIL ? "the error test failed repeatedly"
                       : flag == IDA_TOO_MUCH_WORK ? "solver.max_steps reached"
                                                   : "solver error";
-    rs_msg_set(msg, RS_ERR_SOLVER, "transient solver failed at t = %.9g s (step %.3g s): %s [%s]",
-               tret, h, why, name ? name : "?");
+    rs_msg_set(msg, RS_ERR_SOLVER, "transient solver failed at t = %.9g s (step %.3g s): %s [%s]%s",
+               tret, h, why, name ? name : "?",
+               tr->m->lay.memory && flag != IDA_TOO_MUCH_WORK
+                   ? "; with friction memory a too short friction.memory_distance does this: "
+                     "the friction weakens faster than the contact unloads and the "
+                     "quasi-static problem loses its solution (raise memory_distance)"
+                   : "");
     free(name);
     return RS_ERR_SOLVER;
   }
