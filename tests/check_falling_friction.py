@@ -13,6 +13,11 @@ sweep SWEEP.nc CASE.yaml
 run RUN.nc CASE.yaml
     A run of the case: the field mu equals the law at |v_s| = |slip| V in every slipping
     cell (1e-9), mu(0) in adhesion (1e-9), NaN outside the contact.
+run3d RUN.nc CASE.yaml
+    A 3D steady run (tests/cases/falling_friction_3d.yaml): the field mu is on (time, y, x)
+    and equals the law at |v_s| = |(slip_x, slip_y)| V in every slipping cell (1e-9), mu(0)
+    in adhesion (1e-9), NaN outside the contact; the slipping cells carry
+    |p| = mu p_n (1e-9 of max p_n).
 """
 import math
 import sys
@@ -102,6 +107,26 @@ def run(path, case_path):
     check("mu field NaN outside the contact", np.all(np.isnan(mu[pn <= 0])) and np.sum(pn <= 0) > 0)
 
 
+def run3d(path, case_path):
+    case = yaml.safe_load(open(case_path))
+    fr, V = case["friction"], case["rolling"]["velocity"]
+    ds = netCDF4.Dataset(path)
+    check("mu on (time, y, x)", ds["mu"].dimensions == ("time", "y", "x"),
+          str(ds["mu"].dimensions))
+    mu = ds["mu"][-1].filled(np.nan)
+    speed = np.hypot(ds["slip_x"][-1], ds["slip_y"][-1]) * V
+    p = np.hypot(ds["px"][-1], ds["py"][-1])
+    pn, reg = ds["pn"][-1], ds["regime"][-1]
+    s, h = reg == 2, reg == 1
+    check("mu field = law(|v_s|) in the %d slipping cells" % np.sum(s),
+          np.sum(s) > 0 and np.max(np.abs(mu[s] - law(fr, speed[s]))) <= 1e-9)
+    check("|p| = law(|v_s|) p_n in the slipping cells",
+          np.max(np.abs(p[s] - law(fr, speed[s]) * pn[s])) <= 1e-9 * np.max(pn))
+    check("mu field = mu(0) in the %d adhesion cells" % np.sum(h),
+          np.sum(h) > 0 and np.all(np.abs(mu[h] - law(fr, 0.0)) <= 1e-9))
+    check("mu field NaN outside the contact", np.all(np.isnan(mu[pn <= 0])) and np.sum(pn <= 0) > 0)
+
+
 if __name__ == "__main__":
-    {"sweep": sweep, "run": run}[sys.argv[1]](sys.argv[2], sys.argv[3])
+    {"sweep": sweep, "run": run, "run3d": run3d}[sys.argv[1]](sys.argv[2], sys.argv[3])
     sys.exit(1 if failures else 0)

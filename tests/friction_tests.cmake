@@ -21,6 +21,19 @@ add_test(NAME friction_falling_transient_refused
          COMMAND sh -c "\"$0\" run \"$1\" --set simulation.mode=transient --set simulation.end_time=1e-4 -o \"$2\" --quiet; rc=$?; test $rc -eq 2 && test ! -e \"$2\""
                  ${RS_BIN} ${RS_CASES}/falling_friction.yaml ${RS_FF}/refused.nc)
 
+# 3D steady rolling with a falling law (tests/cases/falling_friction_3d.yaml): the mu field
+# on (time, y, x) equals the law at each cell's slip speed; a 3D transient is refused.
+add_test(NAME friction_falling_3d_run
+         COMMAND ${RS_BIN} run ${RS_TESTS}/cases/falling_friction_3d.yaml -o ${RS_FF}/run3d.nc --quiet)
+set_tests_properties(friction_falling_3d_run PROPERTIES FIXTURES_SETUP ff3d_out)
+add_test(NAME friction_falling_3d_run_check
+         COMMAND ${SYSTEM_PYTHON3} ${RS_TESTS}/check_falling_friction.py run3d ${RS_FF}/run3d.nc
+                 ${RS_TESTS}/cases/falling_friction_3d.yaml)
+set_tests_properties(friction_falling_3d_run_check PROPERTIES FIXTURES_REQUIRED ff3d_out)
+add_test(NAME friction_falling_3d_transient_refused
+         COMMAND sh -c "\"$0\" run \"$1\" --set simulation.mode=transient --set simulation.end_time=1e-4 -o \"$2\" --quiet; rc=$?; test $rc -eq 2 && test ! -e \"$2\""
+                 ${RS_BIN} ${RS_TESTS}/cases/falling_friction_3d.yaml ${RS_FF}/refused3d.nc)
+
 # Post-processing: mu along x and against |v_s| over the law (rollsim_post friction), and the
 # traction plot with each cell's bound mu(|v_s|) p_n.
 add_test(NAME friction_postproc_friction

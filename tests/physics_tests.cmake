@@ -31,5 +31,8 @@ rs_unit_test(test_normal_cg_2d_operator)
 rs_unit_test(test_3d_steady)
 # 3D elliptic contact, transient from rest to steady (IDA with Newton-Krylov).
 rs_unit_test(test_3d_transient)
+# Velocity-dependent friction in 3D steady rolling: the Coulomb limit, full sliding with
+# |p| = mu(|v_s|) p_n for every law (see the file's header).
+rs_unit_test(test_3d_friction)
 # Hou's single element with a change of loading direction (the disk law, flow parallel to p).
 rs_unit_test(test_hou_element)

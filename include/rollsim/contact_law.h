@@ -10,7 +10,7 @@
  *   R_*  = r (Dustar/Dt - |Du_pl/Dt|)                   hardening
  * outside the contact (p_n = 0): R_f = p, R_pl = r Du_pl/Dt, R_* as above.
  * proj is the projection on the interval [-b, b] (2D, one component: a 1 x 1
- * generalized-Jacobian block) or the disk of radius b (3D: 2 x 2 blocks, next). */
+ * generalized-Jacobian block) or the disk of radius b (3D: 2 x 2 blocks). */
 #ifndef ROLLSIM_CONTACT_LAW_H
 #define ROLLSIM_CONTACT_LAW_H
 
@@ -69,8 +69,9 @@ typedef struct rs_law_in {
   double r;                 /* semismooth scaling, traction per slip velocity */
   /* Velocity-dependent friction (NULL or Coulomb: g above is the bound). Otherwise the
    * bound is g = mu(eta) p_n with eta the slip speed along the bound's direction
-   * (eta = -s v_s, s the sign of p - r v_s): |v_s| at a solution, but smooth where
-   * slip starts (measured: |v_s| there made Newton cycle between the branches). */
+   * (eta = -s.v_s, s the sign of p - r v_s, in 3D its unit direction): |v_s| at a
+   * solution, but smooth where slip starts (measured: |v_s| there made Newton cycle
+   * between the branches). */
   const rs_friction *friction;
   double pn; /* pressure, N/mm^2 */
   /* Friction memory (friction has memory; 1 component): the state mu of the cell and

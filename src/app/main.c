@@ -229,6 +229,9 @@ static void print_summary(const rs_case *c, const cli_args *a, const rs_run_resu
     printf("  friction law %s (mu = %g at rest); steady branch: %s\n",
            rs_friction_name(c->friction.kind), c->mu,
            a->restart_path ? "the one Newton reached from the --restart state"
+           : three         ? "the one connected to rest (continuation in the creepages and the "
+                             "spin together from 0 in steps of 1/16, halved where Newton fails, "
+                             "each started on the secant through the last two)"
                            : "the one connected to rest (continuation in the creepage from 0 in "
                              "steps of 1/16, halved where Newton fails, each started on the "
                              "secant through the last two)");

@@ -1,5 +1,5 @@
 /* The contact law of one cell (rollsim/contact_law.h): the interval projections of
- * model.md §4 for one tangential component. */
+ * model.md §4 for one tangential component, the disk projections of §10 for two. */
 #include "rollsim/contact_law.h"
 
 #include <math.h>
@@ -158,8 +158,9 @@ void rs_contact_law(const rs_plasticity *pl, const rs_law_in *in, int jac, rs_la
 static void disk_law(const rs_plasticity *pl, const rs_law_in *in, int jac, rs_law_out *out)
 {
   enum { NC = 2 };
-  const double r = in->r, g = in->g, tauc = rs_yield_limit(pl, in->ustar);
+  const double r = in->r, tauc = rs_yield_limit(pl, in->ustar);
   const double *p = in->p, *vs = in->vs, *m = in->flow;
+  double g = in->g, dg = 0.0; /* the bound and d g / d eta */
   const double mnorm = hypot(m[0], m[1]), pnorm = hypot(p[0], p[1]);
   double z[NC], yv[NC];
   for (int c = 0; c < NC; c++) {
@@ -167,6 +168,23 @@ static void disk_law(const rs_plasticity *pl, const rs_law_in *in, int jac, rs_l
     yv[c] = p[c] + r * m[c];
   }
   const double zn = hypot(z[0], z[1]), yn = hypot(yv[0], yv[1]);
+  /* Velocity-dependent friction (no memory in 3D): g = mu(eta) p_n with eta = -s.v_s, the
+   * slip speed along the unit direction s = z/|z| of the projection's argument (|v_s| at a
+   * solution, where v_s = -|v_s| s; below 0 the law's tangent, as in 1 component). w is
+   * the part of v_s across s: eta depends on p and v_s through s as well, d eta/d p =
+   * -w^T/|z| and d eta/d v_s = -s^T + r w^T/|z| (zero across s at a solution only). */
+  const int varies = in->in_contact && in->friction && rs_friction_varies(in->friction);
+  double s[NC] = {0.0, 0.0}, w[NC] = {0.0, 0.0};
+  if (varies) {
+    double eta = 0.0; /* z = 0: no direction, the law at rest (no slip there anyway) */
+    if (zn > 0.0) {
+      for (int c = 0; c < NC; c++) s[c] = z[c] / zn;
+      eta = -(s[0] * vs[0] + s[1] * vs[1]);
+      for (int c = 0; c < NC; c++) w[c] = vs[c] + eta * s[c];
+    }
+    g = rs_friction_eval(in->friction, eta, &dg) * in->pn;
+    dg *= in->pn;
+  }
   unsigned char br = 0;
   int slip = 0, yield = 0;
   if (!in->in_contact) {
@@ -205,11 +223,19 @@ static void disk_law(const rs_plasticity *pl, const rs_law_in *in, int jac, rs_l
     if (br & RS_BRANCH_EXTERIOR) {
       put(out, Rf, rs_law_var_p(c), 1.0);
     } else if (br & RS_BRANCH_SLIP) {
-      /* R_f = p - g z/|z|: dR/dp = I - (g/|z|)(I - z^ z^T), dR/dv_s = r (g/|z|)(I - z^ z^T) */
+      /* R_f = p - g z/|z|: dR/dp = I - (g/|z|)(I - z^ z^T), dR/dv_s = r (g/|z|)(I - z^ z^T);
+       * with g = g(eta) also - s g'(eta) d eta/d(p, v_s) (model.md §11: dense through
+       * Du_el/Dt): + s g' w^T/|z| on p and + s g' (s - r w/|z|)^T on v_s */
       for (int b = 0; b < NC; b++) {
         const double t = (g / zn) * ((b == c ? 1.0 : 0.0) - z[c] * z[b] / (zn * zn));
-        put(out, Rf, rs_law_var_p(b), (b == c ? 1.0 : 0.0) - t);
-        put(out, Rf, rs_law_var_vs(NC, b), r * t);
+        double tp = 0.0, tv = 0.0;
+        if (varies) {
+          tp = s[c] * dg * w[b] / zn;
+          tv = s[c] * dg * (s[b] - r * w[b] / zn);
+        }
+        const double jp = (b == c ? 1.0 : 0.0) - t, jv = r * t;
+        put(out, Rf, rs_law_var_p(b), varies ? jp + tp : jp);
+        put(out, Rf, rs_law_var_vs(NC, b), varies ? jv + tv : jv);
       }
     } else {
       put(out, Rf, rs_law_var_vs(NC, c), r);

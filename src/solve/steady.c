@@ -531,7 +531,8 @@ static int solve_at(rs_steady *s, double *y, rs_stats *stats, rs_msg *msg)
 }
 
 /* Velocity-dependent friction from rest: continuation in the creepage from 0 in steps of
- * 1/CONTINUATION_STEPS of it, each Newton started on the secant through the last two
+ * 1/CONTINUATION_STEPS of it (in 3D the lateral creepage and the spin scaled with it: all
+ * rigid slip grows from rest together), each Newton started on the secant through the last two
  * solutions; a step that fails is halved (down to 1/CONTINUATION_MIN of the creepage). A
  * falling law can have several steady states at one creepage; this follows the branch
  * connected to xi = 0 (the one `rollsim sweep` from a low creepage follows), and Newton
@@ -541,7 +542,7 @@ enum { CONTINUATION_STEPS = 16, CONTINUATION_MIN = 1024 };
 static int continuation(rs_steady *s, double *y, rs_stats *stats, rs_msg *msg)
 {
   const int neq = s->m->lay.neq;
-  const double xi = s->in.creepage;
+  const double xi = s->in.creepage, eta = s->in.lateral_creepage, phi = s->in.spin;
   double *prev = calloc((size_t)neq, sizeof *prev), *cur = calloc((size_t)neq, sizeof *cur);
   if (!prev || !cur) {
     free(prev);
@@ -556,6 +557,8 @@ static int continuation(rs_steady *s, double *y, rs_stats *stats, rs_msg *msg)
   while (lam_cur < 1.0) {
     const double lam = fmin(1.0, lam_cur + dl);
     s->in.creepage = xi * lam;
+    s->in.lateral_creepage = eta * lam;
+    s->in.spin = phi * lam;
     const double f = have_prev ? (lam - lam_cur) / (lam_cur - lam_prev) : 0.0;
     for (int i = 0; i < neq; i++) y[i] = cur[i] + f * (cur[i] - prev[i]); /* secant */
     rs_stats st = {0};
@@ -584,6 +587,8 @@ static int continuation(rs_steady *s, double *y, rs_stats *stats, rs_msg *msg)
   }
   if (status != RS_OK) memcpy(y, cur, (size_t)neq * sizeof *y);
   s->in.creepage = xi;
+  s->in.lateral_creepage = eta;
+  s->in.spin = phi;
   if (stats) *stats = total;
   free(prev);
   free(cur);
