@@ -287,3 +287,15 @@ set_tests_properties(pp_run_3d_sweep PROPERTIES FIXTURES_SETUP pp_3d_sweep)
 add_test(NAME pp_3d_real_sweep COMMAND ${PP_NUM3D} realsweep ${PP_3D_SWEEP} ${PP_OUT}/3d_real_sweep)
 set_tests_properties(pp_3d_real_sweep PROPERTIES FIXTURES_REQUIRED pp_3d_sweep
   ENVIRONMENT "${PP_ENV}")
+
+# The friction figure of a 3D run (velocity-dependent law, tests/cases/falling_friction_3d.yaml,
+# 30 x 30 cells, about 1 s): mu over the patch and mu against |v_s| of every contact cell,
+# checked against the file and the case's law.
+set(PP_FRICTION3D ${CMAKE_CURRENT_BINARY_DIR}/pp_friction3d.nc)
+add_test(NAME pp_run_friction3d COMMAND ${RS_BIN} run
+  ${PROJECT_SOURCE_DIR}/tests/cases/falling_friction_3d.yaml -o ${PP_FRICTION3D} --quiet)
+set_tests_properties(pp_run_friction3d PROPERTIES FIXTURES_SETUP pp_friction3d)
+pp_figure(pp_fig_friction3d pp_friction3d friction3d.png friction ${PP_FRICTION3D})
+add_test(NAME pp_drawn_friction3d COMMAND ${PP_DRAWN} friction3d ${PP_FRICTION3D}
+  ${PP_OUT}/friction3d.png.csv)
+set_tests_properties(pp_drawn_friction3d PROPERTIES FIXTURES_REQUIRED pp_fig_friction3d)

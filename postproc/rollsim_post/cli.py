@@ -406,8 +406,8 @@ def build_parser():
     s.set_defaults(func=cmd_traction)
 
     s = figure("friction", "velocity-dependent friction: mu along x and mu against |v_s|",
-               "mu of every contact cell along x, and against the cell's slip speed |v_s| "
-               "over the\nlaw's curve (from the file's case attribute); needs the field mu "
+               "mu of every contact cell along x (3D: a map over x and y), and against the "
+               "cell's\nslip speed |v_s| over the law's curve (from the file's case attribute); needs the field mu "
                "(friction.law not coulomb).")
     s.add_argument("file", metavar="FILE")
     s.add_argument("--time", type=float, metavar="T",

@@ -123,22 +123,30 @@ class FrictionProfile:
     slip_speed: np.ndarray  # mm/s
     law: object             # mu(|v_s|), or None
     law_name: str
+    y: np.ndarray = None    # 3D: cell centres along y; mu and slip_speed are then (ny, nx)
 
 
 def friction_profile(run, index):
     if not run.has("mu"):
         raise PostError(f"{run.path}: no field mu (written by rollsim run when friction.law is "
                         "not coulomb)")
-    if not run.has("slip"):
-        raise PostError(f"{run.path}: no field slip (list it in output.fields)")
+    three = run.is_3d()
+    names = ("slip_x", "slip_y") if three else ("slip",)
+    if not all(run.has(n) for n in names):
+        raise PostError(f"{run.path}: no field {' and '.join(names)} (list slip in output.fields)")
     V = float(run.variable("velocity")[index])
-    slip = np.ma.filled(np.ma.asarray(run.variable("slip")[index, :], np.float64), np.nan)
+
+    def field(name):
+        return np.ma.filled(np.ma.asarray(run.variable(name)[index], np.float64), np.nan)
+
+    # the slip field is the relative slip v_s / V (interfaces.md); |v_s| in mm/s
+    slip = np.hypot(field("slip_x"), field("slip_y")) if three else np.abs(field("slip"))
     case = run.case()
     return FrictionProfile(
         index=int(index), time=float(run.variable("time")[index]), x=run.values("x"),
-        mu=np.ma.filled(np.ma.asarray(run.variable("mu")[index, :], np.float64), np.nan),
-        slip_speed=np.abs(slip * V if V > 0 else slip), law=friction_law(case),
-        law_name=str(case.get("friction", {}).get("law", "coulomb")))
+        mu=field("mu"), slip_speed=slip * V if V > 0 else slip, law=friction_law(case),
+        law_name=str(case.get("friction", {}).get("law", "coulomb")),
+        y=run.values("y") if three else None)
 
 
 def traction_profile(run, index, mu=None):

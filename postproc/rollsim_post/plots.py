@@ -511,12 +511,23 @@ def plot_friction(prof, title, out, rec=None):
     fig, (a1, a2) = plt.subplots(1, 2, figsize=(10.0, 3.8), layout="constrained")
     inside = np.isfinite(prof.mu)
     point = {"time": prof.time}
-    rec.line(a1, 0, prof.x[inside], prof.mu[inside], "-", color="black", lw=1.6, series="mu",
-             quantity="mu", point=point)
+    if prof.y is None:
+        rec.line(a1, 0, prof.x[inside], prof.mu[inside], "-", color="black", lw=1.6,
+                 series="mu", quantity="mu", point=point)
+        a1.set_ylabel("μ")
+        a1.set_title(f"μ along the contact (record {prof.index})", fontsize=10)
+        a1.grid(alpha=0.25)
+    else:  # 3D: mu over the patch (cells outside the contact blank)
+        from .extract import cell_edges
+        mesh = a1.pcolormesh(cell_edges(prof.x), cell_edges(prof.y),
+                             np.ma.masked_invalid(prof.mu), cmap="viridis", shading="flat")
+        fig.colorbar(mesh, ax=a1).set_label("μ")
+        a1.set_aspect("equal")
+        a1.set_ylabel("y [mm]")
+        a1.set_title(f"μ over the contact (record {prof.index})", fontsize=10)
+        X, Y = np.meshgrid(prof.x, prof.y)
+        rec.add_map(0, a1.get_title(), "mu", "mu", point, X[inside], Y[inside], prof.mu[inside])
     a1.set_xlabel("x [mm]  (rolling: material enters at the right)")
-    a1.set_ylabel("μ")
-    a1.set_title(f"μ along the contact (record {prof.index})", fontsize=10)
-    a1.grid(alpha=0.25)
     s = prof.slip_speed[inside]
     if prof.law is not None and s.size:
         curve = np.linspace(0.0, max(float(np.nanmax(s)) * 1.1, 1e-9), 200)

@@ -11,6 +11,10 @@ netCDF files they come from, read here with netCDF4 only (not through rollsim_po
                                                  each file's (creepage, F_x/F_n) in it once
   check_drawn.py rig RUN.nc CSV                  per step: (100 slip, coefficient) of the steps
                                                  done; per revolution: coefficient and 100 slip
+  check_drawn.py friction3d RUN.nc CSV           3D friction figure: the mu map = the file's
+                                                 contact cells; the scatter = (|v_s|, mu) of
+                                                 every cell, |v_s| = V |slip|; each cell on the
+                                                 case's law (recomputed here from the case text)
 
 Values are compared bit for bit where the figure draws the stored number itself, and to 1 ulp
 where it draws a product (g = mu p_n, 100 slip). Exit status 1 on any failure.
@@ -182,12 +186,60 @@ def rig(path, csv_path):
           sl is not None and same(sl["x"], idx) and within_ulp(sl["y"], 100.0 * r_slip[rdone]))
 
 
+def law_of(case_text):
+    """mu(|v_s|) of the case's exponential, linear or rational law (interfaces.md)."""
+    import yaml
+    fr = yaml.safe_load(case_text)["friction"]
+    mk, ex, vh = fr["mu_kinetic"], fr["mu_excess"], fr["half_velocity"]
+    ex, vh = (ex if isinstance(ex, list) else [ex]), (vh if isinstance(vh, list) else [vh])
+
+    def mu(s):
+        out = mk + 0.0 * s
+        for i, (d, v) in enumerate(zip(ex, vh)):
+            if fr["law"] == "exponential":
+                out = out + d * np.exp(-np.log(2.0) * s / v)
+            elif fr["law"] == "linear":
+                out = out + d * np.maximum(0.0, 1.0 - s / (2.0 * v))
+            else:
+                out = out + (d / (1.0 + s / v) if i == 0 else d / (1.0 + (s / v) ** 2))
+        return out
+    return mu
+
+
+def friction3d(path, csv_path):
+    groups = read_csv(csv_path)
+    with netCDF4.Dataset(path) as ds:
+        x, y, V = var(ds, "x"), var(ds, "y"), float(var(ds, "velocity")[-1])
+        mu = var(ds, "mu")[-1]
+        speed = V * np.hypot(var(ds, "slip_x")[-1], var(ds, "slip_y")[-1])
+        law = law_of(ds.getncattr("case"))
+    inside = np.isfinite(mu)
+    X, Y = np.meshgrid(x, y)
+    m = groups.get((0, "mu", "mu"))
+    check("map: the contact cells (finite mu) at their centres",
+          m is not None and same(m["x"], X[inside]) and same(m["y"], Y[inside]),
+          f"{int(inside.sum())} cells")
+    check("map: mu = the file's (bit for bit)", m is not None and same(m["value"], mu[inside]))
+    c = groups.get((1, "cells", "mu"))
+    check("scatter: mu of every contact cell", c is not None and same(c["y"], mu[inside]))
+    check("scatter: |v_s| = V |(slip_x, slip_y)| (1e-12)", c is not None and
+          np.allclose(c["x"], speed[inside], rtol=1e-12, atol=0.0))
+    check("partial slip: slip speeds from 0 to over 50 mm/s",
+          speed[inside].min() < 1e-6 and speed[inside].max() > 50.0,
+          f"{speed[inside].min():.3g} .. {speed[inside].max():.3g} mm/s")
+    dev = np.abs(mu[inside] - law(speed[inside])).max()
+    # a steady state: every cell's bound is mu(|v_s|) p_n; Newton's tolerance on v_s
+    # (<= 1e-3 mm/s) moves mu by at most |mu'| 1e-3 = 7e-7
+    check("every cell on the law: max |mu - mu_law(|v_s|)| <= 1e-6", dev <= 1e-6, f"{dev:.2e}")
+
+
 def main(argv):
     what = argv[1] if len(argv) > 1 else ""
     if what == "traction" and len(argv) >= 5:
         traction(argv[2], argv[3], float(argv[4]), [float(a) for a in argv[5:]])
-    elif what in ("regimes", "plastic", "rig") and len(argv) == 4:
-        {"regimes": regimes, "plastic": plastic, "rig": rig}[what](argv[2], argv[3])
+    elif what in ("regimes", "plastic", "rig", "friction3d") and len(argv) == 4:
+        {"regimes": regimes, "plastic": plastic, "rig": rig,
+         "friction3d": friction3d}[what](argv[2], argv[3])
     elif what == "creep" and len(argv) >= 4:
         creep(argv[2], argv[3:])
     else:
