@@ -21,7 +21,8 @@
  * falling part of each law) and on the plastic Table-1 contact (100 mm/s).
  * Without the term g'(eta) on v_s the steady differences missed by 0.16 relative
  * (rational law, v_h = 3 mm/s). The same for every law in 3D (the disk law, elastic and
- * plastic, 16 x 16 cells). */
+ * plastic, 16 x 16 cells), and for friction memory in 3D (without the memory row's terms
+ * across the direction s the steady differences missed by 1.2-1.9 % relative). */
 #include <stdlib.h>
 
 #include "rollsim/steady.h"
