@@ -1,7 +1,8 @@
 """Checks of friction memory (issue 14, model.md §11) on cases/friction_memory.yaml (ctest,
 /usr/bin/python3). Every expectation comes from the equations or from an independent run
 (the memoryless law, the Coulomb law, the steady solver, an uninterrupted run), never from
-a stored result.
+a stored result. The same checks serve the 3D case tests/cases/friction_memory_3d.yaml: there
+the tractions are (px, py) and the force (F_x, F_y).
 
 relax RUN.nc CASE.yaml
     After the creepage step the contact slides fully at 0.6 to 1.6 m/s, where the law is
@@ -13,7 +14,7 @@ relax RUN.nc CASE.yaml
 limit SWEEP.nc
     Steady rolling at partial slip over friction.memory_distance = [0, d, d/10, d/100,
     d/1000]: the memoryless law at 0. At a fixed grid the discrete memory equation gives
-    mu - mu_law = O(d_c), so the differences |F_x(d_c) - F_x(0)| fall by 10 per decade of
+    mu - mu_law = O(d_c), so the differences |F(d_c) - F(0)| (F_x; in 3D |(F_x, F_y)|) fall by 10 per decade of
     d_c: each ratio within 10 +- 1.5 (the O(d_c^2) remainder), and the smallest below
     1e-6 F_n.
 near SWEEP.nc TOL_F TOL_P
@@ -24,7 +25,8 @@ near SWEEP.nc TOL_F TOL_P
     |slip| dx/d_c ~ 2000 there, i.e. ~1.5e-5 in mu, 3e-5 of its traction.
 steady TRANSIENT.nc STEADY.nc
     The transient from rest (kept at its final creepage until it settles) against the
-    steady solver at that creepage: F_x, px and mu within 1e-4 (of F_x, max |px|, mu(0)).
+    steady solver at that creepage: F_x (and F_y), p and mu within 1e-4 (of F_x, max |p|,
+    mu(0)).
 restart FULL.nc CONTINUED.nc
     A run stopped halfway and continued with --restart against the uninterrupted run: the
     last records agree (px, mu, F_x) to 1e-6 relative: the integrator restarts at order 1
@@ -53,9 +55,11 @@ def check(what, ok, detail=""):
 
 def last(path):
     ds = netCDF4.Dataset(path)
-    out = {k: np.array(ds[k][-1]) for k in ("px", "pn", "slip", "mu") if k in ds.variables}
+    out = {k: np.array(ds[k][-1]) for k in ("px", "py", "pn", "slip", "mu") if k in ds.variables}
     out["x"] = np.array(ds["x"][:])
     out["Fx"] = float(ds["Fx"][-1])
+    if "Fy" in ds.variables:  # 3D
+        out["Fy"] = float(ds["Fy"][-1])
     out["time"] = float(ds["time"][-1])
     ds.close()
     return out
@@ -96,14 +100,16 @@ def limit(sweep_path):
     dc = np.array(ds["friction_memory_distance"][:]).ravel()
     fx = np.array(ds["Fx"][:]).ravel()
     fn = np.array(ds["Fn"][:]).ravel()
+    # 3D: the tangential force (F_x, F_y); 2D: F_x
+    fy = np.array(ds["Fy"][:]).ravel() if "Fy" in ds.variables else np.zeros_like(fx)
     ds.close()
     order = np.argsort(-dc)
-    dc, fx = dc[order], fx[order]
-    ref = fx[dc == 0][0]
+    dc, fx, fy = dc[order], fx[order], fy[order]
+    ref, ref_y = fx[dc == 0][0], fy[dc == 0][0]
     mem = dc > 0
-    diffs = np.abs(fx[mem] - ref)
+    diffs = np.hypot(fx[mem] - ref, fy[mem] - ref_y)
     for d, f, e in zip(dc[mem], fx[mem], diffs):
-        print(f"  d_c = {d:.3g} mm: F_x = {f:.12g} N/mm, |F_x - F_x(no memory)| = {e:.4g}")
+        print(f"  d_c = {d:.3g} mm: F_x = {f:.12g}, |F - F(no memory)| = {e:.4g}")
     ratios = diffs[:-1] / diffs[1:]
     print("  ratios of successive differences:", " ".join(f"{q:.4g}" for q in ratios))
     check("first order in d_c: every ratio within 10 +- 1.5",
@@ -128,28 +134,37 @@ def near(sweep_path, tol, tol_p):
               dp < tol_p)
 
 
+def traction_diff(a, b):
+    """max |p_a - p_b| over the cells and components (px, and py in 3D) / max |p_b|."""
+    comps = [k for k in ("px", "py") if k in b]
+    scale = max(np.max(np.abs(b[k])) for k in comps)
+    return max(np.max(np.abs(a[k] - b[k])) for k in comps) / scale
+
+
 def steady(tr_path, st_path):
     a, b = last(tr_path), last(st_path)
-    scale = np.max(np.abs(b["px"]))
-    dp = np.max(np.abs(a["px"] - b["px"])) / scale
+    dp = traction_diff(a, b)
     in_c = b["pn"] > 0
     dmu = np.max(np.abs(a["mu"][in_c] - b["mu"][in_c]))
     dfx = abs(a["Fx"] - b["Fx"]) / abs(b["Fx"])
     print(f"  transient at t = {a['time']:.6g} s against steady: F_x {a['Fx']:.10g} / "
-          f"{b['Fx']:.10g} (rel {dfx:.3g}), px {dp:.3g} of max |px|, mu {dmu:.3g}")
+          f"{b['Fx']:.10g} (rel {dfx:.3g}), p {dp:.3g} of max |p|, mu {dmu:.3g}")
     check("transient from rest reaches the steady state: F_x to 1e-4", dfx < 1e-4)
-    check("px to 1e-4 of max |px|", dp < 1e-4)
+    if "Fy" in b:
+        dfy = abs(a["Fy"] - b["Fy"]) / abs(b["Fy"])
+        print(f"  F_y {a['Fy']:.10g} / {b['Fy']:.10g} (rel {dfy:.3g})")
+        check("F_y to 1e-4", dfy < 1e-4)
+    check("p to 1e-4 of max |p|", dp < 1e-4)
     check("mu to 1e-4 in the contact", dmu < 1e-4)
 
 
 def restart(full_path, cont_path):
     a, b = last(full_path), last(cont_path)
     check("same final time", abs(a["time"] - b["time"]) < 1e-15)
-    scale = np.max(np.abs(a["px"]))
-    dp = np.max(np.abs(a["px"] - b["px"])) / scale
+    dp = traction_diff(b, a)
     dmu = np.max(np.abs(a["mu"] - b["mu"]))
     dfx = abs(a["Fx"] - b["Fx"]) / abs(a["Fx"])
-    print(f"  restarted against uninterrupted: px {dp:.3g} of max |px|, mu {dmu:.3g}, "
+    print(f"  restarted against uninterrupted: p {dp:.3g} of max |p|, mu {dmu:.3g}, "
           f"F_x rel {dfx:.3g}")
     check("restart halfway equals the uninterrupted run to 1e-6", max(dp, dmu, dfx) < 1e-6)
 

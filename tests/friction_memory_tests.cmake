@@ -1,4 +1,4 @@
-# Friction memory in 2D (issue 14, model.md §11): cases/friction_memory.yaml and variants,
+# Friction memory (issue 14, model.md §11): cases/friction_memory.yaml and variants (2D),
 # checked by tests/check_friction_memory.py against the equations or independent runs (the
 # memoryless law, the Coulomb law, the steady solver, an uninterrupted run).
 set(RS_FM ${CMAKE_CURRENT_BINARY_DIR}/friction_memory_out)
@@ -93,3 +93,39 @@ add_test(NAME friction_memory_too_short
                  -- ${RS_BIN} run ${RS_FM_CASE} --set friction.memory_distance=0.005
                  -o ${RS_FM}/too_short.nc --quiet)
 set_tests_properties(friction_memory_too_short PROPERTIES TIMEOUT 120)
+
+# Friction memory in 3D (tests/cases/friction_memory_3d.yaml: the elliptic contact on 10 x 10
+# cells, partial slip, d_c = 20 um): the transient from rest over five contact passages
+# against the steady solver, a restart halfway against the uninterrupted run, and d_c -> 0
+# against the memoryless 3D law (first order).
+set(RS_FM3_CASE ${RS_TESTS}/cases/friction_memory_3d.yaml)
+add_test(NAME friction_memory_3d_run
+         COMMAND ${RS_BIN} run ${RS_FM3_CASE} -o ${RS_FM}/run3d.nc --quiet)
+add_test(NAME friction_memory_3d_steady
+         COMMAND ${RS_BIN} run ${RS_FM3_CASE} --set simulation.mode=steady
+                 -o ${RS_FM}/steady3d.nc --quiet)
+add_test(NAME friction_memory_3d_half
+         COMMAND ${RS_BIN} run ${RS_FM3_CASE} --set simulation.end_time=5e-4
+                 -o ${RS_FM}/half3d.nc --quiet)
+set_tests_properties(friction_memory_3d_run friction_memory_3d_steady friction_memory_3d_half
+                     PROPERTIES FIXTURES_SETUP fm3_runs)
+add_test(NAME friction_memory_3d_continue
+         COMMAND ${RS_BIN} run ${RS_FM3_CASE} --restart ${RS_FM}/half3d.nc
+                 -o ${RS_FM}/continued3d.nc --quiet)
+set_tests_properties(friction_memory_3d_continue PROPERTIES FIXTURES_REQUIRED fm3_runs
+                     FIXTURES_SETUP fm3_continued)
+add_test(NAME friction_memory_3d_steady_check
+         COMMAND ${RS_FM_CHECK} steady ${RS_FM}/run3d.nc ${RS_FM}/steady3d.nc)
+set_tests_properties(friction_memory_3d_steady_check PROPERTIES FIXTURES_REQUIRED fm3_runs)
+add_test(NAME friction_memory_3d_restart_check
+         COMMAND ${RS_FM_CHECK} restart ${RS_FM}/run3d.nc ${RS_FM}/continued3d.nc)
+set_tests_properties(friction_memory_3d_restart_check PROPERTIES FIXTURES_REQUIRED
+                     "fm3_runs;fm3_continued")
+add_test(NAME friction_memory_3d_limit
+         COMMAND ${RS_BIN} sweep ${RS_FM3_CASE} --set simulation.mode=steady
+                 --set "output.fields=[]"
+                 --set "sweep.friction.memory_distance=[0, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9]"
+                 -o ${RS_FM}/limit3d.nc --quiet)
+set_tests_properties(friction_memory_3d_limit PROPERTIES FIXTURES_SETUP fm3_limit)
+add_test(NAME friction_memory_3d_limit_check COMMAND ${RS_FM_CHECK} limit ${RS_FM}/limit3d.nc)
+set_tests_properties(friction_memory_3d_limit_check PROPERTIES FIXTURES_REQUIRED fm3_limit)

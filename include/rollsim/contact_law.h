@@ -74,7 +74,7 @@ typedef struct rs_law_in {
    * between the branches). */
   const rs_friction *friction;
   double pn; /* pressure, N/mm^2 */
-  /* Friction memory (friction has memory; 1 component): the state mu of the cell and
+  /* Friction memory (friction has memory; 1 or 2 components): the state mu of the cell and
    * its material rate. The bound is then g = mu p_n (in->g is ignored) and the row
    *   R_mu = r (d_c Dmu/Dt + max(|v_s|, s0) (mu - mu_law(eta)))   in the contact,
    *   R_mu = r d_c Dmu/Dt                                         outside,

@@ -507,20 +507,7 @@ static int resolve_friction(const resolver *r, rs_case_input *in)
     return rs_case_error(r->d, law_node, "friction.law",
                          "%s gives mu = %g at rest: the coefficient of friction must be > 0", law,
                          mu0);
-  /* 3D: steady rolling (the disk law with g = mu p_n); friction memory, and with it the
-   * transient of a falling law, is 2D only */
-  if (c->dimension == 3 && rs_friction_has_memory(f))
-    return rs_case_error(r->d, given(r, "friction.memory_distance"), "friction.memory_distance",
-                         "friction memory is implemented for 2D line contact only "
-                         "(contact.dimension: 2); in 3D remove it (steady rolling with "
-                         "friction.law: %s has no memory)",
-                         law);
-  if (c->dimension == 3 && c->mode == RS_MODE_TRANSIENT)
-    return rs_case_error(r->d, law_node, "friction.law",
-                         "%s in 3D needs simulation.mode: steady. A falling friction law "
-                         "without friction memory makes the transient ill-posed, and friction "
-                         "memory is implemented for 2D line contact only (contact.dimension: 2)",
-                         law);
+  /* 2D and 3D alike (3D: the disk law with g = mu p_n, mu the memory state) */
   if (c->mode == RS_MODE_TRANSIENT && !rs_friction_has_memory(f))
     return rs_case_error(
         r->d, law_node, "friction.law",

@@ -88,12 +88,13 @@ static int read_file(int ncid, const char *path, const rs_restart_grid *g, doubl
 
   /* The state fields and where they go. */
   const state_field fields2[4] = {{"px", p}, {"upl", upl}, {"ustar", ustar}, {"mu", mu}};
-  const state_field fields3[5] = {
-      {"px", p}, {"py", p + n}, {"upl_x", upl}, {"upl_y", upl + n}, {"ustar", ustar}};
+  const state_field fields3[6] = {{"px", p},          {"py", p + n},    {"upl_x", upl},
+                                  {"upl_y", upl + n}, {"ustar", ustar}, {"mu", mu}};
   const state_field *fields = three ? fields3 : fields2;
-  const int memory = !three && g->memory;
-  const int nf = three ? 5 : 3 + memory;
-  const char *needed = three    ? "px, py, upl_x, upl_y and ustar"
+  const int memory = g->memory != 0;
+  const int nf = (three ? 5 : 3) + memory;
+  const char *needed = three ? (memory ? "px, py, upl_x, upl_y, ustar and, with friction memory, mu"
+                                       : "px, py, upl_x, upl_y and ustar")
                        : memory ? "px, upl, ustar and, with friction memory, mu"
                                 : "px, upl and ustar";
   for (int f = 0; f < nf; f++) {

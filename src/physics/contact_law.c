@@ -168,22 +168,30 @@ static void disk_law(const rs_plasticity *pl, const rs_law_in *in, int jac, rs_l
     yv[c] = p[c] + r * m[c];
   }
   const double zn = hypot(z[0], z[1]), yn = hypot(yv[0], yv[1]);
-  /* Velocity-dependent friction (no memory in 3D): g = mu(eta) p_n with eta = -s.v_s, the
+  /* Velocity-dependent friction: g = mu(eta) p_n with eta = -s.v_s, the
    * slip speed along the unit direction s = z/|z| of the projection's argument (|v_s| at a
    * solution, where v_s = -|v_s| s; below 0 the law's tangent, as in 1 component). w is
    * the part of v_s across s: eta depends on p and v_s through s as well, d eta/d p =
    * -w^T/|z| and d eta/d v_s = -s^T + r w^T/|z| (zero across s at a solution only). */
-  const int varies = in->in_contact && in->friction && rs_friction_varies(in->friction);
-  double s[NC] = {0.0, 0.0}, w[NC] = {0.0, 0.0};
-  if (varies) {
-    double eta = 0.0; /* z = 0: no direction, the law at rest (no slip there anyway) */
+  /* With friction memory the bound is g = mu p_n with the state mu (no dependence on v_s);
+   * eta, s and w then serve the memory row. */
+  const int memory = in->memory && in->in_contact;
+  const int varies =
+      in->in_contact && !in->memory && in->friction && rs_friction_varies(in->friction);
+  double s[NC] = {0.0, 0.0}, w[NC] = {0.0, 0.0}, eta = 0.0;
+  if (varies || memory) {
+    /* z = 0: no direction, the law at rest (no slip there anyway) */
     if (zn > 0.0) {
       for (int c = 0; c < NC; c++) s[c] = z[c] / zn;
       eta = -(s[0] * vs[0] + s[1] * vs[1]);
       for (int c = 0; c < NC; c++) w[c] = vs[c] + eta * s[c];
     }
+  }
+  if (varies) {
     g = rs_friction_eval(in->friction, eta, &dg) * in->pn;
     dg *= in->pn;
+  } else if (memory) {
+    g = in->mu * in->pn;
   }
   unsigned char br = 0;
   int slip = 0, yield = 0;
@@ -211,6 +219,19 @@ static void disk_law(const rs_plasticity *pl, const rs_law_in *in, int jac, rs_l
     }
   }
   out->R[rs_law_row_star(NC)] = r * (in->dustar - mnorm);
+  /* Friction memory: the row of the 1-component law with eta = -s.v_s and |v_s| the norm */
+  const int Rm = rs_law_row_mu(NC);
+  const double vn = hypot(vs[0], vs[1]);
+  double mlaw = 0.0, mslope = 0.0, speed = 0.0;
+  if (in->memory) {
+    const double dc = in->friction->memory_distance, s0 = in->friction->memory_velocity;
+    out->R[Rm] = r * dc * in->dmu;
+    if (in->in_contact) {
+      mlaw = rs_friction_eval(in->friction, eta, &mslope);
+      speed = vn > s0 ? vn : s0;
+      out->R[Rm] += r * speed * (in->mu - mlaw);
+    }
+  }
   out->branch = br;
   out->g = g;
   out->pins_p = 0;
@@ -237,6 +258,7 @@ static void disk_law(const rs_plasticity *pl, const rs_law_in *in, int jac, rs_l
         put(out, Rf, rs_law_var_p(b), varies ? jp + tp : jp);
         put(out, Rf, rs_law_var_vs(NC, b), varies ? jv + tv : jv);
       }
+      if (memory) put(out, Rf, rs_law_var_mu(NC), -in->pn * z[c] / zn); /* g = mu p_n */
     } else {
       put(out, Rf, rs_law_var_vs(NC, c), r);
     }
@@ -263,4 +285,22 @@ static void disk_law(const rs_plasticity *pl, const rs_law_in *in, int jac, rs_l
     put(out, Rs, rs_law_var_flow(NC, c), -r * dir);
   }
   put(out, Rs, rs_law_var_dustar(NC), r);
+  /* Memory row: r d_c on Dmu/Dt; in the contact r max(|v_s|, s0) on mu, and through
+   * eta = -s.v_s (d eta/d p = -w^T/|z|, d eta/d v_s = -s^T + r w^T/|z|) and |v_s|:
+   * -r max(|v_s|, s0) mu_law'(eta) d eta on p, and
+   * r [max'(|v_s|) v_s^T/|v_s| (mu - mu_law) - max(|v_s|, s0) mu_law'(eta) d eta/d v_s] on
+   * v_s (dense through Du_el/Dt). */
+  if (in->memory) {
+    put(out, Rm, rs_law_var_dmu(NC), r * in->friction->memory_distance);
+    if (!(br & RS_BRANCH_EXTERIOR)) {
+      put(out, Rm, rs_law_var_mu(NC), r * speed);
+      const double dmax = vn > in->friction->memory_velocity ? 1.0 / vn : 0.0;
+      for (int b = 0; b < NC; b++) {
+        const double wz = zn > 0.0 ? w[b] / zn : 0.0;
+        put(out, Rm, rs_law_var_p(b), r * speed * mslope * wz);
+        put(out, Rm, rs_law_var_vs(NC, b),
+            r * (dmax * vs[b] * (in->mu - mlaw) - speed * mslope * (-s[b] + r * wz)));
+      }
+    }
+  }
 }

@@ -202,7 +202,9 @@ int rs_model_jacobian(const rs_model *m, rs_work *w, const rs_inputs *in, const 
     }
     if (L->memory) { /* a memory row in the contact involves v_s: eliminated on mu */
       const int k = rs_at_mu(L, i);
-      w->dense[k] = w->law[i].present[rs_law_row_mu(nc)][rs_law_var_vs(nc, 0)];
+      w->dense[k] = 0;
+      for (int b = 0; b < nc; b++)
+        w->dense[k] |= w->law[i].present[rs_law_row_mu(nc)][rs_law_var_vs(nc, b)];
       w->pivot[k] = k;
     }
   }

@@ -180,7 +180,9 @@ static void memory_rates(const rs_model *m, const rs_work *w, const rs_inputs *i
     const double mu = y[rs_at_mu(L, i)], mu_next = up >= 0 ? y[rs_at_mu(L, up)] : mu_in;
     double dmu = 0.0;
     if (w->pn[i] > 0.0) {
-      const double speed = fabs(w->vslip[i]);
+      /* |v_s| (3D: the norm of both components) */
+      const double speed =
+          L->ncomp == 1 ? fabs(w->vslip[i]) : hypot(w->vslip[i], w->vslip[L->n + i]);
       dmu = -fmax(speed, f->memory_velocity) / f->memory_distance * (mu - rs_friction_mu(f, speed));
     }
     yp[rs_at_mu(L, i)] = dmu + a * (mu_next - mu);
@@ -188,7 +190,8 @@ static void memory_rates(const rs_model *m, const rs_work *w, const rs_inputs *i
 }
 
 /* Friction memory: the rates of the cells at the bound (not in mask), p' = s g' with
- * g = mu p_n: mu' p_n, plus mu p_n' with a load history (pn_up: p_n at the load + h). */
+ * s = p/|p| and g = mu p_n: mu' p_n, plus mu p_n' with a load history (pn_up: p_n at the load + h).
+ */
 static void bound_rates(const rs_model *m, const rs_work *w, const double *y,
                         const unsigned char *mask, const double *pn_up, const rs_inputs *in,
                         double *yp)
@@ -202,7 +205,13 @@ static void bound_rates(const rs_model *m, const rs_work *w, const double *y,
     double gdot = yp[rs_at_mu(L, i)] * w->pn[i];
     if (in->load_rate != 0.0)
       gdot += y[rs_at_mu(L, i)] * (pn_up[i] - w->pn[i]) / (1e-6 * in->load) * in->load_rate;
-    yp[rs_at_p(L, 0, i)] = rs_sign_of(y[rs_at_p(L, 0, i)]) * gdot;
+    if (L->ncomp == 1) {
+      yp[rs_at_p(L, 0, i)] = rs_sign_of(y[rs_at_p(L, 0, i)]) * gdot;
+      continue;
+    }
+    const double pnorm = traction_norm(L, y, i); /* 3D: along the direction of p */
+    for (int c = 0; c < L->ncomp; c++)
+      yp[rs_at_p(L, c, i)] = pnorm > 0.0 ? y[rs_at_p(L, c, i)] / pnorm * gdot : 0.0;
   }
 }
 
@@ -259,7 +268,8 @@ int rs_model_consistent_rates(const rs_model *m, rs_work *w, const rs_inputs *in
     if (pass > 0) {
       memory_rates(m, w, in, y, yp);
       bound_rates(m, w, y, mask, pn_up, in, yp);
-      for (int k = 0; k < h; k++) yp[rs_at_p(L, 0, adh[k])] = 0.0;
+      for (int k = 0; k < h; k++)
+        for (int c = 0; c < nc; c++) yp[rs_at_p(L, c, adh[k])] = 0.0;
     }
     rs_model_kinematics(m, w, in, y, yp); /* with p' = 0 inside: v_s holds all but A p'_H */
     /* Adhesion: v_s = 0 with Du_pl/Dt = 0, i.e. (A + c3 I) p'_H = -v_s(p'_H = 0). */
