@@ -27,22 +27,6 @@
 #include "rollsim/steady.h"
 #include "test_support.h"
 
-static void case3d(rs_case *c, double xi, double eta, double phi)
-{
-  ts_carter_case(c, 22);
-  c->dimension = 3;
-  c->radius = 100.0;
-  c->radius_y = 200.0;
-  c->cells_y = 22;
-  c->extent = c->extent_y = 1.1;
-  c->normal_load.value = 1000.0;
-  c->mu = 0.3;
-  c->creepage.value = xi;
-  c->lateral_creepage = (rs_history){.kind = RS_HISTORY_CONSTANT, .value = eta};
-  c->spin = (rs_history){.kind = RS_HISTORY_CONSTANT, .value = phi};
-  c->tangential_force_y = (rs_history){.kind = RS_HISTORY_CONSTANT, .value = 0.0};
-}
-
 /* mu(0) = 0.3 for every law; the excess halves at about v_h (exponential, rational's first
  * term), the linear law's kink at 2 v_h. */
 static void set_law(rs_case *c, rs_friction_kind kind, double v_h)
@@ -120,7 +104,7 @@ static void coulomb_limit(void)
   rs_model mc;
   double *yc = NULL;
   rs_stats st = {0};
-  case3d(&c, -8e-4, 4e-4, 2e-4);
+  ts_ellipse_case(&c, 22, 2.0, -8e-4, 4e-4, 2e-4);
   if (solve(&c, &mc, &yc, &st)) return;
   const int n = mc.grid.n;
   double *vs = malloc(2 * (size_t)n * sizeof *vs);
@@ -169,7 +153,7 @@ static void full_sliding(rs_friction_kind kind, double v_h)
   rs_model m;
   double *y = NULL;
   rs_stats st = {0};
-  case3d(&c, -0.01, 0.005, 1e-4);
+  ts_ellipse_case(&c, 22, 2.0, -0.01, 0.005, 1e-4);
   set_law(&c, kind, v_h);
   const char *name = rs_friction_name(kind);
   if (solve(&c, &m, &y, &st)) return;

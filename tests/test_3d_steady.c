@@ -24,23 +24,6 @@
 #include "rollsim/steady.h"
 #include "test_support.h"
 
-/* A circular (ratio 1) or elliptic (Ry = ratio Rx) contact: Rx = 100 mm, F = 1000 N. */
-static void case3d(rs_case *c, int n, double ratio, double xi, double eta, double phi)
-{
-  ts_carter_case(c, n);
-  c->dimension = 3;
-  c->radius = 100.0;
-  c->radius_y = 100.0 * ratio;
-  c->cells_y = n;
-  c->extent = c->extent_y = 1.1;
-  c->normal_load.value = 1000.0;
-  c->mu = 0.3;
-  c->creepage.value = xi;
-  c->lateral_creepage = (rs_history){.kind = RS_HISTORY_CONSTANT, .value = eta};
-  c->spin = (rs_history){.kind = RS_HISTORY_CONSTANT, .value = phi};
-  c->tangential_force_y = (rs_history){.kind = RS_HISTORY_CONSTANT, .value = 0.0};
-}
-
 /* Steady solution and its quantities; y (allocated) if ys is not NULL. */
 static int solve(rs_case *c, rs_model *m, rs_diag *d, double **ys)
 {
@@ -83,8 +66,8 @@ static void kalker(double ratio)
     const double small = 1e-7; /* creepage; spin in 1/mm */
     for (int q = 0; q < 3; q++) {
       rs_case c;
-      case3d(&c, grids[g], ratio, q == 0 ? -small : 0.0, q == 1 ? -small : 0.0,
-             q == 2 ? -small : 0.0);
+      ts_ellipse_case(&c, grids[g], ratio, q == 0 ? -small : 0.0, q == 1 ? -small : 0.0,
+                      q == 2 ? -small : 0.0);
       rs_model m;
       rs_diag d;
       if (solve(&c, &m, &d, NULL)) return;
@@ -137,7 +120,7 @@ static void limit_2d(void)
 {
   const int nx = 40, ny = 21;
   rs_case c;
-  case3d(&c, nx, 100.0, -1e-3, 0.0, 0.0);
+  ts_ellipse_case(&c, nx, 100.0, -1e-3, 0.0, 0.0);
   c.cells_y = ny;
   c.extent = c.extent_y = 1.05;
   c.normal_load.value = 5000.0;
@@ -178,10 +161,10 @@ static void symmetry(void)
   rs_model m;
   rs_diag dp, dm;
   double *y = NULL;
-  case3d(&c, 22, 2.0, -1e-3, 5e-4, 0.0);
+  ts_ellipse_case(&c, 22, 2.0, -1e-3, 5e-4, 0.0);
   if (solve(&c, &m, &dp, NULL)) return;
   rs_model_free(&m);
-  case3d(&c, 22, 2.0, -1e-3, -5e-4, 0.0);
+  ts_ellipse_case(&c, 22, 2.0, -1e-3, -5e-4, 0.0);
   if (solve(&c, &m, &dm, NULL)) return;
   rs_model_free(&m);
   printf("partial slip: F_x %.6g N, F_y %.6g N, M_z %.6g N mm, slip cells %d\n", dp.Fx, dp.Fy,
@@ -190,7 +173,7 @@ static void symmetry(void)
   ts_check("eta -> -eta: F_x kept (relative)", dm.Fx / dp.Fx, 1.0, 1e-9);
   ts_check("eta -> -eta: F_y flips (relative)", dm.Fy / dp.Fy, -1.0, 1e-9);
   ts_check("eta -> -eta: M_z flips (relative)", dm.Mz / dp.Mz, -1.0, 1e-9);
-  case3d(&c, 22, 2.0, -1e-3, 0.0, 0.0);
+  ts_ellipse_case(&c, 22, 2.0, -1e-3, 0.0, 0.0);
   if (solve(&c, &m, &dp, &y)) return;
   const int nx = m.grid.nx, ny = m.grid.ny, n = m.grid.n;
   double pmax = 0.0, asym = 0.0;
@@ -211,7 +194,7 @@ static void plastic_limits(void)
   rs_case c;
   rs_model m;
   rs_diag de, dh, ds;
-  case3d(&c, 22, 2.0, -1e-3, 3e-4, 0.0);
+  ts_ellipse_case(&c, 22, 2.0, -1e-3, 3e-4, 0.0);
   if (solve(&c, &m, &de, NULL)) return;
   rs_model_free(&m);
   c.has_plasticity = 1;
@@ -224,7 +207,7 @@ static void plastic_limits(void)
   ts_check("tau_c0 = 1e9: F_y equals the elastic (relative)", dh.Fy / de.Fy, 1.0, 1e-9);
   ts_check_true("tau_c0 = 1e9: no plastic cell", dh.count[RS_PLASTIC] == 0);
   /* full sliding along x with perfect plasticity: |p| = min(mu p_n, tau_c0) everywhere */
-  case3d(&c, 22, 2.0, -0.05, 0.0, 0.0);
+  ts_ellipse_case(&c, 22, 2.0, -0.05, 0.0, 0.0);
   c.has_plasticity = 1;
   c.tau_c0 = 100.0;
   c.k_tau = 0.0;

@@ -177,25 +177,6 @@ static void set_law(rs_case *c, rs_friction_kind kind, double v_h)
   c->mu = rs_friction_mu(&f, 0.0);
 }
 
-/* A 3D elliptic contact (model.md §10): Rx = 100 mm, Ry = 200 mm, F = 1000 N, V = 30000
- * mm/s, n x n cells over +-1.1 a, +-1.1 b, with creepage, lateral creepage and spin, so
- * that slip directions turn across the patch. */
-static void case3d(rs_case *c, int n, double xi, double eta, double phi)
-{
-  ts_carter_case(c, n);
-  c->dimension = 3;
-  c->radius = 100.0;
-  c->radius_y = 200.0;
-  c->cells_y = n;
-  c->extent = c->extent_y = 1.1;
-  c->normal_load.value = 1000.0;
-  c->mu = 0.3;
-  c->creepage.value = xi;
-  c->lateral_creepage = (rs_history){.kind = RS_HISTORY_CONSTANT, .value = eta};
-  c->spin = (rs_history){.kind = RS_HISTORY_CONSTANT, .value = phi};
-  c->tangential_force_y = (rs_history){.kind = RS_HISTORY_CONSTANT, .value = 0.0};
-}
-
 int main(void)
 {
   rs_case c;
@@ -244,7 +225,7 @@ int main(void)
    * by 0.9-5.9 % relative, leaving out the whole g' term by 3.9-18 %. */
   for (int k = 0; k < 4; k++) {
     char name[128];
-    case3d(&c, 16, -8e-4, 4e-4, 2e-4);
+    ts_ellipse_case(&c, 16, 2.0, -8e-4, 4e-4, 2e-4);
     set_law(&c, laws[k], 40.0);
     snprintf(name, sizeof name, "3D elastic, %s friction, 16 x 16 cells",
              rs_friction_name(laws[k]));
@@ -252,7 +233,7 @@ int main(void)
   }
   for (int k = 0; k < 4; k++) {
     char name[128];
-    case3d(&c, 16, -8e-4, 4e-4, 2e-4);
+    ts_ellipse_case(&c, 16, 2.0, -8e-4, 4e-4, 2e-4);
     c.has_plasticity = 1;
     c.tau_c0 = 120.0;
     c.k_tau = 2000.0;
@@ -268,7 +249,7 @@ int main(void)
    * many slip speeds; elastic and plastic. */
   for (int k = 0; k < 4; k++) {
     char name[160];
-    case3d(&c, 16, -8e-4, 4e-4, 2e-4);
+    ts_ellipse_case(&c, 16, 2.0, -8e-4, 4e-4, 2e-4);
     if (k >= 2) {
       c.has_plasticity = 1;
       c.tau_c0 = 120.0;
@@ -283,7 +264,7 @@ int main(void)
              c.friction.memory_velocity);
     check_model(name, &c);
   }
-  case3d(&c, 16, -8e-4, 4e-4, 2e-4);
+  ts_ellipse_case(&c, 16, 2.0, -8e-4, 4e-4, 2e-4);
   check_model("3D elastic, Coulomb, 16 x 16 cells", &c);
   ts_carter_case(&c, 100);
   check_model("elastic Carter, 100 cells", &c);

@@ -55,6 +55,26 @@ static inline void ts_fig7_case(rs_case *c, int cells, double k_rel)
   c->tau_c_min = 0.1 * c->tau_c0;
 }
 
+/* A 3D elliptic contact (model.md §10) on Carter's material: Rx = 100 mm, Ry = ratio Rx,
+ * F = 1000 N, V = 30000 mm/s, mu = 0.3, n x n cells over +-1.1 a, +-1.1 b, with creepage,
+ * lateral creepage and spin. */
+static inline void ts_ellipse_case(rs_case *c, int n, double ratio, double xi, double eta,
+                                   double phi)
+{
+  ts_carter_case(c, n);
+  c->dimension = 3;
+  c->radius = 100.0;
+  c->radius_y = 100.0 * ratio;
+  c->cells_y = n;
+  c->extent = c->extent_y = 1.1;
+  c->normal_load.value = 1000.0;
+  c->mu = 0.3;
+  c->creepage.value = xi;
+  c->lateral_creepage = (rs_history){.kind = RS_HISTORY_CONSTANT, .value = eta};
+  c->spin = (rs_history){.kind = RS_HISTORY_CONSTANT, .value = phi};
+  c->tangential_force_y = (rs_history){.kind = RS_HISTORY_CONSTANT, .value = 0.0};
+}
+
 /* The paper's Table-1 contact (cases/meierhofer.yaml): q = 1323.6 N/mm, R = 11.75 mm,
  * G = 77519.4, nu = 0.29, mu = 0.5, grid +-1.05a; tau_c0, k_rel and xi as given. */
 static inline void ts_table1_case(rs_case *c, int cells, double tau_c0, double k_rel, double xi)

@@ -18,12 +18,13 @@ Checks, per figure:
   9  one panel per plastic tau_c0 (200, 250, 350; none for 1e9), in each one series per k_rel
      (x = 100 |xi|, y = |F_x/F_n| bit for bit) and the elastic series (tau_c0 = 1e9).
 """
-import csv
 import sys
 from collections import defaultdict
 
 import netCDF4
 import numpy as np
+
+from check_drawn import read_csv  # the --data CSV, one group per (panel, series, quantity)
 
 failures = 0
 
@@ -32,25 +33,6 @@ def check(what, ok, detail=""):
     global failures
     print(("ok  " if ok else "FAIL"), what, detail)
     failures += not ok
-
-
-def read_csv(path):
-    """{(panel, series, quantity): dict(title, point, x, y)}"""
-    groups = {}
-    with open(path) as f:
-        r = csv.reader(f)
-        head = next(r)
-        keys = head[4:-2]
-        for row in r:
-            panel, title, series, quantity = int(row[0]), row[1], row[2], row[3]
-            point = {k: float(v) for k, v in zip(keys, row[4:-2]) if v != ""}
-            g = groups.setdefault((panel, series, quantity),
-                                  dict(title=title, point=point, x=[], y=[]))
-            g["x"].append(float(row[-2]))
-            g["y"].append(float(row[-1]))
-    for g in groups.values():
-        g["x"], g["y"] = np.array(g["x"]), np.array(g["y"])
-    return groups
 
 
 def index_of(ds, dim, value):
