@@ -9,7 +9,7 @@
 #              (default: a temporary directory, removed)
 #
 # Builds nothing: configure and build first (cmake -S . -B build && cmake --build build).
-# About 15 s in all. Writes into OUTDIR:
+# About 50 s in all on a loaded 2-core machine. Writes into OUTDIR:
 #   default_history.png     cases/default.yaml: elastic Carter start-up from rest (rollsim run)
 #   fig7_carter_plastic.png cases/carter_plast.yaml: the paper's Figure 7, p_x with g and tau_c
 #                           for k_rel = 0.98, 0.6, 0, -0.333 (steady)
