@@ -64,7 +64,7 @@ static void check_model(const char *name, rs_case *c)
   rs_work_create(&w, &m);
   rs_work_create(&wlin, &m);
   rs_work_create(&wfd, &m);
-  rs_csr J = {.cap = rs_model_jac_capacity(&m, 0)};
+  rs_csr J = {.cap = rs_model_jac_capacity(&m, 0, 0)};
   J.rowptr = malloc(((size_t)neq + 1) * sizeof *J.rowptr);
   J.col = malloc((size_t)J.cap * sizeof *J.col);
   J.val = malloc((size_t)J.cap * sizeof *J.val);
@@ -87,7 +87,7 @@ static void check_model(const char *name, rs_case *c)
     /* yp consistent with a backward-Euler step from y - v0 / cj is not needed: any yp
      * is a point of the residual; take yp = 0 (steady) or a random rate. */
     for (int i = 0; i < neq; i++) yp[i] = cj > 0.0 ? 0.01 * ymax * cj * next_random(&seed) : 0.0;
-    rs_model_jacobian(&m, &w, &in, y, yp, cj, 0, &J);
+    rs_model_jacobian(&m, &w, &in, y, yp, cj, 0, 0, &J);
     memcpy(br, w.branch, (size_t)m.grid.n);
     int used = 0;
     double worst_fd = 0.0, worst_mat = 0.0;

@@ -168,13 +168,14 @@ int rs_model_residual(const rs_model *m, rs_work *w, const rs_inputs *in, const 
 /* The generalized Jacobian dF/dy + cj dF/dy' at (y, yp), assembled row by row into J
  * (CSR, sorted columns; J->rowptr/col/val of capacity rs_model_jac_capacity). band = 0:
  * every entry, structurally zero ones left out (the pattern follows the branches);
- * band > 0: the near field, tractions of cells at most `band` cells away in x and y,
- * on a pattern that does not depend on the branches (every traction row holds its near
- * field and its own plastic-displacement columns, zeros included), for a preconditioner
- * whose symbolic analysis is done once. Also fills w->law, w->dense and w->pivot. */
+ * band > 0: the near field, tractions of cells at most `band` cells away in x and at
+ * most band_y cells away in y (band_y = 0: the cell's own line along x), on a pattern
+ * that does not depend on the branches (every traction row holds its near field and its
+ * own plastic-displacement columns, zeros included), for a preconditioner whose
+ * symbolic analysis is done once. Also fills w->law, w->dense and w->pivot. */
 int rs_model_jacobian(const rs_model *m, rs_work *w, const rs_inputs *in, const double *y,
-                      const double *yp, double cj, int band, rs_csr *J);
-int64_t rs_model_jac_capacity(const rs_model *m, int band);
+                      const double *yp, double cj, int band, int band_y, rs_csr *J);
+int64_t rs_model_jac_capacity(const rs_model *m, int band, int band_y);
 
 /* Jv = (dF/dy + cj dF/dy') v, exactly (up to roundoff), at the point of the last
  * rs_model_jacobian on w; wlin is scratch for the kinematics of v (a second work). */

@@ -30,14 +30,14 @@ static void csr_next_row(rs_csr *J)
   if (J->nrows < J->cap_rows) J->rowptr[J->nrows + 1] = J->rowptr[J->nrows];
 }
 
-int64_t rs_model_jac_capacity(const rs_model *m, int band)
+int64_t rs_model_jac_capacity(const rs_model *m, int band, int band_y)
 {
   const rs_layout *L = &m->lay;
   const int64_t n = L->n, nc = L->ncomp;
   int64_t near = nc * n;
   if (band > 0) {
     const int64_t bx = 2 * (int64_t)band + 1 < m->grid.nx ? 2 * (int64_t)band + 1 : m->grid.nx;
-    const int64_t by = 2 * (int64_t)band + 1 < m->grid.ny ? 2 * (int64_t)band + 1 : m->grid.ny;
+    const int64_t by = 2 * (int64_t)band_y + 1 < m->grid.ny ? 2 * (int64_t)band_y + 1 : m->grid.ny;
     near = nc * bx * by;
   }
   /* traction rows: near field, own plastic displacements, extras; plasticity rows: at
@@ -66,7 +66,7 @@ static void add(double *v, unsigned char *has, double x)
 
 /* Traction row of cell I, local row lr: its entries in the columns of the tractions. */
 static void put_traction_columns(const rs_model *m, const rs_law_out *o, int lr, int I, double cj,
-                                 double a, int band, rs_csr *J)
+                                 double a, int band, int band_y, rs_csr *J)
 {
   const rs_layout *L = &m->lay;
   const int nc = L->ncomp, nx = m->grid.nx;
@@ -83,8 +83,8 @@ static void put_traction_columns(const rs_model *m, const rs_law_out *o, int lr,
     }
     const int jx0 = band > 0 && ix > band ? ix - band : 0;
     const int jx1 = band > 0 && ix + band < nx ? ix + band + 1 : nx;
-    const int jy0 = band > 0 && iy > band ? iy - band : 0;
-    const int jy1 = band > 0 && iy + band < m->grid.ny ? iy + band + 1 : m->grid.ny;
+    const int jy0 = band > 0 && iy > band_y ? iy - band_y : 0;
+    const int jy1 = band > 0 && iy + band_y < m->grid.ny ? iy + band_y + 1 : m->grid.ny;
     if (nc == 1 && m->el.dim == 2) { /* the line kernel: the hot loop of 2D assemblies */
       const double *restrict coef = m->el.line.tang + m->el.line.n; /* coef[k] = A(k) */
       const int64_t k0 = J->rowptr[J->nrows + 1];
@@ -134,12 +134,12 @@ static void put_traction_columns(const rs_model *m, const rs_law_out *o, int lr,
 
 /* One residual row of cell I (local row lr), all columns, sorted. */
 static void put_row(const rs_model *m, const rs_law_out *o, int lr, int I, const rs_inputs *in,
-                    double cj, int band, int traction_row, rs_csr *J)
+                    double cj, int band, int band_y, int traction_row, rs_csr *J)
 {
   const rs_layout *L = &m->lay;
   const int nc = L->ncomp;
   const double a = in->velocity / m->grid.dx, V = in->velocity;
-  put_traction_columns(m, o, lr, I, cj, a, traction_row ? band : 0, J);
+  put_traction_columns(m, o, lr, I, cj, a, traction_row ? band : 0, band_y, J);
   sparse_cols s;
   memset(&s, 0, sizeof s);
   for (int c = 0; c < nc; c++) {
@@ -187,7 +187,7 @@ static void put_row(const rs_model *m, const rs_law_out *o, int lr, int I, const
 }
 
 int rs_model_jacobian(const rs_model *m, rs_work *w, const rs_inputs *in, const double *y,
-                      const double *yp, double cj, int band, rs_csr *J)
+                      const double *yp, double cj, int band, int band_y, rs_csr *J)
 {
   const rs_layout *L = &m->lay;
   const int n = L->n, nc = L->ncomp;
@@ -213,13 +213,16 @@ int rs_model_jacobian(const rs_model *m, rs_work *w, const rs_inputs *in, const 
   J->cap_rows = L->neq;
   J->rowptr[0] = J->rowptr[1] = 0;
   for (int c = 0; c < nc; c++)
-    for (int i = 0; i < n; i++) put_row(m, &w->law[i], rs_law_row_f(c), i, in, cj, band, 1, J);
+    for (int i = 0; i < n; i++)
+      put_row(m, &w->law[i], rs_law_row_f(c), i, in, cj, band, band_y, 1, J);
   for (int c = 0; c < nc; c++)
-    for (int i = 0; i < n; i++) put_row(m, &w->law[i], rs_law_row_pl(nc, c), i, in, cj, band, 0, J);
-  for (int i = 0; i < n; i++) put_row(m, &w->law[i], rs_law_row_star(nc), i, in, cj, band, 0, J);
+    for (int i = 0; i < n; i++)
+      put_row(m, &w->law[i], rs_law_row_pl(nc, c), i, in, cj, band, band_y, 0, J);
+  for (int i = 0; i < n; i++)
+    put_row(m, &w->law[i], rs_law_row_star(nc), i, in, cj, band, band_y, 0, J);
   /* Memory rows: in the near field like traction rows (a pattern fixed by the contact) */
   for (int i = 0; i < n && L->memory; i++)
-    put_row(m, &w->law[i], rs_law_row_mu(nc), i, in, cj, band, 1, J);
+    put_row(m, &w->law[i], rs_law_row_mu(nc), i, in, cj, band, band_y, 1, J);
   /* Force rows: (dA sum p_k - F_k)/(2a). */
   const double force_row = m->grid.area / m->contact_measure;
   for (int k = 0; k < L->nextra; k++) {

@@ -11,7 +11,7 @@ int rs_linsys_create(rs_linsys *ls, const rs_model *m, N_Vector tmpl, SUNContext
 {
   memset(ls, 0, sizeof *ls);
   const int neq = m->lay.neq;
-  ls->J = SUNSparseMatrix(neq, neq, rs_model_jac_capacity(m, 0), CSR_MAT, ctx);
+  ls->J = SUNSparseMatrix(neq, neq, rs_model_jac_capacity(m, 0, 0), CSR_MAT, ctx);
   if (!ls->J) return RS_ERR_INTERNAL;
   ls->LS = SUNLinSol_KLU(tmpl, ls->J, ctx);
   ls->branch_at_analysis = calloc((size_t)m->grid.n, 1);
@@ -71,7 +71,7 @@ int rs_linsys_assemble(rs_linsys *ls, const rs_model *m, rs_work *w, const rs_in
                 .rowptr = SM_INDEXPTRS_S(ls->J),
                 .col = SM_INDEXVALS_S(ls->J),
                 .val = SM_DATA_S(ls->J)};
-  const int status = rs_model_jacobian(m, w, in, y, yp, cj, 0, &csr);
+  const int status = rs_model_jacobian(m, w, in, y, yp, cj, 0, 0, &csr);
   if (status != RS_OK) return status;
   ls->jac_evals++;
   if (ls->reduced) return RS_OK;

@@ -4,13 +4,14 @@
 #include <stdlib.h>
 #include <string.h>
 
-int rs_krylov_create(rs_krylov *k, const rs_model *m, int band)
+int rs_krylov_create(rs_krylov *k, const rs_model *m, int band, int band_y)
 {
   memset(k, 0, sizeof *k);
   k->m = m;
   k->band = band;
+  k->band_y = band_y;
   const int neq = m->lay.neq;
-  k->cap = rs_model_jac_capacity(m, band);
+  k->cap = rs_model_jac_capacity(m, band, band_y);
   k->near.rowptr = malloc(((size_t)neq + 1) * sizeof *k->near.rowptr);
   k->near.col = malloc((size_t)k->cap * sizeof *k->near.col);
   k->near.val = malloc((size_t)k->cap * sizeof *k->near.val);
@@ -52,7 +53,7 @@ int rs_krylov_setup(rs_krylov *k, const rs_inputs *in, const double *y, const do
   k->in = *in;
   k->cj = cj;
   k->setups++;
-  int status = rs_model_jacobian(m, &k->w, in, y, yp, cj, k->band, &k->near);
+  int status = rs_model_jacobian(m, &k->w, in, y, yp, cj, k->band, k->band_y, &k->near);
   if (status != RS_OK) return status;
   const int64_t *rp = k->near.rowptr, *ci = k->near.col;
   const int64_t nnz = rp[neq];

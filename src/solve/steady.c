@@ -140,11 +140,6 @@ enum { KRYLOV_FROM_CELLS = 300 };
 /* Krylov: near-field half band (cells), GMRES basis size, forcing term (1e-3: fewest
  * GMRES iterations for the elastic creep curve at 850 cells; 1e-6 cost 30 % more). */
 enum { KRYLOV_BAND = 16, KRYLOV_MAXL = 60 };
-/* 3D: Newton-Krylov always (the dense elastic block is 2N x 2N); the near field is the
- * (2 band + 1)^2 cells around each one. Measured (elastic circle, 1 Newton solve): band
- * 1/2/3 at 44 x 44 cells 0.09/0.25/0.61 s, at 88 x 88 1.2/3.1/10.7 s (KLU's fill of a 2D
- * stencil dominates; the GMRES iterations only double from band 3 to 1). */
-enum { KRYLOV_BAND_3D = 1 };
 #define KRYLOV_ETA_PLASTIC 1e-6
 #define KRYLOV_ETA         1e-3
 
@@ -199,7 +194,9 @@ int rs_steady_create_with(rs_steady **out, const rs_model *m, SUNContext ctx, rs
     RS_SUN_CHECK(s->gmres == NULL, msg, what);
     RS_SUN_CHECK(SUNLinSol_SPGMRSetMaxRestarts(s->gmres, 4), msg, what);
     RS_SUN_CHECK(SUNLinSol_SPGMRSetGSType(s->gmres, SUN_CLASSICAL_GS), msg, what);
-    RS_SUN_CHECK(rs_krylov_create(&s->kry, m, three ? KRYLOV_BAND_3D : KRYLOV_BAND), msg, what);
+    RS_SUN_CHECK(rs_krylov_create(&s->kry, m, three ? RS_KRYLOV_BAND_3D : KRYLOV_BAND,
+                                  three ? RS_KRYLOV_BAND_3D_Y : 0),
+                 msg, what);
   }
 
   /* Scales: tractions by the largest bound, displacements by the displacement that

@@ -153,7 +153,8 @@ int rs_transient_create(rs_transient **out, const rs_model *m, SUNContext ctx, d
     tr->gmres = SUNLinSol_SPGMR(tr->y, SUN_PREC_RIGHT, 60, ctx);
     RS_SUN_CHECK(tr->gmres == NULL, msg, what);
     RS_SUN_CHECK(SUNLinSol_SPGMRSetMaxRestarts(tr->gmres, 4), msg, what);
-    RS_SUN_CHECK(rs_krylov_create(&tr->kry, m, 1), msg, what); /* as the steady solver */
+    RS_SUN_CHECK(rs_krylov_create(&tr->kry, m, RS_KRYLOV_BAND_3D, RS_KRYLOV_BAND_3D_Y), msg,
+                 what); /* as the steady solver */
   }
   tr->cj = 0.0;
   const rs_nls_host host = {.cj_slot = &tr->cj, .inputs_at = host_inputs, .ctx = tr};
