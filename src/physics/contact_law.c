@@ -218,7 +218,17 @@ static void disk_law(const rs_plasticity *pl, const rs_law_in *in, int jac, rs_l
       out->R[rs_law_row_pl(NC, c)] = yield ? p[c] - tauc * yv[c] / yn : -r * m[c];
     }
   }
-  out->R[rs_law_row_star(NC)] = r * (in->dustar - mnorm);
+  /* Hardening rate: the flow along p, m.p^, rather than |m|. The two agree at every
+   * solution (the flow is parallel to p, or zero), but |m| has a cone at m = 0, where a
+   * cell that has just hardened up to g sits (slip and yield both active, flow -> 0):
+   * Newton's linearisation m^.m there follows the direction of the last iterate's small
+   * flow, and semismooth Newton cycled between the slip and the slip + yield branch of
+   * such cells (plastic ellipse, k_rel = 0.3, 22 x 22 cells from rest: 303 iterations,
+   * against 17 with m.p^, same solution to 5e-14). m.p^ is smooth in m and p for p != 0;
+   * |m| where p = 0 (exterior). */
+  const int along_p = pnorm > 0.0;
+  const double mrate = along_p ? (m[0] * p[0] + m[1] * p[1]) / pnorm : mnorm;
+  out->R[rs_law_row_star(NC)] = r * (in->dustar - mrate);
   /* Friction memory: the row of the 1-component law with eta = -s.v_s and |v_s| the norm */
   const int Rm = rs_law_row_mu(NC);
   const double vn = hypot(vs[0], vs[1]);
@@ -276,13 +286,13 @@ static void disk_law(const rs_plasticity *pl, const rs_law_in *in, int jac, rs_l
       put(out, Rpl, rs_law_var_flow(NC, c), (br & RS_BRANCH_EXTERIOR) ? r : -r);
     }
   }
-  /* hardening row: d|m|/dm = m^, or the direction of p where m = 0 (model.md §9) */
+  /* hardening row: d(m.p^)/dm = p^, d(m.p^)/dp = (m - (m.p^) p^)^T/|p|; where p = 0,
+   * d|m|/dm = m^ (model.md §9) */
   const int Rs = rs_law_row_star(NC);
   for (int c = 0; c < NC; c++) {
-    const double dir = mnorm > 0.0   ? m[c] / mnorm
-                       : pnorm > 0.0 ? p[c] / pnorm
-                                     : (c == 0 ? 1.0 : 0.0);
+    const double dir = along_p ? p[c] / pnorm : mnorm > 0.0 ? m[c] / mnorm : (c == 0 ? 1.0 : 0.0);
     put(out, Rs, rs_law_var_flow(NC, c), -r * dir);
+    if (along_p) put(out, Rs, rs_law_var_p(c), -r * (m[c] - mrate * p[c] / pnorm) / pnorm);
   }
   put(out, Rs, rs_law_var_dustar(NC), r);
   /* Memory row: r d_c on Dmu/Dt; in the contact r max(|v_s|, s0) on mu, and through
