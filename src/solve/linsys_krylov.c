@@ -75,6 +75,7 @@ int rs_krylov_setup(rs_krylov *k, const rs_inputs *in, const double *y, const do
    * (diagonal of U, relative) that the preconditioner would be poor. Rows change
    * between band rows and unit rows with the contact regimes, so the old order is
    * not always good. */
+  k->factorizations++;
   if (same && k->num &&
       klu_l_refactor(k->near.rowptr, k->near.col, k->near.val, k->sym, k->num, &k->common) &&
       k->common.status == KLU_OK && klu_l_rcond(k->sym, k->num, &k->common) &&

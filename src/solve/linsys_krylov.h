@@ -29,6 +29,8 @@ typedef struct rs_krylov {
   klu_l_symbolic *sym;
   klu_l_numeric *num;
   long setups, analyses, products;
+  long factorizations; /* KLU numeric factorisations and refactorisations */
+  long lin_iters;      /* Krylov iterations (summed by the caller: KINSOL's count) */
 } rs_krylov;
 
 /* 3D near field: the cell's own line along x, 4 cells each way. The steady rolling

@@ -152,6 +152,11 @@ static int nls_solve(SUNNonlinearSolver nls, N_Vector y0, N_Vector ycor, N_Vecto
   long iters = 0;
   KINGetNumNonlinSolvIters(c->kmem, &iters);
   c->last_iters = iters;
+  if (c->kry) {
+    long lin_iters = 0;
+    KINGetNumLinIters(c->kmem, &lin_iters);
+    c->kry->lin_iters += lin_iters;
+  }
   c->last_fails = 0;
   if (flag == KIN_SYSFUNC_FAIL) return -1; /* the residual refused (interrupt): IDA stops */
   int ok = flag >= 0;

@@ -293,6 +293,7 @@ void rs_transient_get_stats(const rs_transient *tr, rs_stats *st)
   st->err_test_fails += tr->before_restart.err_test_fails;
   st->res_evals += tr->before_restart.res_evals;
   st->jac_evals = tr->ls.jac_evals + tr->kry.setups;
-  st->klu_analyses = rs_linsys_analyses(&tr->ls);
-  st->factorizations = rs_linsys_factorizations(&tr->ls);
+  st->klu_analyses = rs_linsys_analyses(&tr->ls) + tr->kry.analyses;
+  st->factorizations = rs_linsys_factorizations(&tr->ls) + tr->kry.factorizations;
+  st->lin_solves = tr->kry.lin_iters; /* Newton-Krylov: GMRES iterations (else 0) */
 }
