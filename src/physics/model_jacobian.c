@@ -242,7 +242,7 @@ int rs_model_jv(const rs_model *m, const rs_work *w, rs_work *wlin, const rs_inp
   rs_inputs lin = *in;
   lin.linear = 1;
   for (int k = 0; k < L->neq; k++) Jv[k] = cj * v[k]; /* Jv holds v' until the rows are set */
-  rs_model_kinematics(m, wlin, &lin, v, Jv);
+  rs_model_kinematics_scaled(m, wlin, &lin, v, Jv, cj);
   for (int i = 0; i < n; i++) {
     const rs_law_out *o = &w->law[i];
     double d[RS_LAW_NVAR];
@@ -260,8 +260,8 @@ int rs_model_jv(const rs_model *m, const rs_work *w, rs_work *wlin, const rs_inp
     }
     for (int lr = 0; lr < 2 * nc + 1 + mem; lr++) {
       double sum = 0.0;
-      for (int q = 0; q < 3 * nc + 2 + 2 * mem; q++)
-        if (o->present[lr][q]) sum += o->jac[lr][q] * d[q];
+      /* entries not present are zero (rs_contact_law): no test, no mispredicted branch */
+      for (int q = 0; q < 3 * nc + 2 + 2 * mem; q++) sum += o->jac[lr][q] * d[q];
       const int row = lr < nc        ? rs_at_p(L, lr, i)
                       : lr < 2 * nc  ? rs_at_upl(L, lr - nc, i)
                       : lr == 2 * nc ? rs_at_ustar(L, i)
