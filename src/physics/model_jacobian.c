@@ -186,8 +186,8 @@ static void put_row(const rs_model *m, const rs_law_out *o, int lr, int I, const
   csr_next_row(J);
 }
 
-int rs_model_jacobian(const rs_model *m, rs_work *w, const rs_inputs *in, const double *y,
-                      const double *yp, double cj, int band, int band_y, rs_csr *J)
+int rs_model_linearise(const rs_model *m, rs_work *w, const rs_inputs *in, const double *y,
+                       const double *yp, double cj)
 {
   const rs_layout *L = &m->lay;
   const int n = L->n, nc = L->ncomp;
@@ -208,6 +208,14 @@ int rs_model_jacobian(const rs_model *m, rs_work *w, const rs_inputs *in, const 
       w->pivot[k] = k;
     }
   }
+  return RS_OK;
+}
+
+int rs_model_jacobian_assemble(const rs_model *m, const rs_work *w, const rs_inputs *in, double cj,
+                               int band, int band_y, rs_csr *J)
+{
+  const rs_layout *L = &m->lay;
+  const int n = L->n, nc = L->ncomp;
   /* Rows in the order of the unknowns (rollsim/layout.h). */
   J->nrows = 0;
   J->cap_rows = L->neq;
@@ -231,6 +239,13 @@ int rs_model_jacobian(const rs_model *m, rs_work *w, const rs_inputs *in, const 
     csr_next_row(J);
   }
   return RS_OK;
+}
+
+int rs_model_jacobian(const rs_model *m, rs_work *w, const rs_inputs *in, const double *y,
+                      const double *yp, double cj, int band, int band_y, rs_csr *J)
+{
+  const int status = rs_model_linearise(m, w, in, y, yp, cj);
+  return status != RS_OK ? status : rs_model_jacobian_assemble(m, w, in, cj, band, band_y, J);
 }
 
 int rs_model_jv(const rs_model *m, const rs_work *w, rs_work *wlin, const rs_inputs *in, double cj,

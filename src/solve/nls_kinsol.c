@@ -113,7 +113,8 @@ static int nls_solve(SUNNonlinearSolver nls, N_Vector y0, N_Vector ycor, N_Vecto
                      sunrealtype tol, sunbooleantype call_lsetup, void *mem)
 {
   (void)y0;
-  (void)call_lsetup; /* exact Newton: the Jacobian is rebuilt at every iteration */
+  (void)call_lsetup; /* exact Newton: the Jacobian (Krylov: the local laws of J v) is rebuilt
+                      * at every iteration; the near-field preconditioner may lag */
   nls_content *c = CONTENT(nls);
   c->ida_mem = mem;
   sunrealtype tcur, cj;
@@ -167,7 +168,8 @@ static int nls_solve(SUNNonlinearSolver nls, N_Vector y0, N_Vector ycor, N_Vecto
   }
   if (!ok) {
     c->last_fails = 1;
-    return SUN_NLS_CONV_RECVR; /* IDA reduces the step and tries again */
+    if (c->kry) rs_krylov_invalidate(c->kry); /* the retry starts from a fresh factorisation */
+    return SUN_NLS_CONV_RECVR;                /* IDA reduces the step and tries again */
   }
   return SUN_NLS_SUCCESS;
 }
