@@ -86,7 +86,8 @@ typedef struct rs_law_in {
 /* The residual rows of a cell, their active branches, and the local generalized
  * Jacobian: jac[row][var] with present[row][var] marking the structurally present
  * entries (explicit zeros included, e.g. the hardening term of a yield row on the
- * floor: the Jacobian's pattern depends on the branches only). */
+ * floor: the Jacobian's pattern depends on the branches only); entries not present are
+ * 0. */
 typedef struct rs_law_out {
   double R[RS_LAW_NROW];
   unsigned char branch;

@@ -176,9 +176,17 @@ int rs_model_residual(const rs_model *m, rs_work *w, const rs_inputs *in, const 
 int rs_model_jacobian(const rs_model *m, rs_work *w, const rs_inputs *in, const double *y,
                       const double *yp, double cj, int band, int band_y, rs_csr *J);
 int64_t rs_model_jac_capacity(const rs_model *m, int band, int band_y);
+/* rs_model_jacobian in two parts: the local laws with their Jacobians at (y, yp) into w
+ * (w->law, w->branch, w->dense, w->pivot: what rs_model_jv needs), and the assembly of J
+ * from them (in and cj as given to rs_model_linearise). */
+int rs_model_linearise(const rs_model *m, rs_work *w, const rs_inputs *in, const double *y,
+                       const double *yp, double cj);
+int rs_model_jacobian_assemble(const rs_model *m, const rs_work *w, const rs_inputs *in, double cj,
+                               int band, int band_y, rs_csr *J);
 
 /* Jv = (dF/dy + cj dF/dy') v, exactly (up to roundoff), at the point of the last
- * rs_model_jacobian on w; wlin is scratch for the kinematics of v (a second work). */
+ * rs_model_jacobian or rs_model_linearise on w; wlin is scratch for the kinematics of v (a second
+ * work). */
 int rs_model_jv(const rs_model *m, const rs_work *w, rs_work *wlin, const rs_inputs *in, double cj,
                 const double *v, double *Jv);
 

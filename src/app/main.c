@@ -240,7 +240,8 @@ static void print_summary(const rs_case *c, const cli_args *a, const rs_run_resu
     printf("  IDA steps %ld, Newton iterations %ld, failed solves %ld, error-test fails %ld\n"
            "  linear solves %ld, Jacobian evaluations %ld, factorisations %ld\n",
            st->steps, st->nonlin_iters, st->nonlin_fails, st->err_test_fails,
-           /* KLU inside IDA's Newton: one linear solve per Newton iteration */
+           /* KLU inside IDA's Newton: one linear solve per Newton iteration; 3D
+            * (Newton-Krylov): GMRES iterations, and the near field's factorisations */
            st->lin_solves > 0 ? st->lin_solves : st->nonlin_iters, st->jac_evals,
            st->factorizations);
   else

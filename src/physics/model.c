@@ -327,6 +327,12 @@ void rs_model_inflow(const rs_model *m, const rs_inputs *in, double *state)
 void rs_model_kinematics(const rs_model *m, rs_work *w, const rs_inputs *in, const double *y,
                          const double *yp)
 {
+  rs_model_kinematics_scaled(m, w, in, y, yp, -1.0);
+}
+
+void rs_model_kinematics_scaled(const rs_model *m, rs_work *w, const rs_inputs *in, const double *y,
+                                const double *yp, double rate)
+{
   const rs_layout *L = &m->lay;
   const rs_grid *g = &m->grid;
   const int n = L->n, nc = L->ncomp, nx = g->nx, ny = g->ny, px = nx + 1; /* padded row */
@@ -340,7 +346,14 @@ void rs_model_kinematics(const rs_model *m, rs_work *w, const rs_inputs *in, con
   const double phi = in->linear ? 0.0 : in->spin, shift = in->linear ? 0.0 : in->shift_velocity;
   const double *p = y + rs_at_p(L, 0, 0), *us = y + rs_at_ustar(L, 0);
   rs_elastic_op_tang(&m->el, &w->ew, p, w->uel, 1);
-  rs_elastic_op_tang(&m->el, &w->ew, yp + rs_at_p(L, 0, 0), w->ueldot, 0);
+  if (rate >= 0.0) { /* p' = rate p: A p' from A p on the grid, one product fewer */
+    for (int c = 0; c < nc; c++)
+      for (int iy = 0; iy < ny; iy++)
+        for (int ix = 0; ix < nx; ix++)
+          w->ueldot[c * n + iy * nx + ix] = rate * w->uel[(size_t)c * px * ny + iy * px + ix];
+  } else {
+    rs_elastic_op_tang(&m->el, &w->ew, yp + rs_at_p(L, 0, 0), w->ueldot, 0);
+  }
   for (int c = 0; c < nc; c++)
     for (int iy = 0; iy < ny; iy++)
       for (int ix = 0; ix < nx; ix++) {

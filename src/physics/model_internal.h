@@ -17,6 +17,11 @@
  * for J v). */
 void rs_model_kinematics(const rs_model *m, rs_work *w, const rs_inputs *in, const double *y,
                          const double *yp);
+/* The same when the traction rates are rate times the tractions (rate >= 0; J v with
+ * v' = cj v): A p' is then rate A p, one elastic product instead of two. rate < 0: as
+ * rs_model_kinematics. */
+void rs_model_kinematics_scaled(const rs_model *m, rs_work *w, const rs_inputs *in, const double *y,
+                                const double *yp, double rate);
 
 /* State of the material entering at the leading edge, per row of the grid (u_pl
  * components, then u*: (ncomp + 1) ny values): fresh (0), or the twin-disc memory at

@@ -194,8 +194,8 @@ static void put_row(const rs_model *m, const rs_law_out *o, int lr, int I, const
   csr_next_row(J);
 }
 
-int rs_model_jacobian(const rs_model *m, rs_work *w, const rs_inputs *in, const double *y,
-                      const double *yp, double cj, int band, int band_y, rs_csr *J)
+int rs_model_linearise(const rs_model *m, rs_work *w, const rs_inputs *in, const double *y,
+                       const double *yp, double cj)
 {
   const rs_layout *L = &m->lay;
   const int n = L->n, nc = L->ncomp;
@@ -216,6 +216,14 @@ int rs_model_jacobian(const rs_model *m, rs_work *w, const rs_inputs *in, const 
       w->pivot[k] = k;
     }
   }
+  return RS_OK;
+}
+
+int rs_model_jacobian_assemble(const rs_model *m, const rs_work *w, const rs_inputs *in, double cj,
+                               int band, int band_y, rs_csr *J)
+{
+  const rs_layout *L = &m->lay;
+  const int n = L->n, nc = L->ncomp;
   /* Rows in the order of the unknowns (rollsim/layout.h). */
   J->nrows = 0;
   J->cap_rows = L->neq;
@@ -241,6 +249,13 @@ int rs_model_jacobian(const rs_model *m, rs_work *w, const rs_inputs *in, const 
   return RS_OK;
 }
 
+int rs_model_jacobian(const rs_model *m, rs_work *w, const rs_inputs *in, const double *y,
+                      const double *yp, double cj, int band, int band_y, rs_csr *J)
+{
+  const int status = rs_model_linearise(m, w, in, y, yp, cj);
+  return status != RS_OK ? status : rs_model_jacobian_assemble(m, w, in, cj, band, band_y, J);
+}
+
 int rs_model_jv(const rs_model *m, const rs_work *w, rs_work *wlin, const rs_inputs *in, double cj,
                 const double *v, double *Jv)
 {
@@ -250,7 +265,7 @@ int rs_model_jv(const rs_model *m, const rs_work *w, rs_work *wlin, const rs_inp
   rs_inputs lin = *in;
   lin.linear = 1;
   for (int k = 0; k < L->neq; k++) Jv[k] = cj * v[k]; /* Jv holds v' until the rows are set */
-  rs_model_kinematics(m, wlin, &lin, v, Jv);
+  rs_model_kinematics_scaled(m, wlin, &lin, v, Jv, cj);
   for (int i = 0; i < n; i++) {
     const rs_law_out *o = &w->law[i];
     double d[RS_LAW_NVAR];
@@ -268,8 +283,8 @@ int rs_model_jv(const rs_model *m, const rs_work *w, rs_work *wlin, const rs_inp
     }
     for (int lr = 0; lr < 2 * nc + 1 + mem; lr++) {
       double sum = 0.0;
-      for (int q = 0; q < 3 * nc + 2 + 2 * mem; q++)
-        if (o->present[lr][q]) sum += o->jac[lr][q] * d[q];
+      /* entries not present are zero (rs_contact_law): no test, no mispredicted branch */
+      for (int q = 0; q < 3 * nc + 2 + 2 * mem; q++) sum += o->jac[lr][q] * d[q];
       const int row = lr < nc        ? rs_at_p(L, lr, i)
                       : lr < 2 * nc  ? rs_at_upl(L, lr - nc, i)
                       : lr == 2 * nc ? rs_at_ustar(L, i)

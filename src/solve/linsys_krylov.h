@@ -29,6 +29,14 @@ typedef struct rs_krylov {
   klu_l_symbolic *sym;
   klu_l_numeric *num;
   long setups, analyses, products;
+  long factorizations; /* KLU numeric factorisations and refactorisations */
+  long reuses;         /* setups that kept the factored near field */
+  /* reuse of the factorisation (rs_krylov_set_reuse): the ratio, and the state it was
+   * factored in: cj + V/dx and each cell's active-set signature */
+  double reuse_ratio, rate_factored;
+  unsigned char *sig_factored;
+  int stale;      /* rs_krylov_invalidate: the next setup factors */
+  long lin_iters; /* Krylov iterations (summed by the caller: KINSOL's count) */
 } rs_krylov;
 
 /* 3D near field: the cell's own line along x, 4 cells each way. The steady rolling
@@ -42,9 +50,17 @@ enum { RS_KRYLOV_BAND_3D = 4, RS_KRYLOV_BAND_3D_Y = 0 };
 
 int rs_krylov_create(rs_krylov *k, const rs_model *m, int band, int band_y);
 void rs_krylov_free(rs_krylov *k);
-/* New linearisation point (inputs, y, y', cj): assembles and factors the near field. */
+/* New linearisation point (inputs, y, y', cj): the local laws for J v, and the near
+ * field assembled and factored (unless rs_krylov_set_reuse lets the last one serve). */
 int rs_krylov_setup(rs_krylov *k, const rs_inputs *in, const double *y, const double *yp,
                     double cj);
+/* Let setups keep the factored near field while the active set (the cells' branches) is
+ * nearly that of the factorisation and cj + V/dx is within a factor ratio of its value
+ * then (ratio <= 1: refactor at every setup, the default). J v stays exact: only the
+ * preconditioner lags. */
+void rs_krylov_set_reuse(rs_krylov *k, double ratio);
+/* The next setup factors whatever the reuse rule says (after a failed solve). */
+void rs_krylov_invalidate(rs_krylov *k);
 /* Jv = J v at the point of the last setup (exact up to roundoff). */
 int rs_krylov_times(rs_krylov *k, const double *v, double *Jv);
 /* v <- P^-1 v. */

@@ -155,6 +155,12 @@ int rs_transient_create(rs_transient **out, const rs_model *m, SUNContext ctx, d
     RS_SUN_CHECK(SUNLinSol_SPGMRSetMaxRestarts(tr->gmres, 4), msg, what);
     RS_SUN_CHECK(rs_krylov_create(&tr->kry, m, RS_KRYLOV_BAND_3D, RS_KRYLOV_BAND_3D_Y), msg,
                  what); /* as the steady solver */
+    /* The near field is refactored when cj + V/dx moved by a factor 4 or the active set
+     * changed (linsys_krylov.h), not at every Newton iteration. Measured (bench plastic
+     * start-up, 16 x 16 cells): factorisations 4110 -> 378, GMRES iterations 68176 ->
+     * 68920, CPU time 4.27 -> 3.90 s; ratio 2: 753 factorisations, 8: 239 at the same
+     * GMRES count within 1 %. */
+    rs_krylov_set_reuse(&tr->kry, 4.0);
   }
   tr->cj = 0.0;
   const rs_nls_host host = {.cj_slot = &tr->cj, .inputs_at = host_inputs, .ctx = tr};
@@ -293,6 +299,7 @@ void rs_transient_get_stats(const rs_transient *tr, rs_stats *st)
   st->err_test_fails += tr->before_restart.err_test_fails;
   st->res_evals += tr->before_restart.res_evals;
   st->jac_evals = tr->ls.jac_evals + tr->kry.setups;
-  st->klu_analyses = rs_linsys_analyses(&tr->ls);
-  st->factorizations = rs_linsys_factorizations(&tr->ls);
+  st->klu_analyses = rs_linsys_analyses(&tr->ls) + tr->kry.analyses;
+  st->factorizations = rs_linsys_factorizations(&tr->ls) + tr->kry.factorizations;
+  st->lin_solves = tr->kry.lin_iters; /* Newton-Krylov: GMRES iterations (else 0) */
 }
