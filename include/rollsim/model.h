@@ -171,8 +171,9 @@ int rs_model_residual(const rs_model *m, rs_work *w, const rs_inputs *in, const 
  * band > 0: the near field, tractions of cells at most `band` cells away in x and at
  * most band_y cells away in y (band_y = 0: the cell's own line along x), on a pattern
  * that does not depend on the branches (every traction row holds its near field and its
- * own plastic-displacement columns, zeros included), for a preconditioner whose
- * symbolic analysis is done once. Also fills w->law, w->dense and w->pivot. */
+ * own plastic-displacement columns, zeros included; in 3D every other row too holds the
+ * cell's traction, plastic displacements, u* and mu at the cell and upstream), for a
+ * preconditioner whose symbolic analysis is done once. Also fills w->law, w->dense and w->pivot. */
 int rs_model_jacobian(const rs_model *m, rs_work *w, const rs_inputs *in, const double *y,
                       const double *yp, double cj, int band, int band_y, rs_csr *J);
 int64_t rs_model_jac_capacity(const rs_model *m, int band, int band_y);
