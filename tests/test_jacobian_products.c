@@ -177,6 +177,18 @@ static void set_law(rs_case *c, rs_friction_kind kind, double v_h)
   c->mu = rs_friction_mu(&f, 0.0);
 }
 
+/* The 16 x 16 test ellipse, elastic or with the plastic layer (tau_c0 = 120 N/mm^2 below
+ * mu p0, hardening). */
+static void ellipse_case(rs_case *c, int plastic)
+{
+  ts_ellipse_case(c, 16, 2.0, -8e-4, 4e-4, 2e-4);
+  if (!plastic) return;
+  c->has_plasticity = 1;
+  c->tau_c0 = 120.0;
+  c->k_tau = 2000.0;
+  c->tau_c_min = 10.0;
+}
+
 int main(void)
 {
   rs_case c;
@@ -223,39 +235,22 @@ int main(void)
    * 40 mm/s (at 10 mm/s steady Newton did not converge for the exponential, rational and
    * Polach laws, so there was no state to perturb). Leaving out the terms across s missed
    * by 0.9-5.9 % relative, leaving out the whole g' term by 3.9-18 %. */
-  for (int k = 0; k < 4; k++) {
-    char name[128];
-    ts_ellipse_case(&c, 16, 2.0, -8e-4, 4e-4, 2e-4);
-    set_law(&c, laws[k], 40.0);
-    snprintf(name, sizeof name, "3D elastic, %s friction, 16 x 16 cells",
-             rs_friction_name(laws[k]));
-    check_model(name, &c);
-  }
-  for (int k = 0; k < 4; k++) {
-    char name[128];
-    ts_ellipse_case(&c, 16, 2.0, -8e-4, 4e-4, 2e-4);
-    c.has_plasticity = 1;
-    c.tau_c0 = 120.0;
-    c.k_tau = 2000.0;
-    c.tau_c_min = 10.0;
-    set_law(&c, laws[k], 40.0);
-    snprintf(name, sizeof name, "3D plastic (tau_c0 = 120 N/mm^2), %s friction, 16 x 16 cells",
-             rs_friction_name(laws[k]));
-    check_model(name, &c);
-  }
+  for (int plastic = 0; plastic < 2; plastic++)
+    for (int k = 0; k < 4; k++) {
+      char name[128];
+      ellipse_case(&c, plastic);
+      set_law(&c, laws[k], 40.0);
+      snprintf(name, sizeof name, "3D %s, %s friction, 16 x 16 cells",
+               plastic ? "plastic (tau_c0 = 120 N/mm^2)" : "elastic", rs_friction_name(laws[k]));
+      check_model(name, &c);
+    }
   /* 3D friction memory: the memory row depends on v_s through eta = -s.v_s and |v_s| in
    * both components, and on p through s; the friction rows of slipping cells on mu
    * (g = mu p_n). d_c = 0.05 mm (a few percent of the semi-axes), s0 below and above
    * many slip speeds; elastic and plastic. */
   for (int k = 0; k < 4; k++) {
     char name[160];
-    ts_ellipse_case(&c, 16, 2.0, -8e-4, 4e-4, 2e-4);
-    if (k >= 2) {
-      c.has_plasticity = 1;
-      c.tau_c0 = 120.0;
-      c.k_tau = 2000.0;
-      c.tau_c_min = 10.0;
-    }
+    ellipse_case(&c, k >= 2);
     set_law(&c, k % 2 ? RS_FRICTION_RATIONAL : RS_FRICTION_EXPONENTIAL, 40.0);
     c.friction.memory_distance = 0.05;
     c.friction.memory_velocity = k == 1 ? 5.0 : 1.0;
@@ -264,7 +259,7 @@ int main(void)
              c.friction.memory_velocity);
     check_model(name, &c);
   }
-  ts_ellipse_case(&c, 16, 2.0, -8e-4, 4e-4, 2e-4);
+  ellipse_case(&c, 0);
   check_model("3D elastic, Coulomb, 16 x 16 cells", &c);
   ts_carter_case(&c, 100);
   check_model("elastic Carter, 100 cells", &c);

@@ -178,19 +178,18 @@ static void put_row(const rs_model *m, const rs_law_out *o, int lr, int I, const
     }
     if (o->present[lr][mu]) add(&s.mu[0], &s.has_mu[0], o->jac[lr][mu]);
   }
-  const int up = rs_grid_upstream(&m->grid, I);
+  const int up = rs_grid_upstream(&m->grid, I), keep = fixed || fixed3;
   for (int c = 0; c < nc; c++) {
-    if (s.has_upl[c][0] || fixed || fixed3) csr_put(J, rs_at_upl(L, c, I), s.upl[c][0]);
-    if (up >= 0 && (s.has_upl[c][1] || fixed || fixed3))
-      csr_put(J, rs_at_upl(L, c, up), s.upl[c][1]);
+    if (s.has_upl[c][0] || keep) csr_put(J, rs_at_upl(L, c, I), s.upl[c][0]);
+    if (up >= 0 && (s.has_upl[c][1] || keep)) csr_put(J, rs_at_upl(L, c, up), s.upl[c][1]);
   }
   if (s.has_us[0] || fixed3) csr_put(J, rs_at_ustar(L, I), s.us[0]);
   if (up >= 0 && (s.has_us[1] || fixed3)) csr_put(J, rs_at_ustar(L, up), s.us[1]);
   /* near field with memory: a traction row keeps mu(I) (present at the bound only) */
-  if (s.has_mu[0] || ((fixed || fixed3) && L->memory)) csr_put(J, rs_at_mu(L, I), s.mu[0]);
+  if (s.has_mu[0] || (keep && L->memory)) csr_put(J, rs_at_mu(L, I), s.mu[0]);
   if (up >= 0 && (s.has_mu[1] || (fixed3 && L->memory))) csr_put(J, rs_at_mu(L, up), s.mu[1]);
   for (int k = 0; k < L->nextra; k++)
-    if (s.has_extra[k] || fixed || fixed3) csr_put(J, rs_at_extra(L, k), s.extra[k]);
+    if (s.has_extra[k] || keep) csr_put(J, rs_at_extra(L, k), s.extra[k]);
   csr_next_row(J);
 }
 
