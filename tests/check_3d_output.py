@@ -318,9 +318,13 @@ simulation: {{mode: transient, end_time: {T!r}, output_interval: {T / 30!r}}}
           d <= 1e-5 * 450.0, f"{r0.Fx.values[-1]:.10g} vs {p.Fx.values[-1]:.10g}")
     lead = r1.ustar.values[-1][:, -1]  # the leading column (material enters at high x)
     inside = r1.pn.values[-1][:, -1] >= 0.0
+    # recovery 0: fresh material, u* = 0 at the leading edge up to the roundoff of the
+    # Krylov solves (1e-26 mm measured; 1e-12 of the largest u* allowed)
+    fresh = float(abs(r0.ustar.values[-1][:, -1]).max())
     check("recovery 1: u* re-enters at the leading edge after a revolution",
-          float(lead.max()) > 0.0 and float(r0.ustar.values[-1][:, -1].max()) == 0.0,
-          f"max leading u* {lead.max():.3g} mm")
+          float(lead.max()) > 1e-3 * float(r1.ustar.values[-1].max())
+          and fresh <= 1e-12 * float(r0.ustar.values[-1].max()),
+          f"max leading u* {lead.max():.3g} mm, fresh material {fresh:.3g} mm")
     rows = r1.ustar.values[-1][:, 0]
     check("recovery 1: the re-entering rows are not all equal (a memory per y row)",
           rows.max() > rows.min() and inside.all())

@@ -47,6 +47,14 @@ typedef struct rs_krylov {
  * wall time 0.28 -> 0.12 s, 1.47 -> 0.40 s, 76 -> 4.1 s. Half widths 2 and 8 in x: within
  * 15 % of 4; the whole line (64): 4x slower at 128 x 128. */
 enum { RS_KRYLOV_BAND_3D = 4, RS_KRYLOV_BAND_3D_Y = 0 };
+/* The transient's near field: half width 2 along x. With c_j in the iteration matrix the
+ * GMRES count hardly depends on the width (elastic start-up over 10 contact lengths at
+ * 44 x 44 cells, rtol 1e-3: 10157, 10449, 10485 and 10623 GMRES iterations with half
+ * widths 4, 3, 2 and 1), and the narrower band halves KLU's triangular solves, a third of
+ * the run's time. Measured with classical Gram-Schmidt: 4.98 -> 4.67 s there; plastic
+ * start-up 16 x 16 cells (bench) 2.87 -> 2.65 s, the forces within 1.2e-6 of their size
+ * (IDA's step sequence). */
+enum { RS_KRYLOV_BAND_3D_TRANSIENT = 2 };
 
 int rs_krylov_create(rs_krylov *k, const rs_model *m, int band, int band_y);
 void rs_krylov_free(rs_krylov *k);
