@@ -14,8 +14,12 @@
 #include <string.h>
 
 struct rs_elastic3d_fft {
-  int mx, my, ncx;                     /* padded grid; ncx = mx/2 + 1 complex columns */
-  fftw_plan forward, backward;         /* r2c and c2r of my x mx (x fastest) */
+  int mx, my, ncx;   /* padded grid; ncx = mx/2 + 1 complex columns */
+  fftw_plan forward; /* r2c of my x mx (x fastest): the kernels */
+  /* The products by rows and columns, pruned: p fills ny of the my rows and u is read from
+   * ny rows, so the transforms along x run on those rows only (r2c / c2r of mx), the ones
+   * along y (c2c of my, in place) on every column. */
+  fftw_plan rows_fwd, cols_fwd, cols_bwd, rows_bwd;
   fftw_complex *kxx, *kxy, *kyy, *kzz; /* transformed kernels [my ncx] */
 };
 
@@ -34,7 +38,9 @@ void rs_elastic3d_fft_free(struct rs_elastic3d_fft *f)
 {
   if (!f) return;
   if (f->forward) fftw_destroy_plan(f->forward);
-  if (f->backward) fftw_destroy_plan(f->backward);
+  fftw_plan plans[4] = {f->rows_fwd, f->cols_fwd, f->cols_bwd, f->rows_bwd};
+  for (int k = 0; k < 4; k++)
+    if (plans[k]) fftw_destroy_plan(plans[k]);
   fftw_free(f->kxx);
   fftw_free(f->kxy);
   fftw_free(f->kyy);
@@ -60,8 +66,16 @@ struct rs_elastic3d_fft *rs_elastic3d_fft_create(const rs_elastic3d *el)
   int ok = grid && spec && f->kxx && f->kxy && f->kyy && f->kzz;
   if (ok) {
     f->forward = fftw_plan_dft_r2c_2d(f->my, f->mx, grid, spec, FFTW_ESTIMATE);
-    f->backward = fftw_plan_dft_c2r_2d(f->my, f->mx, spec, grid, FFTW_ESTIMATE);
-    ok = f->forward && f->backward;
+    const int nrow = f->mx, ncol = f->my;
+    f->rows_fwd = fftw_plan_many_dft_r2c(1, &nrow, ny, grid, NULL, 1, f->mx, spec, NULL, 1, f->ncx,
+                                         FFTW_ESTIMATE);
+    f->cols_fwd = fftw_plan_many_dft(1, &ncol, f->ncx, spec, NULL, f->ncx, 1, spec, NULL, f->ncx, 1,
+                                     FFTW_FORWARD, FFTW_ESTIMATE);
+    f->cols_bwd = fftw_plan_many_dft(1, &ncol, f->ncx, spec, NULL, f->ncx, 1, spec, NULL, f->ncx, 1,
+                                     FFTW_BACKWARD, FFTW_ESTIMATE);
+    f->rows_bwd = fftw_plan_many_dft_c2r(1, &nrow, ny, spec, NULL, 1, f->ncx, grid, NULL, 1, f->mx,
+                                         FFTW_ESTIMATE);
+    ok = f->forward && f->rows_fwd && f->cols_fwd && f->cols_bwd && f->rows_bwd;
   }
   for (int comp = 0; ok && comp < 4; comp++) {
     static const int ci[4] = {0, 0, 1, 2}, cj[4] = {0, 1, 1, 2};
@@ -123,22 +137,29 @@ void rs_elastic3d_work_free(rs_elastic3d_work *work)
   work->spectrum[0] = work->spectrum[1] = NULL;
 }
 
-/* p (nx x ny, row length nx) into the zeroed work grid, then forward transform. */
+/* p (nx x ny, row length nx) into the first ny rows of the work grid (zero beyond nx),
+ * then the forward transform: rows, the spectrum's other rows zero, columns. */
 static void transform_in(const struct rs_elastic3d_fft *f, const rs_elastic3d *el, double *grid,
                          const double *p, fftw_complex *spec)
 {
-  memset(grid, 0, (size_t)f->mx * (size_t)f->my * sizeof *grid);
-  for (int iy = 0; iy < el->ny; iy++)
-    memcpy(grid + (size_t)iy * (size_t)f->mx, p + (size_t)iy * (size_t)el->nx,
-           (size_t)el->nx * sizeof *p);
-  fftw_execute_dft_r2c(f->forward, grid, spec);
+  for (int iy = 0; iy < el->ny; iy++) {
+    double *row = grid + (size_t)iy * (size_t)f->mx;
+    memcpy(row, p + (size_t)iy * (size_t)el->nx, (size_t)el->nx * sizeof *p);
+    memset(row + el->nx, 0, (size_t)(f->mx - el->nx) * sizeof *row);
+  }
+  fftw_execute_dft_r2c(f->rows_fwd, grid, spec);
+  memset(spec + (size_t)el->ny * (size_t)f->ncx, 0,
+         (size_t)(f->my - el->ny) * (size_t)f->ncx * sizeof *spec);
+  fftw_execute_dft(f->cols_fwd, spec, spec);
 }
 
-/* Backward transform (destroys spec), then the first nxout columns of ny rows into u. */
+/* Backward transform (destroys spec): columns, then the first ny rows; their first nxout
+ * columns into u. */
 static void transform_out(const struct rs_elastic3d_fft *f, const rs_elastic3d *el, double *grid,
                           fftw_complex *spec, double *u, int nxout)
 {
-  fftw_execute_dft_c2r(f->backward, spec, grid);
+  fftw_execute_dft(f->cols_bwd, spec, spec);
+  fftw_execute_dft_c2r(f->rows_bwd, spec, grid);
   for (int iy = 0; iy < el->ny; iy++)
     memcpy(u + (size_t)iy * (size_t)nxout, grid + (size_t)iy * (size_t)f->mx,
            (size_t)nxout * sizeof *u);
