@@ -28,4 +28,8 @@ SUNNonlinearSolver rs_nls_kinsol_create(const rs_model *m, rs_work *w, rs_linsys
                                         rs_krylov *kry, SUNLinearSolver gmres, rs_nls_host host,
                                         int max_iters, N_Vector tmpl, SUNContext ctx);
 
+/* Newton-Krylov: GMRES stops at this fraction of the residual's norm (default
+ * RS_NLS_KRYLOV_FORCING). */
+int rs_nls_kinsol_set_forcing(SUNNonlinearSolver nls, double eta);
+
 #endif
