@@ -28,7 +28,7 @@ typedef struct nls_content {
 #define CONTENT(nls) ((nls_content *)(nls)->content)
 
 /* Forcing term of Newton-Krylov: GMRES stops at this fraction of the residual's norm
- * (the transient sets 10 rtol within [1e-4, 1e-2], rs_nls_kinsol_set_forcing).
+ * (the 3D transient sets 10 rtol within [1e-3, 1e-2], rs_nls_kinsol_set_forcing).
  * Measured (bench plastic start-up, 16 x 16 cells; at 32 x 32 over 10 mm alike): 1e-6
  * 68853 GMRES iterations and 4107 Newton iterations, 1e-5 62667 / 4130, 1e-4 53602 /
  * 4190, 1e-3 56031 / 5311, 1e-2 55614 / 7048; Eisenstat-Walker (KINSOL's choices 1 and
