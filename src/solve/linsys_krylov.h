@@ -51,9 +51,9 @@ enum { RS_KRYLOV_BAND_3D = 4, RS_KRYLOV_BAND_3D_Y = 0 };
  * GMRES count hardly depends on the width (elastic start-up over 10 contact lengths at
  * 44 x 44 cells, rtol 1e-3: 10157, 10449, 10485 and 10623 GMRES iterations with half
  * widths 4, 3, 2 and 1), and the narrower band halves KLU's triangular solves, a third of
- * the run's time. Measured with classical Gram-Schmidt: 4.98 -> 4.67 s there; plastic
- * start-up 16 x 16 cells (bench) 2.87 -> 2.65 s, the forces within 1.2e-6 of their size
- * (IDA's step sequence). */
+ * the run's time. Measured with classical Gram-Schmidt: 4.98 -> 4.67 s there; with both
+ * changes the plastic start-up at 16 x 16 cells (bench) 3.13 -> 2.65 s, the forces within
+ * 1.2e-6 of their size (IDA's step sequence). */
 enum { RS_KRYLOV_BAND_3D_TRANSIENT = 2 };
 
 int rs_krylov_create(rs_krylov *k, const rs_model *m, int band, int band_y);

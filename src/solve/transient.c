@@ -177,7 +177,7 @@ int rs_transient_create(rs_transient **out, const rs_model *m, SUNContext ctx, d
    * 44 x 44 start-ups: rtol 1e-6 (the first 2 mm) forcing 1e-4 / 1e-3 / 1e-2 27.3 / 23.8 /
    * 24.3 s, rtol 1e-4 (10 contact lengths) 1e-3 / 1e-2 8.77 / 9.26 s, rtol 1e-3 1e-2 / 3e-2
    * 2.58 / 2.63 s (4.55 s with 1e-4 and the residual test at tol / 10); the forces within
-   * 4e-6 of their size of the 1e-4 runs (IDA's step sequence). */
+   * 4e-6 of those of the 1e-4 runs (IDA's step sequence). */
   if (krylov)
     RS_SUN_CHECK(rs_nls_kinsol_set_forcing(tr->nls, fmin(1e-2, fmax(1e-3, 10.0 * o->rtol))) !=
                      RS_OK,
