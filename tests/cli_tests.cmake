@@ -37,6 +37,12 @@ set_tests_properties(cli_run_startup PROPERTIES FIXTURES_SETUP cli_startup)
 add_test(NAME cli_startup_reaches_steady COMMAND ${SYSTEM_PYTHON3} ${RS_TESTS}/check_cli_runs.py final_matches
                                                  ${RS_OUT}/startup.nc ${RS_OUT}/carter2d.nc 1e-4)
 set_tests_properties(cli_startup_reaches_steady PROPERTIES FIXTURES_REQUIRED "cli_startup;cli_carter")
+# The summary's distance rolled and cell passages: the ramp 0 -> 30 m/s over 2 ms rolls
+# 30 mm, the 4 ms after it 120 mm; dx = 2.1 a / 100 cells with a = 1.00001 mm.
+add_test(NAME cli_startup_summary_passages
+         COMMAND ${RS_BIN} run ${RS_CASES}/startup.yaml -o ${RS_OUT}/startup_summary.nc)
+set_tests_properties(cli_startup_summary_passages PROPERTIES PASS_REGULAR_EXPRESSION
+                     "rolled 150 mm = 7142\\.7[0-9] cell passages: [0-9.]+ steps per passage")
 add_test(NAME cli_run_sine_creepage COMMAND ${RS_BIN} run ${RS_CASES}/sine_creepage.yaml -o ${RS_OUT}/sine.nc --quiet)
 set_tests_properties(cli_run_sine_creepage PROPERTIES FIXTURES_SETUP cli_sine)
 add_test(NAME cli_sine_creepage_response COMMAND ${SYSTEM_PYTHON3} ${RS_TESTS}/check_cli_runs.py sine

@@ -30,6 +30,8 @@ static void test_constant(void)
   check("constant is_constant", rs_history_is_constant(&h), 1, 0);
   check("constant breakpoint", rs_history_next_breakpoint(&h, 0.0), INFINITY, 0);
   check("constant max_abs", rs_history_max_abs(&h, 0, 1), 3.0, 0);
+  check("constant integral", rs_history_integral_abs(&h, 0.5, 2.5), 6.0, exact);
+  check("empty integral", rs_history_integral_abs(&h, 1.0, 1.0), 0.0, 0);
 }
 
 static void test_ramp(void)
@@ -55,6 +57,15 @@ static void test_ramp(void)
   check("falling ramp max_abs", rs_history_max_abs(&down, 0.0, 1.0), 2.0, 0);
   check("falling ramp min", rs_history_min(&down, 0.0, 1.0), -2.0, 0);
   check("falling ramp min [0,0.25]", rs_history_min(&down, 0.0, 0.25), -1.0, exact);
+  /* integral of |.|: 0.5 * 1 + the ramp's mean 2 over 1 + 0.5 * 3 */
+  check("ramp integral [0,2]", rs_history_integral_abs(&h, 0.0, 2.0), 4.0, 4 * exact);
+  check("ramp integral [0.25,1]", rs_history_integral_abs(&h, 0.25, 1.0), 1.0, 4 * exact);
+  check("falling ramp integral [0,1]", rs_history_integral_abs(&down, 0.0, 1.0), 1.5, 4 * exact);
+  /* a ramp through zero: |.| has a kink at t = 0.5 (two triangles of 1 * 0.5 / 2) */
+  rs_history through = {
+      .kind = RS_HISTORY_RAMP, .from = -1.0, .to = 1.0, .start = 0.0, .duration = 1.0};
+  check("ramp through zero integral [0,1]", rs_history_integral_abs(&through, 0.0, 1.0), 0.5,
+        4 * exact);
 }
 
 static void test_steps(void)
@@ -75,6 +86,9 @@ static void test_steps(void)
   check("steps max_abs [0,2]", rs_history_max_abs(&h, 0.0, 2.0), 5.0, 0);
   check("steps min [0,1.5]", rs_history_min(&h, 0.0, 1.5), 1.0, 0);
   check("steps min [0,3]", rs_history_min(&h, 0.0, 3.0), -5.0, 0);
+  /* each value held until the next step time: 1 (before the first) + 1 + 2 + 5 */
+  check("steps integral [-1,3]", rs_history_integral_abs(&h, -1.0, 3.0), 9.0, 4 * exact);
+  check("steps integral [0.5,1.5]", rs_history_integral_abs(&h, 0.5, 1.5), 1.5, 4 * exact);
 
   rs_history copy;
   check("steps copy status", rs_history_copy(&copy, &h), RS_OK, 0);
@@ -112,6 +126,18 @@ static void test_sine(void)
   check("negative amplitude min", rs_history_min(&negative, 0.0, 0.008), -1.0, 1e-12);
   check("negative amplitude max_abs [0, 8 ms]", rs_history_max_abs(&negative, 0.0, 0.008), 1.0,
         1e-12);
+  /* integral of |1 + 2 sin(wt)| over a period: (2 pi / 3 + 4 sqrt 3) / w, the negative lobe
+   * (7 pi / 6 < wt < 11 pi / 6) counted positive. Simpson's rule is O(h^4) on the smooth
+   * parts; the two kinks of |.| cost O(h^2) each: 1.3e-6 of the integral over one period
+   * (128 intervals), 6e-8 over ten (704); 1e-5 allowed. */
+  const double w = 2.0 * pi * 50.0, lobes = (2.0 * pi / 3.0 + 4.0 * sqrt(3.0)) / w;
+  check("sine integral over a period", rs_history_integral_abs(&h, 0.0, 0.02), lobes, 1e-5 * lobes);
+  check("sine integral over 10 periods", rs_history_integral_abs(&h, 0.0, 0.2), 10.0 * lobes,
+        1e-5 * 10.0 * lobes);
+  rs_history positive = h; /* mean 3: no sign change, the integral is the mean's */
+  positive.mean = 3.0;
+  check("sine integral without a sign change", rs_history_integral_abs(&positive, 0.0, 0.02), 0.06,
+        1e-9 * 0.06);
 }
 
 static void test_table(void)
@@ -132,6 +158,10 @@ static void test_table(void)
   check("table max_abs between points", rs_history_max_abs(&h, 1.5, 2.5), 7.5, exact);
   check("table min", rs_history_min(&h, 0.5, 2.0), 5.0, exact);
   check("table is_constant", rs_history_is_constant(&h), 0, 0);
+  check("table integral", rs_history_integral_abs(&h, 0.0, 3.0), 15.0, 16 * exact);
+  double ts[] = {0.0, 2.0}, vs[] = {-1.0, 1.0}; /* through zero at t = 1: two triangles */
+  rs_history cross = {.kind = RS_HISTORY_TABLE, .n = 2, .t = ts, .v = vs};
+  check("table integral through zero", rs_history_integral_abs(&cross, 0.0, 2.0), 1.0, 4 * exact);
 }
 
 int main(void)

@@ -34,6 +34,11 @@ int rs_history_is_constant(const rs_history *h);
 double rs_history_next_breakpoint(const rs_history *h, double t);
 /* Largest |value| over [t0, t1] (used for validation and scales). */
 double rs_history_max_abs(const rs_history *h, double t0, double t1);
+/* Integral of |value| over [t0, t1] (e.g. the distance rolled at a velocity history),
+ * piece by piece between breakpoints: exact for constants, steps, ramps and tables (a
+ * piece whose sign changes: Simpson's rule on 64 intervals), sines by Simpson's rule on 64
+ * intervals per period at least. */
+double rs_history_integral_abs(const rs_history *h, double t0, double t1);
 /* Minimum value over [t0, t1]. */
 double rs_history_min(const rs_history *h, double t0, double t1);
 void rs_history_free(rs_history *h);

@@ -58,6 +58,7 @@ typedef struct rs_run_result {
   double *rig_rev_mu; /* per revolution: mean traction coefficient (NaN if not reached) */
   double rig_revolutions;
   double dx;           /* cell size, mm */
+  double rolled;       /* transient: distance rolled from the start to the last record, mm */
   char backup[1040];   /* an older file at the output path kept under this name, or "" */
   size_t file_records; /* records in the output file (more than records with append) */
 } rs_run_result;

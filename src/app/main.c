@@ -247,6 +247,11 @@ static void print_summary(const rs_case *c, const cli_args *a, const rs_run_resu
   else
     printf("  Newton iterations %ld, linear solves %ld, Jacobian evaluations %ld\n",
            st->nonlin_iters, st->lin_solves, st->jac_evals);
+  /* Rolling transients: the cost per cell passage (model.md §5: one passage is one cell
+   * length rolled; a fixed-shift scheme takes one step per passage). */
+  if (c->mode == RS_MODE_TRANSIENT && !c->rig.on && res->rolled > 0.0 && res->dx > 0.0)
+    printf("  rolled %.6g mm = %.6g cell passages: %.3g steps per passage\n", res->rolled,
+           res->rolled / res->dx, st->steps * res->dx / res->rolled);
   if (st->refused > 0)
     printf("  steady check: %ld Newton solution(s) refused as not physical (recomputed by "
            "rolling the material)\n",

@@ -160,6 +160,34 @@ double rs_history_max_abs(const rs_history *h, double t0, double t1)
   return fmax(fabs(lo), fabs(hi));
 }
 
+/* Simpson's rule for |h| on [a, b], n (even) intervals. */
+static double simpson_abs(const rs_history *h, double a, double b, int n)
+{
+  const double dt = (b - a) / n;
+  double sum = fabs(rs_history_eval(h, a)) + fabs(rs_history_eval(h, b));
+  for (int k = 1; k < n; k++) sum += (k % 2 ? 4.0 : 2.0) * fabs(rs_history_eval(h, a + k * dt));
+  return sum * dt / 3.0;
+}
+
+double rs_history_integral_abs(const rs_history *h, double t0, double t1)
+{
+  if (!(t1 > t0)) return 0.0;
+  double total = 0.0;
+  for (double a = t0; a < t1;) {
+    const double b = fmin(rs_history_next_breakpoint(h, a), t1);
+    if (h->kind == RS_HISTORY_STEPS) { /* the value of a step holds until the next one */
+      total += fabs(rs_history_eval(h, a)) * (b - a);
+    } else if (h->kind == RS_HISTORY_SINE) {
+      total += simpson_abs(h, a, b, 2 * (32 + (int)fmin(1e6, ceil(32.0 * h->frequency * (b - a)))));
+    } else { /* linear pieces: exact, or 64 intervals where |.| has a kink inside */
+      const double va = rs_history_eval(h, a), vb = rs_history_eval(h, b);
+      total += simpson_abs(h, a, b, va * vb < 0.0 ? 64 : 2);
+    }
+    a = b;
+  }
+  return total;
+}
+
 double rs_history_min(const rs_history *h, double t0, double t1)
 {
   double lo, hi;
