@@ -80,6 +80,10 @@ us_expect(check_steady_no_time --stdout "^# steady rolling: no time axis"
 us_expect(check_transient_time --stdout "^simulation.end_time: 0.00133333"
   --stdout "^simulation.rolled_distance_total: 40  # mm \\(20 contact lengths\\)"
   -- ${RS_BIN} check ${RS_CASES}/default.yaml)
+# A velocity ramp from rest: 30 mm during the 2 ms ramp to 30 m/s, 120 mm in the 4 ms after it.
+us_expect(check_transient_ramp_distance
+  --stdout "^simulation.rolled_distance_total: 150  # mm \\(75 contact lengths\\)"
+  -- ${RS_BIN} check ${RS_CASES}/startup.yaml)
 us_expect(check_overrides
   --stdout "^title: \"Carter 2D steady rolling, elastic, mu = 0.3, xi = -2.4e-4\"\n# changed with --set \\(the title is the case file's\\): friction.mu=0.6, rolling.creepage=-1e-3$"
   --stdout "^friction.mu: 0.6" -- ${RS_BIN} check ${RS_CASES}/carter2d.yaml --set friction.mu=0.6

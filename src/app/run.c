@@ -459,9 +459,10 @@ static int print_derived_3d(const rs_case *c, const rs_model *m, FILE *out, rs_m
   }
   fprintf(out, "solver.r_steady: %.6g  # N s/mm^3, semismooth scaling at t = 0\n",
           in.velocity > 0.0 ? rs_model_scaling(m, &in, 0.0) : 0.0);
-  if (in.velocity > 0.0 && c->mode == RS_MODE_TRANSIENT)
-    fprintf(out, "simulation.rolled_distance_total: %.6g  # mm (%.4g contact lengths)\n",
-            in.velocity * c->end_time, in.velocity * c->end_time / (2.0 * m->hertz_a));
+  const double rolled = rs_history_integral_abs(&c->velocity, 0.0, c->end_time);
+  if (rolled > 0.0 && c->mode == RS_MODE_TRANSIENT)
+    fprintf(out, "simulation.rolled_distance_total: %.6g  # mm (%.4g contact lengths)\n", rolled,
+            rolled / (2.0 * m->hertz_a));
   return RS_OK;
 }
 
@@ -495,9 +496,10 @@ int rs_run_print_derived(const rs_case *c, FILE *out, rs_msg *msg)
   const double V = in.velocity;
   fprintf(out, "solver.r_steady: %.6g  # N s/mm^3, semismooth scaling at t = 0\n",
           V > 0.0 ? rs_model_scaling(&m, &in, 0.0) : 0.0);
-  if (V > 0.0 && c->mode == RS_MODE_TRANSIENT)
-    fprintf(out, "simulation.rolled_distance_total: %.6g  # mm (%.4g contact lengths)\n",
-            V * c->end_time, V * c->end_time / (2.0 * m.hertz_a));
+  const double rolled = rs_history_integral_abs(&c->velocity, 0.0, c->end_time);
+  if (rolled > 0.0 && c->mode == RS_MODE_TRANSIENT)
+    fprintf(out, "simulation.rolled_distance_total: %.6g  # mm (%.4g contact lengths)\n", rolled,
+            rolled / (2.0 * m.hertz_a));
   if (c->rig.on)
     fprintf(out,
             "twin_disc.revolution_time: %.6g  # s, 2 pi R1/V (%.4g cells rolled per revolution)\n"
