@@ -161,7 +161,6 @@ static int run_transient(run_state *s, const rs_run_opts *o, rs_run_result *res,
       if (status == RS_OK) { /* the summary describes the last record in the file */
         res->final = d;
         res->time = t_out;
-        res->rolled = rs_history_integral_abs(&c->velocity, t0, t_out);
         res->records++;
       }
       k++;
@@ -182,6 +181,7 @@ static int run_transient(run_state *s, const rs_run_opts *o, rs_run_result *res,
   }
   if (o->progress) fputc('\n', stderr);
   rs_transient_free(tr);
+  res->rolled = rs_history_integral_abs(&c->velocity, t0, res->time); /* once, at the end */
   return status;
 }
 

@@ -27,15 +27,6 @@ typedef struct nls_content {
 
 #define CONTENT(nls) ((nls_content *)(nls)->content)
 
-/* Forcing term of Newton-Krylov: GMRES stops at this fraction of the residual's norm
- * (the 3D transient sets 10 rtol within [1e-3, 1e-2], rs_nls_kinsol_set_forcing).
- * Measured (bench plastic start-up, 16 x 16 cells; at 32 x 32 over 10 mm alike): 1e-6
- * 68853 GMRES iterations and 4107 Newton iterations, 1e-5 62667 / 4130, 1e-4 53602 /
- * 4190, 1e-3 56031 / 5311, 1e-2 55614 / 7048; Eisenstat-Walker (KINSOL's choices 1 and
- * 2) 66127 / 12756 and 60625 / 11122: the step must meet the tight residual test of the
- * next iteration, so a loose linear solve costs Newton iterations. */
-#define RS_NLS_KRYLOV_FORCING 1e-4
-
 static int kin_residual(N_Vector ycor, N_Vector f, void *data)
 {
   nls_content *c = data;
@@ -255,8 +246,9 @@ static int nls_getnumconvfails(SUNNonlinearSolver nls, long *fails)
 }
 
 SUNNonlinearSolver rs_nls_kinsol_create(const rs_model *m, rs_work *w, rs_linsys *ls,
-                                        rs_krylov *kry, SUNLinearSolver gmres, rs_nls_host host,
-                                        int max_iters, N_Vector tmpl, SUNContext ctx)
+                                        rs_krylov *kry, SUNLinearSolver gmres, double forcing,
+                                        rs_nls_host host, int max_iters, N_Vector tmpl,
+                                        SUNContext ctx)
 {
   SUNNonlinearSolver nls = SUNNonlinSolNewEmpty(ctx);
   if (!nls) return NULL;
@@ -290,8 +282,7 @@ SUNNonlinearSolver rs_nls_kinsol_create(const rs_model *m, rs_work *w, rs_linsys
     if (KINSetLinearSolver(c->kmem, gmres, NULL) != 0 ||
         KINSetJacTimesVecFn(c->kmem, krylov_times) != 0 ||
         KINSetPreconditioner(c->kmem, krylov_psetup, krylov_psolve) != 0 ||
-        KINSetEtaForm(c->kmem, KIN_ETACONSTANT) != 0 ||
-        KINSetEtaConstValue(c->kmem, RS_NLS_KRYLOV_FORCING) != 0)
+        KINSetEtaForm(c->kmem, KIN_ETACONSTANT) != 0 || KINSetEtaConstValue(c->kmem, forcing) != 0)
       goto fail;
   } else if (KINSetLinearSolver(c->kmem, rs_linsys_solver(ls), rs_linsys_matrix(ls)) != 0 ||
              KINSetJacFn(c->kmem, kin_jacobian) != 0) {
@@ -305,10 +296,4 @@ SUNNonlinearSolver rs_nls_kinsol_create(const rs_model *m, rs_work *w, rs_linsys
 fail:
   nls_free(nls);
   return NULL;
-}
-
-int rs_nls_kinsol_set_forcing(SUNNonlinearSolver nls, double eta)
-{
-  nls_content *c = CONTENT(nls);
-  return c->kry && KINSetEtaConstValue(c->kmem, eta) != 0 ? RS_ERR_INTERNAL : RS_OK;
 }

@@ -22,14 +22,11 @@ typedef struct rs_nls_host {
 
 /* The linear algebra: ls (direct: KLU or the Schur complement), or Newton-Krylov with
  * kry's near-field preconditioner and exact products in the SPGMR solver gmres (kry
- * non-NULL; ls then unused). max_iters: Newton iterations per step before the step is
- * declared failed. */
+ * non-NULL; ls then unused), GMRES stopping at the fraction forcing of the residual's
+ * norm. max_iters: Newton iterations per step before the step is declared failed. */
 SUNNonlinearSolver rs_nls_kinsol_create(const rs_model *m, rs_work *w, rs_linsys *ls,
-                                        rs_krylov *kry, SUNLinearSolver gmres, rs_nls_host host,
-                                        int max_iters, N_Vector tmpl, SUNContext ctx);
-
-/* Newton-Krylov: GMRES stops at this fraction of the residual's norm (default
- * RS_NLS_KRYLOV_FORCING). */
-int rs_nls_kinsol_set_forcing(SUNNonlinearSolver nls, double eta);
+                                        rs_krylov *kry, SUNLinearSolver gmres, double forcing,
+                                        rs_nls_host host, int max_iters, N_Vector tmpl,
+                                        SUNContext ctx);
 
 #endif
