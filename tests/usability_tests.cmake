@@ -65,6 +65,12 @@ add_test(NAME us_warn_cost_varying COMMAND ${RS_US_CHECK} warn-cost varying 100 
 set_tests_properties(us_warn_cost_constant us_warn_cost_varying PROPERTIES TIMEOUT 150)
 # A short transient does not warn.
 us_expect(warn_cost_none --quiet-stderr -- ${RS_BIN} run ${RS_CASES}/default.yaml -o ${RS_US}/short.nc)
+# The rule on synthetic records with a given clock: a start-up whose first window is dense
+# and whose second is not stays silent; steps as dense all along warn with the second window.
+add_executable(test_cost_watch ${RS_TESTS}/test_cost_watch.c)
+target_link_libraries(test_cost_watch PRIVATE rollsim_lib)
+target_include_directories(test_cost_watch PRIVATE ${PROJECT_SOURCE_DIR}/src)
+add_test(NAME us_warn_cost_rule COMMAND test_cost_watch ${RS_CASES}/default.yaml)
 
 # ---- check: sweep block, no time axis for steady cases, overrides under the title -----------
 us_expect(check_sweep --stdout "^# sweep: 820 points \\(4 x 5 x 41"

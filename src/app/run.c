@@ -174,7 +174,7 @@ static int run_transient(run_state *s, const rs_run_opts *o, rs_run_result *res,
       if (status == RS_OK) status = rs_transient_restart(tr, t, s->y, s->yp, bp, msg);
     }
     rs_transient_get_stats(tr, &res->stats);
-    if (o->cost_warning) rs_cost_watch_update(&cost, t, res->stats.steps, stderr);
+    if (o->cost_warning) rs_cost_watch_update(&cost, t, res->stats.steps, rs_wall_clock(), stderr);
     if (o->progress) progress(t, t_end, res->stats.steps, started);
     if (status == RS_OK && o->interrupt_flag && *o->interrupt_flag)
       status = rs_msg_set(msg, RS_ERR_INTERRUPTED, "interrupted at t = %.6g s", t);

@@ -92,29 +92,15 @@ static int constant_inputs(const rs_case *c)
          rs_history_eval(&c->velocity, 0.0) > 0.0;
 }
 
-int rs_cost_watch_update(rs_cost_watch *w, double t, long steps, FILE *err)
+/* The projected wall time of the rest of the run from the window (t_a, wall_a, steps_a) to
+ * (t, now, steps): the window's steps per simulated second until the run is settled (constant
+ * inputs) or ends, at the window's cost per step. 0 when there is nothing to project. */
+static double projected_rest(const rs_cost_watch *w, double t, double now, long steps,
+                             double *steps_left)
 {
-  if (w->done) return 0;
-  const double now = rs_wall_clock(), elapsed = now - w->started;
-  if (elapsed < 0.5 * RS_COST_PROBE_SECONDS) return 0;
-  if (!w->sampled && elapsed < RS_COST_PROBE_SECONDS) {
-    w->sampled = 1;
-    w->t_a = t;
-    w->wall_a = now;
-    w->steps_a = steps;
-    return 0;
-  }
-  if (elapsed < RS_COST_PROBE_SECONDS) return 0;
-  w->done = 1;
-  if (!w->sampled) { /* the first records came slowly: the window is the whole run so far */
-    w->t_a = w->t0;
-    w->wall_a = w->started;
-    w->steps_a = 0;
-  }
   const rs_case *c = w->c;
-  const int constant = constant_inputs(c);
   double t_busy = c->end_time; /* until when the steps stay as dense as now */
-  if (constant) {
+  if (constant_inputs(c)) {
     double a;
     saturation_creepage(c, &a);
     t_busy = c->mode == RS_MODE_TRANSIENT && c->initial_state == RS_START_STEADY && w->t0 == 0.0
@@ -124,10 +110,51 @@ int rs_cost_watch_update(rs_cost_watch *w, double t, long steps, FILE *err)
   }
   const double left = t_busy - t, dt = t - w->t_a, dwall = now - w->wall_a;
   const long dsteps = steps - w->steps_a;
-  if (!(left > 0.0) || !(dt > 0.0) || dsteps <= 0 || !(dwall > 0.0)) return 0;
-  const double steps_left = dsteps * left / dt;         /* at the current step density */
-  const double remaining = dwall / dsteps * steps_left; /* at the current cost per step */
-  if (remaining < RS_COST_WARN_SECONDS) return 0;
+  if (!(left > 0.0) || !(dt > 0.0) || dsteps <= 0 || !(dwall > 0.0)) return 0.0;
+  *steps_left = dsteps * left / dt;    /* at the window's step density */
+  return dwall / dsteps * *steps_left; /* at the window's cost per step */
+}
+
+int rs_cost_watch_update(rs_cost_watch *w, double t, long steps, double now, FILE *err)
+{
+  if (w->done) return 0;
+  const double elapsed = now - w->started;
+  if (w->confirming && elapsed < RS_COST_CONFIRM_SECONDS) return 0;
+  if (!w->confirming) {
+    if (elapsed < 0.5 * RS_COST_PROBE_SECONDS) return 0;
+    if (!w->sampled && elapsed < RS_COST_PROBE_SECONDS) {
+      w->sampled = 1;
+      w->t_a = t;
+      w->wall_a = now;
+      w->steps_a = steps;
+      return 0;
+    }
+    if (elapsed < RS_COST_PROBE_SECONDS) return 0;
+    if (!w->sampled) { /* the first records came slowly: the window is the whole run so far */
+      w->t_a = w->t0;
+      w->wall_a = w->started;
+      w->steps_a = 0;
+    }
+  }
+  double steps_left = 0.0;
+  const double remaining = projected_rest(w, t, now, steps, &steps_left);
+  if (remaining < RS_COST_WARN_SECONDS) {
+    w->done = 1;
+    return 0;
+  }
+  if (!w->confirming) {
+    /* the second window starts where the first ended, and lasts at least one record */
+    w->confirming = 1;
+    w->t_a = t;
+    w->wall_a = now;
+    w->steps_a = steps;
+    return 0;
+  }
+  w->done = 1;
+  const rs_case *c = w->c;
+  const int constant = constant_inputs(c);
+  const double dt = t - w->t_a, dwall = now - w->wall_a;
+  const long dsteps = steps - w->steps_a;
   char eta[64];
   format_duration(remaining, eta, sizeof eta);
   fprintf(err,
