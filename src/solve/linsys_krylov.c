@@ -27,8 +27,12 @@ int rs_krylov_create(rs_krylov *k, const rs_model *m, int band, int band_y)
     return RS_ERR_INTERNAL;
   }
   /* No row scaling: the rows are scaled already (r gives the traction rows a unit
-   * diagonal), and KLU's scaling was 5 % of the elastic creep curve at 850 cells. */
-  k->common.scale = 0;
+   * diagonal), and KLU's scaling was 5 % of the elastic creep curve at 850 cells. Nor
+   * KLU's check of the input (scale 0 still checks every refactorisation's matrix; our
+   * assembly builds sorted rows without duplicates): 30-point plastic creep curve of
+   * bench/cases at 44 x 44 cells 3.8 % less time (paired runs, median of 9), bitwise the
+   * same results. */
+  k->common.scale = -1;
   return RS_OK;
 }
 
