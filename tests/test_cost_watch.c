@@ -22,7 +22,7 @@ static void check(const char *what, int ok)
   }
 }
 
-/* One record into a fresh memory stream; returns the update's result and the text. */
+/* One record into a fresh temporary file; returns the update's result and the text. */
 static int record(rs_cost_watch *w, double t, long steps, double now, char *text, size_t len)
 {
   FILE *f = tmpfile();

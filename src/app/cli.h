@@ -47,7 +47,7 @@ int rs_warn_sweep(const rs_case *base, const rs_sweep *s, FILE *err);
  * the first to the next record after RS_COST_CONFIRM_SECONDS (at least one record later): a
  * start-up from rest takes its densest steps first (2D Carter, 400 cells: 31 % of the steps in
  * the first of 25 contact lengths; 3D at 44 x 44 cells: 85 %), so the first window alone
- * over-estimated (twin_disc_crowned.yaml: 200 s projected, 3.7 s taken; a 44 x 44 3D start-up
+ * over-estimated (twin_disc_crowned.yaml: 200 s projected, 2.5-3.7 s taken; a 44 x 44 3D start-up
  * at rtol 1e-4: 147 s projected, 9-13 s taken). If the second projection exceeds it too: one
  * warning with that estimate (ETA) and a hint. */
 #define RS_COST_PROBE_SECONDS   1.0
