@@ -41,6 +41,14 @@ us_expect(warn_percent_check --stderr "rolling.creepage reaches \\|xi\\| = 0.3, 
 us_expect(warn_saturation_run --stderr "reaches \\|xi\\| = 0.01, 16.7 times the creepage of full sliding mu a/R = 0.000600006"
   --no-stderr "percentage" --out ${RS_US}/saturated.nc --stdout "F_x/\\(mu F_n\\) = 1.000000"
   -- ${RS_BIN} run ${RS_CASES}/carter2d.yaml --set rolling.creepage=-0.01 -o ${RS_US}/saturated.nc)
+# 3D: a is the Hertz ellipse's semi-axis along x. A circle of R = 300 mm under 10 kN (G = 82000
+# N/mm^2, nu = 0.28): a = (3 F R (1 - nu)/(4 G))^(1/3) = 2.70334 mm, mu a/R = 0.00270334, and
+# xi = 0.03 is 11.1 times that (the 2D half-width formula gave a = 5.79 mm and no warning).
+# The elliptic bench contact (a = 3.013 mm) saturates there too: F_x/F_n = 0.2989 at xi =
+# -0.003 with mu = 0.3.
+us_expect(warn_saturation_3d --stderr "reaches \\|xi\\| = 0.03, 11.1 times the creepage of full sliding mu a/R = 0.00270334"
+  --stderr "a = 2.70334 mm" -- ${RS_BIN} check ${RS_CASES}/hertz3d_creep.yaml
+  "--set=contact.radius=[300, 300]" "--set=sweep.rolling.creepage=[0.0, -0.03]")
 # A history: its largest |xi| over the run counts (a ramp to 6 %).
 us_expect(warn_history --stderr "reaches \\|xi\\| = 0.06, that is 6 % creepage"
   -- ${RS_BIN} check ${RS_CASES}/default.yaml

@@ -8,15 +8,25 @@
 #include "app/cli.h"
 #include "base/util.h"
 #include "rollsim/elastic2d.h" /* RS_PI */
+#include "rollsim/normal3d.h"
 
 /* Carter's saturation creepage of the elastic 2D contact, mu a/R, with the Hertz
  * half-width a = sqrt(4 q R (1 - nu)/(pi G)) at the largest load of the run
- * (verification.md §2); *a gets a. A layer or plasticity move saturation, but by far
- * less than the factor the warning allows. */
+ * (verification.md §2); *a gets a. In 3D a is the Hertz ellipse's semi-axis along the
+ * rolling direction at the largest load (N), and mu a/R_x the same scale of the
+ * creepage of full sliding (Kalker's theory gives it within a factor of order one, by far
+ * less than the factor the warning allows). A layer or plasticity move saturation, but
+ * by far less than that factor too. */
 static double saturation_creepage(const rs_case *c, double *a)
 {
   const double q = rs_history_max_abs(&c->normal_load, 0.0, c->end_time);
   *a = sqrt(4.0 * q * c->radius * (1.0 - c->poisson_ratio) / (RS_PI * c->shear_modulus));
+  rs_hertz_ellipse hz;
+  rs_msg ignored = {{0}};
+  if (c->dimension == 3 && q > 0.0 &&
+      rs_hertz3d(q, 0.5 / c->radius, 0.5 / c->radius_y, c->shear_modulus, c->poisson_ratio, &hz,
+                 &ignored) == RS_OK)
+    *a = hz.a;
   return c->mu * *a / c->radius;
 }
 
