@@ -511,7 +511,7 @@ static int solve_at(rs_steady *s, double *y, rs_stats *stats, rs_msg *msg)
    * first, from the caller's start (continuation). */
   int cold = 1;
   for (int k = 0; k < m->lay.ncomp * m->lay.n && cold; k++) cold = y[k] == 0.0;
-  const int plastic = m->par.plasticity.on;
+  const int plastic = m->par.plasticity.on, three_plastic = m->el.dim == 3 && plastic;
   const int sequence_first = plastic && cold && can_coarsen(m);
   int status = sequence_first ? grid_sequencing(s, y, 10, stats) : RS_ERR_SOLVER;
   /* Plastic models from a continuation start: plain Newton briefly, then the line
@@ -520,8 +520,15 @@ static int solve_at(rs_steady *s, double *y, rs_stats *stats, rs_msg *msg)
    * the inexact early steps of the Eisenstat-Walker forcing term plain Newton took more
    * than 8 (and more than 25) iterations at most points of the plastic creep curve of
    * bench/cases at 44 x 44 cells, the line search about 10 (30 points: 449 -> 293
-   * iterations, 3.1 -> 2.3 s, the same results to 3e-12). */
-  const int plain = !plastic || cold ? 50 : m->el.dim == 3 ? 0 : 8;
+   * iterations, 3.1 -> 2.3 s, the same results to 3e-12). 3D plastic models from rest
+   * too (the coarsest grid of the sequence): plain Newton cycled there (16 x 16 and 22 x 22
+   * cells: 50 iterations without convergence, then 9 and 12 with the line search). Steady
+   * plastic solves of bench/cases from rest at 32 / 44 / 64 / 128 / 256 cells along x: 66 /
+   * 70 / 75 / 102 / 134 -> 16 / 20 / 25 / 52 / 84 Newton iterations. The finer grids' Newton
+   * after sequencing still starts plain (6 iterations at the first point of the 44 x 44
+   * creep curve, 11 with the line search; the line search at once there gives 20 / 21 /
+   * 31 / 48 / 70 from rest). */
+  const int plain = three_plastic ? 0 : !plastic || cold ? 50 : 8;
   /* 3D plastic continuation points on grids that can be coarsened: a stalled line
    * search goes to grid sequencing at once, whose fine-grid Newton then starts with the
    * line search, as plain Newton from the interpolated coarse solution diverged at most
@@ -530,7 +537,6 @@ static int solve_at(rs_steady *s, double *y, rs_stats *stats, rs_msg *msg)
    * Newton diverged at 12 of 14 sequenced points (10 iterations lost each); with both
    * changes 862 -> 676 Newton iterations, 72 -> 54 s, the same results to 1e-12. At
    * 44 x 44 no point stalls (unchanged). */
-  const int three_plastic = m->el.dim == 3 && plastic;
   if (status == RS_ERR_SOLVER && !s->failed) {
     s->watch = three_plastic && !cold && can_coarsen(m);
     status = newton(s, y, plain, plastic ? 40 : 50, stats, &kin_flag);
