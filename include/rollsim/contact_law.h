@@ -67,6 +67,7 @@ typedef struct rs_law_in {
   double ustar;             /* mm */
   double g;                 /* traction bound mu p_n (Coulomb, or at rest) */
   double r;                 /* semismooth scaling, traction per slip velocity */
+  double r_yield; /* 3D: the yield projection's parameter (0: r; model.c sets 0.2 r in steady) */
   /* Velocity-dependent friction (NULL or Coulomb: g above is the bound). Otherwise the
    * bound is g = mu(eta) p_n with eta the slip speed along the bound's direction
    * (eta = -s.v_s, s the sign of p - r v_s, in 3D its unit direction): |v_s| at a

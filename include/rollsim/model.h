@@ -137,6 +137,7 @@ typedef struct rs_work {
   unsigned char *dense;
   int *pivot;
   double r;                   /* scaling of the last evaluation */
+  double r_yield;             /* and of its yield projections (3D) */
   const double *pn, *bound;   /* pressure and traction bound at the time of the last evaluation */
   double *pn_buf, *bound_buf; /* their storage when the load varies [n] */
   double load_cached;         /* load of pn_buf (NAN: none) */

@@ -36,16 +36,6 @@ static void put(rs_law_out *o, int row, int var, double v)
 
 /* The disk projections of model.md §10 for two components: proj(z) = z min(1, b/|z|),
  * whose generalized Jacobian outside the disk is (b/|z|)(I - z^ z^T). */
-/* The yield projection's parameter, as a fraction of the friction projection's r. Any
- * r > 0 gives the same zeros (a projection is exact for every r); r sets how Newton's
- * linearisation weighs the flow against the traction. The plastic flow rate of a yielding
- * cell is small against its elastic slip, and a smaller weight of the flow lets Newton
- * move cells into and out of yield with fewer line-search steps. Measured on the 30-point
- * plastic creep curve of bench/cases (k_rel 0.3), Newton iterations at 0.01 / 0.03 / 0.1 /
- * 0.2 / 0.3 / 1 / 3 / 10: 234 / 224 / 198 / 194 / 195 / 224 / 461 / 65906 at 44 x 44
- * cells; at 0.1 / 0.2 / 0.3 / 1: 281 / 257 / 263 / 408 at 64 x 64, and 0.2 / 0.3 / 1:
- * 520 / 573 / 676 at 128 x 128. The 3D start-ups do not change in work. */
-static const double yield_r_fraction = 0.2;
 static void disk_law(const rs_plasticity *pl, const rs_law_in *in, int jac, rs_law_out *out);
 
 void rs_contact_law(const rs_plasticity *pl, const rs_law_in *in, int jac, rs_law_out *out)
@@ -170,7 +160,7 @@ static void disk_law(const rs_plasticity *pl, const rs_law_in *in, int jac, rs_l
 {
   enum { NC = 2 };
   const double r = in->r, tauc = rs_yield_limit(pl, in->ustar);
-  const double rp = yield_r_fraction * r; /* the yield projection's parameter */
+  const double rp = in->r_yield > 0.0 ? in->r_yield : r; /* the yield projection's */
   const double *p = in->p, *vs = in->vs, *m = in->flow;
   double g = in->g, dg = 0.0; /* the bound and d g / d eta */
   const double mnorm = hypot(m[0], m[1]), pnorm = hypot(p[0], p[1]);
