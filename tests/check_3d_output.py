@@ -12,6 +12,7 @@ PART: file     steady and transient files: layout, resultants against the fields
 """
 import math
 import os
+import re
 import subprocess
 import sys
 
@@ -330,7 +331,47 @@ simulation: {{mode: transient, end_time: {T!r}, output_interval: {T / 30!r}}}
           rows.max() > rows.min() and inside.all())
 
 
-PARTS = {"file": part_file, "restart": part_restart, "sweep": part_sweep, "check": part_check,
+
+def part_jumps(binary, work):
+    """A coarse 3D sweep leaps across changes of regime where the steady state is unique
+    (Coulomb friction, no softening) and lands where the run from rest lands; with
+    softening (several steady states) continuation still halves such steps."""
+    path = os.path.join(work, "jumps.yaml")
+    text = base(24, 24) + """rolling: {creepage: 0.0, lateral_creepage: 0.0005, spin: 0.0001}
+simulation: {mode: steady}
+output: {fields: []}
+plasticity: {tau_c0: 80.0, k_rel: 0.3}
+sweep:
+  rolling.creepage: [0.0, -0.001, -0.002]
+"""
+    nc = os.path.join(work, "jumps.nc")
+    out = run(binary, ["sweep", path, "-o", nc], text, path)
+    halved = re.search(r"continuation steps halved (\d+)", out)
+    # 0 -> -0.1 %: about 330 of the 384 cells in contact leave adhesion (slip, yield)
+    check("hardening: the steps of 0.1 % taken whole (no halving)",
+          halved is not None and int(halved.group(1)) == 0, halved and halved.group(0))
+    d = xr.open_dataset(nc)
+    for k, xi in ((1, "-0.001"), (2, "-0.002")):
+        single = os.path.join(work, "single.nc")
+        run(binary, ["run", path, "-o", single, "--quiet", "--set", "rolling.creepage=" + xi,
+                     "--set", "sweep=null"])
+        s = xr.open_dataset(single)
+        for v in ("Fx", "Fy", "Mz"):
+            got, want = float(d[v].values[k]), float(s[v].values[0])
+            # the same root from another start: KINSOL's tolerance (1e-10 of the bound)
+            check(f"hardening, xi = {xi}: leap = run from rest: {v} (1e-7 of mu F_n)",
+                  abs(got - want) <= 1e-7 * 3000.0 * (4.0 if v == "Mz" else 1),
+                  f"{got:.10g} vs {want:.10g}")
+        counts = [(int(d[v].values[k]), int(s[v].values[0]))
+                  for v in ("n_adhesion", "n_slip", "n_plastic")]
+        check(f"hardening, xi = {xi}: leap = run from rest: regime counts (adhesion, slip, "
+              "plastic)", all(a == b for a, b in counts) and counts[2][0] > 0, counts)
+    out = run(binary, ["sweep", path, "-o", nc, "--set", "plasticity.k_rel=-0.3"])
+    halved = re.search(r"continuation steps halved (\d+)", out)
+    check("softening: the same step halved", halved is not None and int(halved.group(1)) > 0,
+          halved and halved.group(0))
+
+PARTS = {"jumps": part_jumps, "file": part_file, "restart": part_restart, "sweep": part_sweep, "check": part_check,
          "rig": part_rig}
 
 if __name__ == "__main__":
