@@ -56,6 +56,15 @@ us_expect(warn_history --stderr "reaches \\|xi\\| = 0.06, that is 6 % creepage"
 # A sweep's values: the largest swept creepage.
 us_expect(warn_sweep --stderr "sweep: rolling.creepage reaches \\|xi\\| = 0.5, that is 50 %"
   -- ${RS_BIN} check ${RS_CASES}/meierhofer.yaml "--set=sweep.rolling.creepage=[-0.003, -0.5]")
+# 3D softening: the steady state need not be unique (bench/cases/hertz3d.yaml at 44 x 44
+# cells, k_rel = -0.3, xi = -0.4 %: 848.4 N from rest, 902.2 N by rolling; bench/RESULTS.md).
+# Steady solves are warned, a transient from rest is not (it follows the physical path).
+us_expect(warn_softening_3d --stderr "k_rel < 0 \\(softening\\) in 3D: the steady state need not be unique"
+  -- ${RS_BIN} check ${RS_CASES}/hertz3d_creep.yaml "--set=plasticity={tau_c0: 150, k_rel: -0.3}")
+us_expect(warn_softening_3d_transient --quiet-stderr
+  -- ${RS_BIN} check ${RS_CASES}/wheel_rail_3d.yaml "--set=plasticity.k_rel=-0.3")
+us_expect(warn_softening_2d --quiet-stderr
+  -- ${RS_BIN} check ${RS_CASES}/carter_plast.yaml "--set=plasticity.k_rel=-0.3")
 # Plausible cases stay silent.
 foreach(c default carter2d carter_plast meierhofer creep_curves sine_creepage startup hertz3d_creep
          wheel_rail_3d twin_disc_crowned)
