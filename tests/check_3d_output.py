@@ -371,7 +371,56 @@ sweep:
     check("softening: the same step halved", halved is not None and int(halved.group(1)) > 0,
           halved and halved.group(0))
 
-PARTS = {"jumps": part_jumps, "file": part_file, "restart": part_restart, "sweep": part_sweep, "check": part_check,
+
+def part_threads(binary, work):
+    """solver.threads: 2 splits the FFT products' components and the near field's halves
+    between two threads; the solutions agree with one thread's (steady: to roundoff, the
+    same Newton path; transient: to IDA's tolerance, the same steps)."""
+    path = os.path.join(work, "threads.yaml")
+    # 30 x 30 cells, 5 unknowns each: 4500 > 4000, the near field is split in two
+    text = base(30, 30) + """rolling: {creepage: 0.0, lateral_creepage: 0.0005, spin: 0.0001}
+simulation: {mode: steady}
+output: {fields: []}
+plasticity: {tau_c0: 80.0, k_rel: 0.3}
+sweep:
+  rolling.creepage: [0.0, -0.0005, -0.001, -0.002]
+"""
+    with open(path, "w") as f:
+        f.write(text)
+    res = {}
+    for t in (1, 2):
+        nc = os.path.join(work, f"sweep{t}.nc")
+        out = run(binary, ["sweep", path, "-o", nc, "--set", f"solver.threads={t}"])
+        res[t] = (xr.open_dataset(nc), re.search(r"Newton iterations (\d+)", out).group(1))
+    for v in ("Fx", "Fy", "Mz"):
+        a, b = res[1][0][v].values, res[2][0][v].values
+        d = float(np.abs(a - b).max())
+        # the split orders KLU's pivots per half: roundoff, far below Newton's 1e-10
+        check(f"steady sweep, threads 2 = threads 1: {v} (1e-9 of mu F_n)",
+              d <= 1e-9 * 3000.0 * (4.0 if v == "Mz" else 1), f"{d:.2e}")
+    check("steady sweep, threads 2 = threads 1: Newton iterations", res[1][1] == res[2][1],
+          f"{res[1][1]} vs {res[2][1]}")
+    for v in ("n_adhesion", "n_slip", "n_plastic"):
+        check(f"steady sweep, threads 2 = threads 1: {v}",
+              bool((res[1][0][v].values == res[2][0][v].values).all()))
+    # a start-up from rest over 2 mm (about a third of the contact length), rtol 1e-4
+    tr = {}
+    for t in (1, 2):
+        nc = os.path.join(work, f"tr{t}.nc")
+        run(binary, ["run", path, "-o", nc, "--quiet", "--set", "sweep=null", "--set",
+                     "rolling.creepage=-0.001", "--set", "simulation.mode=transient",
+                     "--set", "simulation.rolled_distance=2", "--set",
+                     "simulation.output_interval=2e-5", "--set", "solver.rtol=1e-4", "--set",
+                     f"solver.threads={t}"])
+        tr[t] = xr.open_dataset(nc)
+    for v in ("Fx", "Fy"):
+        a, b = tr[1][v].values, tr[2][v].values
+        d = float(np.abs(a - b).max())
+        # IDA's tolerance: rtol 1e-4 of forces of order mu F_n
+        check(f"start-up, threads 2 = threads 1: {v} history (1e-4 of mu F_n)",
+              len(a) == len(b) and d <= 1e-4 * 3000.0, f"{d:.2e} N over {len(a)} records")
+
+PARTS = {"threads": part_threads, "jumps": part_jumps, "file": part_file, "restart": part_restart, "sweep": part_sweep, "check": part_check,
          "rig": part_rig}
 
 if __name__ == "__main__":

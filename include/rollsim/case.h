@@ -111,6 +111,7 @@ typedef struct rs_case {
   /* solver: */
   double rtol, atol; /* atol in N/mm^2 (tractions) */
   int max_order;
+  int threads;        /* solver.threads: 1, or 2 for the 3D work a solve splits in two */
   rs_scaling scaling; /* solver.scaling: auto | difference | self */
   long max_steps;     /* solver.max_steps, default 1000000 */
 

@@ -51,6 +51,8 @@ typedef struct rs_elastic3d {
 typedef struct rs_elastic3d_work {
   int mx, my;        /* padded grid */
   double *grid;      /* [my mx] real work grid */
+  double *grid2;     /* a second one (the y component in parallel) */
+  int threads;       /* for the two components (rs_threads): set by the owner, default 1 */
   void *spectrum[2]; /* [my (mx/2+1)] complex spectra (fftw_complex) */
 } rs_elastic3d_work;
 

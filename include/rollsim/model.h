@@ -58,6 +58,7 @@ typedef struct rs_model_params {
   rs_history force_y;          /* F_y, N (3D) */
   double end_time;             /* s: the grid is sized on the largest load up to it */
   rs_scaling scaling;
+  int threads;       /* for the 3D work a solve splits in two (rs_threads); 0 or 1: one */
   double time_scale; /* s: sets r when there is neither rolling nor a time step */
 } rs_model_params;
 

@@ -41,6 +41,7 @@ void rs_model_params_from_case(const rs_case *c, rs_model_params *p)
   p->force_y = c->tangential_force_y;
   p->end_time = c->end_time;
   p->scaling = c->scaling;
+  p->threads = c->threads;
   p->time_scale = c->output_interval;
 }
 

@@ -8,6 +8,9 @@
 
 #ifdef RS_HAVE_MPI
 #include <mpi.h>
+#ifdef _OPENMP
+#include <omp.h>
+#endif
 
 /* Environment variables a launcher sets: Open MPI's mpirun, MPICH/Hydra and Slurm's PMI(x). */
 static int under_launcher(void)
@@ -30,6 +33,10 @@ int rs_mpi_start(rs_mpi *mpi, int *argc, char ***argv)
   mpi->initialised = 1;
   MPI_Comm_rank(MPI_COMM_WORLD, &mpi->rank);
   MPI_Comm_size(MPI_COMM_WORLD, &mpi->size);
+#ifdef _OPENMP
+  /* the ranks share the cores: one thread each (util.h, rs_threads) */
+  if (mpi->size > 1) omp_set_num_threads(1);
+#endif
   return 0;
 }
 

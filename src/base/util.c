@@ -2,6 +2,10 @@
 #define _POSIX_C_SOURCE 200809L
 #include "base/util.h"
 
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
 #include <time.h>
 
 double rs_wall_clock(void)
@@ -9,4 +13,14 @@ double rs_wall_clock(void)
   struct timespec ts;
   clock_gettime(CLOCK_MONOTONIC, &ts);
   return ts.tv_sec + 1e-9 * ts.tv_nsec;
+}
+
+int rs_threads(int requested)
+{
+#ifdef _OPENMP
+  return requested >= 2 && omp_get_max_threads() >= 2 ? 2 : 1;
+#else
+  (void)requested;
+  return 1;
+#endif
 }

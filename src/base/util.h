@@ -13,4 +13,10 @@ extern void dgetrs_(const char *trans, const int *n, const int *nrhs, const doub
 /* Monotonic wall-clock time in seconds (progress, ETA and reported wall times). */
 double rs_wall_clock(void);
 
+/* Threads for the work a solve splits in two (3D: the FFT products' two components, the
+ * near field's two halves): the requested number (solver.threads), at most 2 and at most
+ * what OpenMP allows (OMP_NUM_THREADS; 1 under MPI with several ranks). The results do not
+ * depend on it. */
+int rs_threads(int requested);
+
 #endif

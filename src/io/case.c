@@ -50,6 +50,7 @@ static void set_defaults(rs_case_input *in)
   c->rtol = 1.0e-6;
   c->atol = 1.0e-9;
   c->max_order = 5;
+  c->threads = 1;
   c->scaling = RS_SCALING_AUTO;
   c->max_steps = 1000000;
   c->fields = RS_FIELD_PX | RS_FIELD_PN | RS_FIELD_SLIP | RS_FIELD_UPL | RS_FIELD_USTAR |

@@ -143,6 +143,7 @@ const rs_case_key rs_case_keys[] = {
     {"solver.atol", RS_KEY_NUMBER, F(c.atol), "N/mm^2", 0, BIG, RS_KEY_LO_OPEN | RS_KEY_HI_ABSURD,
      NULL},
     {"solver.max_order", RS_KEY_INTEGER, F(c.max_order), "", 1, 5, 0, NULL},
+    {"solver.threads", RS_KEY_INTEGER, F(c.threads), "", 1, 2, 0, NULL},
     {"solver.scaling", RS_KEY_CHOICE, F(c.scaling), "", 0, 0, 0, scaling_names},
     {"solver.max_steps", RS_KEY_LONG, F(c.max_steps), "steps", 1, 1e15, RS_KEY_HI_ABSURD, NULL},
 

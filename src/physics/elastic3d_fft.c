@@ -7,6 +7,8 @@
  * work buffers, so the plans are shared and never written. */
 #include "physics/elastic3d_internal.h"
 
+#include "base/util.h"
+
 #include <complex.h>
 #include <fftw3.h>
 #include <math.h>
@@ -117,10 +119,12 @@ int rs_elastic3d_work_create(rs_elastic3d_work *work, const rs_elastic3d *el, rs
   const struct rs_elastic3d_fft *f = el->fft;
   work->mx = f->mx;
   work->my = f->my;
+  work->threads = 1;
   work->grid = fftw_alloc_real((size_t)f->mx * (size_t)f->my);
+  work->grid2 = fftw_alloc_real((size_t)f->mx * (size_t)f->my);
   work->spectrum[0] = fftw_alloc_complex((size_t)f->my * (size_t)f->ncx);
   work->spectrum[1] = fftw_alloc_complex((size_t)f->my * (size_t)f->ncx);
-  if (!work->grid || !work->spectrum[0] || !work->spectrum[1]) {
+  if (!work->grid || !work->grid2 || !work->spectrum[0] || !work->spectrum[1]) {
     rs_elastic3d_work_free(work);
     return rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory for the 3D FFT work (%d x %d)", f->mx,
                       f->my);
@@ -131,9 +135,10 @@ int rs_elastic3d_work_create(rs_elastic3d_work *work, const rs_elastic3d *el, rs
 void rs_elastic3d_work_free(rs_elastic3d_work *work)
 {
   fftw_free(work->grid);
+  fftw_free(work->grid2);
   fftw_free(work->spectrum[0]);
   fftw_free(work->spectrum[1]);
-  work->grid = NULL;
+  work->grid = work->grid2 = NULL;
   work->spectrum[0] = work->spectrum[1] = NULL;
 }
 
@@ -170,17 +175,31 @@ void rs_elastic3d_apply_tang(const rs_elastic3d *el, rs_elastic3d_work *work, co
 {
   const struct rs_elastic3d_fft *f = el->fft;
   fftw_complex *sx = work->spectrum[0], *sy = work->spectrum[1];
-  transform_in(f, el, work->grid, px, sx);
-  transform_in(f, el, work->grid, py, sy);
-  /* (u_x, u_y)^ = [A_xx A_xy; A_xy A_yy]^ (p_x, p_y)^ per frequency */
   const size_t ncomplex = (size_t)f->my * (size_t)f->ncx;
-  for (size_t q = 0; q < ncomplex; q++) {
-    const fftw_complex a = sx[q], b = sy[q];
-    sx[q] = f->kxx[q] * a + f->kxy[q] * b;
-    sy[q] = f->kxy[q] * a + f->kyy[q] * b;
+#pragma omp parallel num_threads(rs_threads(work->threads))
+  {
+#pragma omp sections
+    {
+#pragma omp section
+      transform_in(f, el, work->grid, px, sx);
+#pragma omp section
+      transform_in(f, el, work->grid2, py, sy);
+    }
+    /* (u_x, u_y)^ = [A_xx A_xy; A_xy A_yy]^ (p_x, p_y)^ per frequency */
+#pragma omp for schedule(static)
+    for (size_t q = 0; q < ncomplex; q++) {
+      const fftw_complex a = sx[q], b = sy[q];
+      sx[q] = f->kxx[q] * a + f->kxy[q] * b;
+      sy[q] = f->kxy[q] * a + f->kyy[q] * b;
+    }
+#pragma omp sections
+    {
+#pragma omp section
+      transform_out(f, el, work->grid, sx, ux, nxout);
+#pragma omp section
+      transform_out(f, el, work->grid2, sy, uy, nxout);
+    }
   }
-  transform_out(f, el, work->grid, sx, ux, nxout);
-  transform_out(f, el, work->grid, sy, uy, nxout);
 }
 
 void rs_elastic3d_apply_norm(const rs_elastic3d *el, rs_elastic3d_work *work, const double *pn,

@@ -249,6 +249,7 @@ int rs_work_create(rs_work *w, const rs_model *m)
     rs_work_free(w);
     return RS_ERR_INTERNAL;
   }
+  if (m->el.dim == 3) w->ew.surf.threads = m->par.threads;
   return RS_OK;
 }
 

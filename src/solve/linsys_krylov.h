@@ -15,6 +15,21 @@
 
 #include "rollsim/model.h"
 
+/* A part of the near field that KLU factors on its own: the whole matrix, or (two
+ * threads) the unknowns of the cells of half of the grid's rows, which the near field does
+ * not couple to the other half (its band runs along x only). */
+typedef struct rs_klu_part {
+  int64_t n;             /* unknowns */
+  int64_t *idx;          /* global index of each local unknown (NULL: the whole matrix) */
+  int64_t *rowptr, *col; /* local CSR pattern */
+  int64_t *src;          /* the global entry of each local entry */
+  double *val, *x;       /* local values, solve buffer */
+  int borrowed;          /* rowptr, col, val are the assembled matrix's (the whole) */
+  klu_l_common common;
+  klu_l_symbolic *sym;
+  klu_l_numeric *num;
+} rs_klu_part;
+
 typedef struct rs_krylov {
   const rs_model *m;
   rs_work w;        /* the model at the linearisation point (local Jacobians) */
@@ -25,9 +40,8 @@ typedef struct rs_krylov {
   /* near-field matrix, CSR (KLU factors it as the CSC of its transpose) */
   rs_csr near;
   int64_t *rp_old, *ci_old, cap, nnz_old;
-  klu_l_common common;
-  klu_l_symbolic *sym;
-  klu_l_numeric *num;
+  rs_klu_part part[2];
+  int nparts; /* 0 before the first analysis */
   long setups, analyses, products;
   long factorizations; /* KLU numeric factorisations and refactorisations */
   long reuses;         /* setups that kept the factored near field */
