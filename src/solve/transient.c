@@ -159,9 +159,9 @@ int rs_transient_create(rs_transient **out, const rs_model *m, SUNContext ctx, d
     RS_SUN_CHECK(SUNLinSol_SPGMRSetGSType(tr->gmres, SUN_CLASSICAL_GS), msg, what);
     RS_SUN_CHECK(rs_krylov_create(&tr->kry, m, RS_KRYLOV_BAND_3D_TRANSIENT, RS_KRYLOV_BAND_3D_Y),
                  msg, what);
-    /* The near field is refactored when cj + V/dx moved by a factor 4 or the active set
-     * changed (linsys_krylov.h), not at every Newton iteration. Measured (bench plastic
-     * start-up, 16 x 16 cells): factorisations 4110 -> 378, GMRES iterations 68176 ->
+    /* The near field is refactored when cj + V/dx moved by a factor 4 or more than two
+     * cells changed branch (linsys_krylov.c), not at every Newton iteration. Measured (bench
+     * plastic start-up, 16 x 16 cells): factorisations 4110 -> 378, GMRES iterations 68176 ->
      * 68920, CPU time 4.27 -> 3.90 s; ratio 2: 753 factorisations, 8: 239 at the same
      * GMRES count within 1 %. */
     rs_krylov_set_reuse(&tr->kry, 4.0);
