@@ -332,18 +332,24 @@ simulation: {{mode: transient, end_time: {T!r}, output_interval: {T / 30!r}}}
 
 
 
+def plastic_sweep_case(cells, creepages):
+    """A steady plastic sweep over the creepage (tau_c0 = 80 N/mm^2, k_rel = 0.3, with
+    lateral creepage and spin): cells x cells cells."""
+    return base(cells, cells) + f"""rolling: {{creepage: 0.0, lateral_creepage: 0.0005, spin: 0.0001}}
+simulation: {{mode: steady}}
+output: {{fields: []}}
+plasticity: {{tau_c0: 80.0, k_rel: 0.3}}
+sweep:
+  rolling.creepage: {creepages}
+"""
+
+
 def part_jumps(binary, work):
     """A coarse 3D sweep leaps across changes of regime where the steady state is unique
     (Coulomb friction, no softening) and lands where the run from rest lands; with
     softening (several steady states) continuation still halves such steps."""
     path = os.path.join(work, "jumps.yaml")
-    text = base(24, 24) + """rolling: {creepage: 0.0, lateral_creepage: 0.0005, spin: 0.0001}
-simulation: {mode: steady}
-output: {fields: []}
-plasticity: {tau_c0: 80.0, k_rel: 0.3}
-sweep:
-  rolling.creepage: [0.0, -0.001, -0.002]
-"""
+    text = plastic_sweep_case(24, "[0.0, -0.001, -0.002]")
     nc = os.path.join(work, "jumps.nc")
     out = run(binary, ["sweep", path, "-o", nc], text, path)
     halved = re.search(r"continuation steps halved (\d+)", out)
@@ -378,13 +384,7 @@ def part_threads(binary, work):
     same Newton path; transient: to IDA's tolerance, the same steps)."""
     path = os.path.join(work, "threads.yaml")
     # 30 x 30 cells, 5 unknowns each: 4500 > 4000, the near field is split in two
-    text = base(30, 30) + """rolling: {creepage: 0.0, lateral_creepage: 0.0005, spin: 0.0001}
-simulation: {mode: steady}
-output: {fields: []}
-plasticity: {tau_c0: 80.0, k_rel: 0.3}
-sweep:
-  rolling.creepage: [0.0, -0.0005, -0.001, -0.002]
-"""
+    text = plastic_sweep_case(30, "[0.0, -0.0005, -0.001, -0.002]")
     with open(path, "w") as f:
         f.write(text)
     res = {}
