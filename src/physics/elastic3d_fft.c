@@ -176,6 +176,9 @@ void rs_elastic3d_apply_tang(const rs_elastic3d *el, rs_elastic3d_work *work, co
   const struct rs_elastic3d_fft *f = el->fft;
   fftw_complex *sx = work->spectrum[0], *sy = work->spectrum[1];
   const size_t ncomplex = (size_t)f->my * (size_t)f->ncx;
+  /* The two components' transforms side by side when work->threads asks for two
+   * (solver.threads; FFTW's new-array execute functions may run one plan in two threads at
+   * once); each thread computes what one thread would, so the results do not depend on it. */
 #pragma omp parallel num_threads(rs_threads(work->threads))
   {
 #pragma omp sections

@@ -242,12 +242,12 @@ int rs_krylov_setup(rs_krylov *k, const rs_inputs *in, const double *y, const do
   k->factorizations++;
   int failed = 0;
   if (k->nparts == 2) {
-    for (int q = 0; q < 2; q++) { /* the parts' values from the assembled matrix */
+#pragma omp parallel for num_threads(rs_threads(k->m->par.threads)) schedule(static, 1) reduction(+ : failed)
+    for (int q = 0; q < 2; q++) { /* each part's values from the assembled matrix, factored */
       rs_klu_part *p = &k->part[q];
       for (int64_t e = 0; e < p->rowptr[p->n]; e++) p->val[e] = k->near.val[p->src[e]];
+      failed += factor_part(p, same) != RS_OK;
     }
-#pragma omp parallel for num_threads(rs_threads(k->m->par.threads)) schedule(static, 1) reduction(+ : failed)
-    for (int q = 0; q < 2; q++) failed += factor_part(&k->part[q], same) != RS_OK;
   } else {
     failed = factor_part(&k->part[0], same) != RS_OK;
   }
