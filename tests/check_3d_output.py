@@ -379,30 +379,54 @@ def part_jumps(binary, work):
 
 
 def part_threads(binary, work):
-    """solver.threads: 2 splits the FFT products' components and the near field's halves
-    between two threads; the solutions agree with one thread's (steady: to roundoff, the
-    same Newton path; transient: to IDA's tolerance, the same steps)."""
+    """solver.threads: 2. A steady sweep solves each continuation line from both ends at
+    once (one thread each): the points agree with one thread's to Newton's tolerance and
+    the file does not depend on the threads' timing. A single solve splits the FFT
+    products' components and the near field's halves between two threads: one thread's
+    Newton path, to roundoff. A transient: to IDA's tolerance."""
     path = os.path.join(work, "threads.yaml")
-    # 30 x 30 cells, 5 unknowns each: 4500 > 4000, the near field is split in two
-    text = plastic_sweep_case(30, "[0.0, -0.0005, -0.001, -0.002]")
+    # 30 x 30 cells, 5 unknowns each: 4500 > 4000, the near field is split in two;
+    # two continuation lines (lateral creepage 0.05 % and 0.1 %) of four points each
+    text = plastic_sweep_case(30, "[0.0, -0.0005, -0.001, -0.002]").replace(
+        "sweep:\n", "sweep:\n  rolling.lateral_creepage: [0.0005, 0.001]\n")
     with open(path, "w") as f:
         f.write(text)
     res = {}
-    for t in (1, 2):
-        nc = os.path.join(work, f"sweep{t}.nc")
-        out = run(binary, ["sweep", path, "-o", nc, "--set", f"solver.threads={t}"])
-        res[t] = (xr.open_dataset(nc), re.search(r"Newton iterations (\d+)", out).group(1))
+    for t in (1, 2, "2 again"):
+        nc = os.path.join(work, f"sweep{t}.nc".replace(" ", "_"))
+        out = run(binary, ["sweep", path, "-o", nc, "--set", f"solver.threads={str(t)[0]}"])
+        res[t] = (xr.open_dataset(nc), out)
+    both = re.search(r"(\d+) continuation lines? solved from both ends", res[2][1])
+    check("steady sweep, threads 2: both lines solved from both ends",
+          both is not None and int(both.group(1)) == 2, both and both.group(0))
+    check("steady sweep, threads 1: one end", "both ends" not in res[1][1])
     for v in ("Fx", "Fy", "Mz"):
         a, b = res[1][0][v].values, res[2][0][v].values
         d = float(np.abs(a - b).max())
-        # the split orders KLU's pivots per half: roundoff, far below Newton's 1e-10
-        check(f"steady sweep, threads 2 = threads 1: {v} (1e-9 of mu F_n)",
-              d <= 1e-9 * 3000.0 * (4.0 if v == "Mz" else 1), f"{d:.2e}")
-    check("steady sweep, threads 2 = threads 1: Newton iterations", res[1][1] == res[2][1],
-          f"{res[1][1]} vs {res[2][1]}")
+        # the same root from another start: KINSOL's tolerance (1e-10 of the bound)
+        check(f"steady sweep, threads 2 = threads 1: {v} at all 8 points (1e-7 of mu F_n)",
+              a.shape == (2, 4) and np.isfinite(b).all() and
+              d <= 1e-7 * 3000.0 * (4.0 if v == "Mz" else 1), f"{d:.2e}")
+        again = res["2 again"][0][v].values
+        check(f"steady sweep, threads 2 twice: {v} bit for bit (a fixed split)",
+              bool((again == b).all()))
     for v in ("n_adhesion", "n_slip", "n_plastic"):
         check(f"steady sweep, threads 2 = threads 1: {v}",
               bool((res[1][0][v].values == res[2][0][v].values).all()))
+    single = {}
+    for t in (1, 2):
+        nc = os.path.join(work, f"single{t}.nc")
+        out = run(binary, ["run", path, "-o", nc, "--set", "sweep=null", "--set",
+                           "rolling.creepage=-0.001", "--set", f"solver.threads={t}"])
+        single[t] = (xr.open_dataset(nc), re.search(r"Newton iterations (\d+)", out))
+    for v in ("Fx", "Fy", "Mz"):
+        a, b = float(single[1][0][v].values[0]), float(single[2][0][v].values[0])
+        # the split orders KLU's pivots per half: roundoff, far below Newton's 1e-10
+        check(f"steady run, threads 2 = threads 1: {v} (1e-9 of mu F_n)",
+              abs(a - b) <= 1e-9 * 3000.0 * (4.0 if v == "Mz" else 1), f"{a:.12g} vs {b:.12g}")
+    n1, n2 = (single[t][1] and single[t][1].group(1) for t in (1, 2))
+    check("steady run, threads 2 = threads 1: Newton iterations", n1 is not None and n1 == n2,
+          f"{n1} vs {n2}")
     # a start-up from rest over 2 mm (about a third of the contact length), rtol 1e-4
     tr = {}
     for t in (1, 2):

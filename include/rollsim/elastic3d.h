@@ -57,10 +57,15 @@ typedef struct rs_elastic3d_work {
 } rs_elastic3d_work;
 
 /* Coefficient tables and FFT plans for an nx x ny grid of dx x dy cells. Not thread
- * safe (FFTW's planner); the applies are. G > 0, -1 < nu <= 0.5. */
+ * safe (FFTW's planner) unless rs_elastic3d_planner_thread_safe was called; the applies
+ * are. G > 0, -1 < nu <= 0.5. */
 int rs_elastic3d_create(rs_elastic3d *el, int nx, int ny, double dx, double dy,
                         double shear_modulus, double poisson_ratio, rs_msg *msg);
 void rs_elastic3d_free(rs_elastic3d *el);
+/* Lets several threads create and free models (FFT plans) at once: FFTW's planner lock,
+ * process-wide and kept by FFTW. Call before the threads start; calling it again is
+ * harmless. */
+void rs_elastic3d_planner_thread_safe(void);
 
 int rs_elastic3d_work_create(rs_elastic3d_work *work, const rs_elastic3d *el, rs_msg *msg);
 void rs_elastic3d_work_free(rs_elastic3d_work *work);

@@ -8,7 +8,11 @@
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
+#ifdef _OPENMP
+#include <omp.h>
+#endif
 
+#include "rollsim/elastic3d.h"
 #include "rollsim/model.h"
 #include "rollsim/output.h"
 #include "rollsim/steady.h"
@@ -113,11 +117,13 @@ enum { JUMP_MIN_CELLS = 4, JUMP_FRACTION = 10, MAX_HALVINGS = 3 };
  * and velocity-dependent friction have several steady states (softening, k_rel = -0.3:
  * F_x = 848.4 N or 902.2 N at xi = -0.4 %, by the path), so the test stays there, as in
  * 2D, where it was introduced and costs little. */
+static int unique_steady(int dimension, const rs_friction *friction, int plastic, double k_tau)
+{
+  return dimension == 3 && !rs_friction_varies(friction) && (!plastic || k_tau >= 0.0);
+}
 static int halve_jumps(const rs_model *m)
 {
-  const int unique = m->el.dim == 3 && !rs_friction_varies(&m->par.friction) &&
-                     (!m->par.plasticity.on || m->par.plasticity.k_tau >= 0.0);
-  return !unique;
+  return !unique_steady(m->el.dim, &m->par.friction, m->par.plasticity.on, m->par.plasticity.k_tau);
 }
 
 static int regimes_of(steady_chain *ch, const double *y, signed char *reg)
@@ -241,6 +247,71 @@ static int steady_point(const rs_case *c, steady_chain *ch, double **y, int *ny,
   return status;
 }
 
+/* What a sweep's points are written to (rs_sweep_run). */
+typedef struct sweep_writer {
+  const rs_sweep *s;
+  const rs_run_opts *o;
+  rs_sweep_output *out;
+  rs_sweep_result *res;
+  const rs_fields *buf; /* the points' profiles (a common grid), or NULL */
+  double started;
+  size_t p0;  /* the first point of the line solved by rs_sweep_line_eval */
+  rs_msg msg; /* why the line's callback stopped it */
+} sweep_writer;
+
+/* Point p solved (ps RS_OK, d its quantities) or failed (RS_ERR_SOLVER, why): written,
+ * progress shown, and RS_ERR_INTERRUPTED once the user has interrupted the sweep. */
+static int record_point(sweep_writer *w, size_t p, int ps, const rs_diag *d, const char *why,
+                        rs_msg *msg)
+{
+  const rs_sweep *s = w->s;
+  rs_sweep_result *res = w->res;
+  rs_sweep_point pt;
+  memset(&pt, 0, sizeof pt);
+  if (ps == RS_OK) {
+    fill_point(&pt, d);
+    if (w->buf) {
+      pt.px = w->buf->px;
+      pt.pn = w->buf->pn;
+      pt.slip = w->buf->slip;
+      pt.upl = w->buf->upl;
+      pt.ustar = w->buf->ustar;
+      pt.tauc = w->buf->tauc;
+      pt.regime = w->buf->regime;
+      pt.mu = w->buf->mu;
+    }
+    res->points_done++;
+  } else {
+    pt.Fx = pt.Fn = pt.creepage = pt.velocity = NAN;
+    pt.Fy = pt.Mz = pt.lateral_creepage = pt.spin = NAN;
+    pt.frictional_power = pt.plastic_power = pt.elastic_energy = NAN;
+    pt.n_exterior = pt.n_adhesion = pt.n_slip = pt.n_plastic = -1;
+    res->points_failed++;
+    const rs_sweep_axis *ax = &s->axes[s->naxes - 1];
+    fprintf(stderr, "rollsim sweep: point %zu (%s=%.17g): %s\n", p, ax->key,
+            ax->values[p % (size_t)ax->n], why);
+  }
+  int status = rs_sweep_output_write(w->out, p, &pt, msg);
+  const size_t done = res->points_done + res->points_failed;
+  if (w->o->progress) {
+    fprintf(stderr, "\rsweep: %zu/%zu points, %zu failed, %.1f s ", done, s->npoints,
+            res->points_failed, rs_wall_clock() - w->started);
+    fflush(stderr);
+  }
+  if (status == RS_OK && w->o->interrupt_flag && *w->o->interrupt_flag)
+    status = rs_msg_set(msg, RS_ERR_INTERRUPTED, "interrupted after %zu of %zu points", done,
+                        s->npoints);
+  return status;
+}
+
+static int line_point_written(void *ctx, size_t j, int status, const rs_diag *d, long newton,
+                              const char *why)
+{
+  sweep_writer *w = ctx;
+  (void)newton;
+  return record_point(w, w->p0 + j, status, d, why, &w->msg);
+}
+
 int rs_sweep_run(const rs_sweep *s, const char *case_path, const char *const *sets, int nsets,
                  const rs_run_opts *o, rs_sweep_result *res, rs_msg *msg)
 {
@@ -317,6 +388,10 @@ int rs_sweep_run(const rs_sweep *s, const char *case_path, const char *const *se
   }
   rs_stats steady_sum = {0};
   rs_msg point_msg = {{0}};
+  sweep_writer wr = {
+      .s = s, .o = o, .out = out, .res = res, .buf = grid_x ? &buf : NULL, .started = started};
+  const rs_sweep_axis *last = &s->axes[s->naxes - 1];
+  long line_refined = 0;
   for (size_t p = 0; p < s->npoints && status == RS_OK; p++) {
     size_t rest = p;
     int last_index = 0;
@@ -328,16 +403,37 @@ int rs_sweep_run(const rs_sweep *s, const char *case_path, const char *const *se
       all[nsets + a] = assign[a];
     }
     rs_case c;
-    rs_sweep_point pt;
-    memset(&pt, 0, sizeof pt);
     rs_diag d;
     int ps = rs_case_load(&c, case_path, all, nsets + s->naxes, &point_msg);
+    if (ps == RS_OK && last_index == 0 && !grid_x &&
+        rs_sweep_line_both_ends(&c, last->key, (size_t)last->n)) {
+      /* the whole line at once, from both ends (solver.threads: 2) */
+      rs_case_free(&c);
+      wr.p0 = p;
+      wr.msg.text[0] = '\0';
+      const rs_sweep_line line = {.case_path = case_path,
+                                  .sets = all,
+                                  .nsets = nsets + s->naxes - 1,
+                                  .key = last->key,
+                                  .values = last->values,
+                                  .n = (size_t)last->n,
+                                  .point_done = line_point_written,
+                                  .ctx = &wr,
+                                  .interrupt_flag = o->interrupt_flag,
+                                  .stats = &steady_sum,
+                                  .refined = &line_refined,
+                                  .both_ends = &res->lines_both_ends};
+      status = rs_sweep_line_eval(&line, &point_msg);
+      if (status != RS_OK)
+        rs_msg_set(msg, status, "%s", wr.msg.text[0] ? wr.msg.text : point_msg.text);
+      p += (size_t)last->n - 1;
+      continue;
+    }
     if (ps == RS_OK) {
       if (c.mode == RS_MODE_STEADY) {
-        const char *key = s->axes[s->naxes - 1].key;
-        ps = steady_point(&c, &chain, &y, &ny, last_index > 0, rolling_key(key), key,
-                          s->axes[s->naxes - 1].values[last_index], &d, grid_x ? &buf : NULL,
-                          &steady_sum, &point_msg);
+        ps = steady_point(&c, &chain, &y, &ny, last_index > 0, rolling_key(last->key), last->key,
+                          last->values[last_index], &d, grid_x ? &buf : NULL, &steady_sum,
+                          &point_msg);
       } else {
         rs_run_opts po = *o;
         po.no_output = 1;
@@ -352,67 +448,25 @@ int rs_sweep_run(const rs_sweep *s, const char *case_path, const char *const *se
       }
       rs_case_free(&c);
     }
-    if (ps == RS_OK) {
-      fill_point(&pt, &d);
-      if (grid_x)
-        pt = (rs_sweep_point){.Fx = pt.Fx,
-                              .Fn = pt.Fn,
-                              .creepage = pt.creepage,
-                              .Fy = pt.Fy,
-                              .Mz = pt.Mz,
-                              .lateral_creepage = pt.lateral_creepage,
-                              .spin = pt.spin,
-                              .velocity = pt.velocity,
-                              .n_exterior = pt.n_exterior,
-                              .n_adhesion = pt.n_adhesion,
-                              .n_slip = pt.n_slip,
-                              .n_plastic = pt.n_plastic,
-                              .frictional_power = pt.frictional_power,
-                              .plastic_power = pt.plastic_power,
-                              .elastic_energy = pt.elastic_energy,
-                              .converged = 1,
-                              .px = buf.px,
-                              .pn = buf.pn,
-                              .slip = buf.slip,
-                              .upl = buf.upl,
-                              .ustar = buf.ustar,
-                              .tauc = buf.tauc,
-                              .regime = buf.regime,
-                              .mu = buf.mu};
-      res->points_done++;
-    } else if (ps == RS_ERR_SOLVER) {
-      pt.Fx = pt.Fn = pt.creepage = pt.velocity = NAN;
-      pt.Fy = pt.Mz = pt.lateral_creepage = pt.spin = NAN;
-      pt.frictional_power = pt.plastic_power = pt.elastic_energy = NAN;
-      pt.n_exterior = pt.n_adhesion = pt.n_slip = pt.n_plastic = -1;
-      res->points_failed++;
-      fprintf(stderr, "rollsim sweep: point %zu (%s): %s\n", p, assign[s->naxes - 1],
-              point_msg.text);
-      free(y); /* no warm start from a failed point */
-      y = NULL;
-      ny = 0;
-    } else {
+    if (ps != RS_OK && ps != RS_ERR_SOLVER) {
       status = rs_msg_set(msg, ps, "sweep point %zu: %s", p, point_msg.text);
       break;
     }
-    status = rs_sweep_output_write(out, p, &pt, msg);
-    if (o->progress) {
-      fprintf(stderr, "\rsweep: %zu/%zu points, %zu failed, %.1f s ", p + 1, s->npoints,
-              res->points_failed, rs_wall_clock() - started);
-      fflush(stderr);
+    if (ps == RS_ERR_SOLVER) {
+      free(y); /* no warm start from a failed point */
+      y = NULL;
+      ny = 0;
     }
-    if (status == RS_OK && o->interrupt_flag && *o->interrupt_flag)
-      status = rs_msg_set(msg, RS_ERR_INTERRUPTED, "interrupted after %zu of %zu points", p + 1,
-                          s->npoints);
+    status = record_point(&wr, p, ps, &d, point_msg.text, msg);
   }
   if (o->progress) fputc('\n', stderr);
   chain_drop(&chain);
   SUNContext_Free(&chain.ctx);
   res->newton_iters += steady_sum.nonlin_iters;
   res->lin_solves = steady_sum.lin_solves;
-  res->jac_evals = chain.jac_evals;
+  res->jac_evals = chain.jac_evals + steady_sum.jac_evals; /* the latter: lines' */
   res->refused = steady_sum.refused;
-  res->refined = chain.refined;
+  res->refined = chain.refined + line_refined;
   free(y);
   if (status == RS_OK && res->points_failed > 0)
     status =
@@ -440,6 +494,150 @@ done:
   return status;
 }
 
+/* The case of point j of the line (its key at values[j]); all holds the line's sets and
+ * one more entry. */
+static int line_case(const rs_sweep_line *line, const char **all, char *assign, size_t len,
+                     size_t j, rs_case *c, rs_msg *msg)
+{
+  snprintf(assign, len, "%s=%.17g", line->key, line->values[j]);
+  all[line->nsets] = assign;
+  return rs_case_load(c, line->case_path, all, line->nsets + 1, msg);
+}
+
+/* Point j of the line on the chain ch (warm: continued from *y); one_thread: the point's
+ * solver on one thread. Returns the point's status (RS_OK, or RS_ERR_SOLVER with why in
+ * pmsg; then no warm start from it) or an input or internal error's. */
+static int line_point(const rs_sweep_line *line, steady_chain *ch, const char **all, double **y,
+                      int *ny, size_t j, int warm, int one_thread, rs_stats *sum, rs_diag *d,
+                      long *newton, rs_msg *pmsg)
+{
+  char assign[320];
+  rs_case c;
+  *newton = 0;
+  int ps = line_case(line, all, assign, sizeof assign, j, &c, pmsg);
+  if (ps != RS_OK) return ps;
+  if (one_thread) c.threads = 1;
+  if (c.mode == RS_MODE_STEADY) {
+    ps = steady_point(&c, ch, y, ny, warm, rolling_key(line->key), line->key, line->values[j], d,
+                      line->fields, sum, pmsg);
+  } else {
+    rs_run_opts po = {
+        .no_output = 1, .final_fields = line->fields, .interrupt_flag = line->interrupt_flag};
+    rs_run_result rr;
+    ps = rs_run(&c, &po, &rr, pmsg);
+    *d = rr.final;
+    *newton = rr.stats.nonlin_iters;
+    rs_run_result_free(&rr);
+  }
+  rs_case_free(&c);
+  if (ps == RS_ERR_SOLVER) { /* no warm start from a failed point */
+    free(*y);
+    *y = NULL;
+    *ny = 0;
+  }
+  return ps;
+}
+
+static void line_totals(const rs_sweep_line *line, const rs_stats *sum, const steady_chain *ch)
+{
+  if (line->stats) {
+    line->stats->nonlin_iters += sum->nonlin_iters;
+    line->stats->lin_solves += sum->lin_solves;
+    line->stats->refused += sum->refused;
+    line->stats->jac_evals += ch->jac_evals + ch->jac_now;
+  }
+  if (line->refined) *line->refined += ch->refined;
+}
+
+int rs_sweep_line_both_ends(const rs_case *c, const char *key, size_t n)
+{
+#ifdef _OPENMP
+  return n >= 2 && c->mode == RS_MODE_STEADY && rolling_key(key) && rs_threads(c->threads) == 2 &&
+         unique_steady(c->dimension, &c->friction, c->has_plasticity, c->k_tau);
+#else
+  (void)c;
+  (void)key;
+  (void)n;
+  return 0;
+#endif
+}
+
+#ifdef _OPENMP
+/* Where a line of n points solved from both ends splits: worker 0 takes the first
+ * BOTH_ENDS_FIRST of them. A fixed split, so that a sweep's file does not depend on the
+ * threads' timing. Creep curves usually start at rest, and the points of partial slip
+ * cost more than those near saturation: 30-point plastic creep curve of bench/cases at 44
+ * x 44 cells (2-core VM), the two halves as separate processes side by side: the first
+ * half forward 113 Newton iterations, 0.77 s; the second half backward from its end 81,
+ * 0.51 s (two processes at once ran as fast as each alone). */
+#define BOTH_ENDS_FIRST 0.4
+static size_t both_ends_split(size_t n)
+{
+  const size_t k = (size_t)floor(BOTH_ENDS_FIRST * (double)n + 0.5);
+  return k < 1 ? 1 : k >= n ? n - 1 : k;
+}
+
+/* The line from both ends: worker 0 takes the points from the first on, worker 1 from the
+ * last one back (both_ends_split), each continuing from its own last solution (the first
+ * from rest); each worker's solver runs on one thread. Where the steady state is unique
+ * (rs_sweep_line_both_ends) a point does not depend on the path to it beyond Newton's
+ * tolerance. */
+static int line_both_ends(const rs_sweep_line *line, rs_msg *msg)
+{
+  rs_elastic3d_planner_thread_safe(); /* each worker creates models and coarse grids */
+  const size_t split = both_ends_split(line->n);
+  size_t lo = 0, hi = line->n; /* worker 0: [0, split) forward; worker 1: [split, n) back */
+  int status = RS_OK;
+#pragma omp parallel num_threads(2)
+  {
+    const int w = omp_get_thread_num();
+    steady_chain ch = {0};
+    rs_stats sum = {0};
+    const char **all = calloc((size_t)line->nsets + 1, sizeof *all);
+    int mine = all && SUNContext_Create(NULL, &ch.ctx) == 0 ? RS_OK : RS_ERR_INTERNAL;
+    for (int i = 0; all && i < line->nsets; i++) all[i] = line->sets[i];
+    double *y = NULL;
+    int ny = 0, warm = 0;
+    for (;;) {
+      size_t j = 0;
+      int take = 0;
+#pragma omp critical(rs_sweep_line)
+      {
+        if (mine != RS_OK && status == RS_OK)
+          status = rs_msg_set(msg, mine, "out of memory (sweep line from both ends)");
+        if (status == RS_OK && (w == 0 ? lo < split : hi > split)) {
+          j = w == 0 ? lo++ : --hi;
+          take = 1;
+        }
+      }
+      if (!take) break;
+      rs_diag d;
+      long newton = 0;
+      rs_msg pm = {{0}};
+      const int ps = line_point(line, &ch, all, &y, &ny, j, warm, 1, &sum, &d, &newton, &pm);
+      warm = 1;
+#pragma omp critical(rs_sweep_line)
+      {
+        int st = ps;
+        if (ps == RS_OK || ps == RS_ERR_SOLVER)
+          st = line->point_done(line->ctx, j, ps, &d, newton, pm.text);
+        else if (status == RS_OK)
+          rs_msg_set(msg, ps, "%s=%.17g: %s", line->key, line->values[j], pm.text);
+        if (st != RS_OK && status == RS_OK) status = st;
+      }
+    }
+#pragma omp critical(rs_sweep_line)
+    line_totals(line, &sum, &ch);
+    chain_drop(&ch);
+    if (ch.ctx) SUNContext_Free(&ch.ctx);
+    free(y);
+    free(all);
+  }
+  if (line->both_ends) (*line->both_ends)++;
+  return status;
+}
+#endif
+
 /* One continuation line in memory (app/sweep_lines.h): the points of rs_sweep_run's loop
  * along its last axis, with the same models, warm starts and continuation. */
 int rs_sweep_line_eval(const rs_sweep_line *line, rs_msg *msg)
@@ -447,6 +645,21 @@ int rs_sweep_line_eval(const rs_sweep_line *line, rs_msg *msg)
   const char **all = calloc((size_t)line->nsets + 1, sizeof *all);
   if (!all) return rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory");
   for (int i = 0; i < line->nsets; i++) all[i] = line->sets[i];
+#ifdef _OPENMP
+  if (line->n >= 2 && !line->fields) { /* 3D sweeps store no profiles */
+    char assign[320];
+    rs_case c;
+    rs_msg cm = {{0}};
+    if (line_case(line, all, assign, sizeof assign, 0, &c, &cm) == RS_OK) {
+      const int both = rs_sweep_line_both_ends(&c, line->key, line->n);
+      rs_case_free(&c);
+      if (both) {
+        free(all);
+        return line_both_ends(line, msg);
+      }
+    }
+  }
+#endif
   steady_chain chain = {0};
   if (SUNContext_Create(NULL, &chain.ctx) != 0) {
     free(all);
@@ -455,48 +668,17 @@ int rs_sweep_line_eval(const rs_sweep_line *line, rs_msg *msg)
   double *y = NULL;
   int ny = 0, status = RS_OK;
   rs_stats sum = {0};
-  char assign[320];
   for (size_t j = 0; j < line->n && status == RS_OK; j++) {
-    snprintf(assign, sizeof assign, "%s=%.17g", line->key, line->values[j]);
-    all[line->nsets] = assign;
-    rs_case c;
     rs_diag d;
     long newton = 0;
-    rs_msg point_msg = {{0}};
-    int ps = rs_case_load(&c, line->case_path, all, line->nsets + 1, &point_msg);
-    if (ps == RS_OK) {
-      if (c.mode == RS_MODE_STEADY) {
-        ps = steady_point(&c, &chain, &y, &ny, j > 0, rolling_key(line->key), line->key,
-                          line->values[j], &d, line->fields, &sum, &point_msg);
-      } else {
-        rs_run_opts po = {
-            .no_output = 1, .final_fields = line->fields, .interrupt_flag = line->interrupt_flag};
-        rs_run_result rr;
-        ps = rs_run(&c, &po, &rr, &point_msg);
-        d = rr.final;
-        newton = rr.stats.nonlin_iters;
-        rs_run_result_free(&rr);
-      }
-      rs_case_free(&c);
-    }
-    if (ps == RS_ERR_SOLVER) { /* no warm start from a failed point */
-      free(y);
-      y = NULL;
-      ny = 0;
-    }
-    if (ps == RS_OK || ps == RS_ERR_SOLVER) {
-      status = line->point_done(line->ctx, j, ps, &d, newton, point_msg.text);
-    } else {
-      status = rs_msg_set(msg, ps, "%s: %s", assign, point_msg.text);
-    }
+    rs_msg pm = {{0}};
+    const int ps = line_point(line, &chain, all, &y, &ny, j, j > 0, 0, &sum, &d, &newton, &pm);
+    if (ps == RS_OK || ps == RS_ERR_SOLVER)
+      status = line->point_done(line->ctx, j, ps, &d, newton, pm.text);
+    else
+      status = rs_msg_set(msg, ps, "%s=%.17g: %s", line->key, line->values[j], pm.text);
   }
-  if (line->stats) {
-    line->stats->nonlin_iters += sum.nonlin_iters;
-    line->stats->lin_solves += sum.lin_solves;
-    line->stats->refused += sum.refused;
-    line->stats->jac_evals += chain.jac_evals + chain.jac_now;
-  }
-  if (line->refined) *line->refined += chain.refined;
+  line_totals(line, &sum, &chain);
   chain_drop(&chain);
   SUNContext_Free(&chain.ctx);
   free(y);

@@ -36,6 +36,8 @@ int rs_elastic3d_fft_size(int m)
   }
 }
 
+void rs_elastic3d_planner_thread_safe(void) { fftw_make_planner_thread_safe(); }
+
 void rs_elastic3d_fft_free(struct rs_elastic3d_fft *f)
 {
   if (!f) return;
