@@ -563,30 +563,41 @@ int rs_sweep_line_both_ends(const rs_case *c, const char *key, size_t n)
 }
 
 #ifdef _OPENMP
-/* Where a line of n points solved from both ends splits: worker 0 takes the first
- * BOTH_ENDS_FIRST of them. A fixed split, so that a sweep's file does not depend on the
- * threads' timing. Creep curves usually start at rest, and the points of partial slip
- * cost more than those near saturation: 30-point plastic creep curve of bench/cases at 44
- * x 44 cells (2-core VM), the two halves as separate processes side by side: the first
- * half forward 113 Newton iterations, 0.77 s; the second half backward from its end 81,
- * 0.51 s (two processes at once ran as fast as each alone). */
-#define BOTH_ENDS_FIRST 0.4
+/* A line solved from both ends: its points ordered from the end with the smaller |value|
+ * (a creep curve's rest end, whichever way the sweep runs) to the other, the first
+ * BOTH_ENDS_SMALL of them in that order go to worker 0, the rest to worker 1, and each
+ * worker solves its part from its larger |value| back (its first point from rest). A fixed
+ * split, so that a sweep's file does not depend on the threads' timing. Measured on the
+ * 30-point creep curves of bench/cases (2-core VM, single runs):
+ * - partial slip costs more than saturation, and more so on fine grids: the first 12
+ *   points at 128 x 128 cells (plastic) forward 310 Newton iterations, 23.6 s; the last 18
+ *   back from the end 249, 16.9 s (the two as processes side by side: 23.7 / 18.1 s);
+ * - plastic continuation towards smaller creepage takes fewer iterations: the first 12
+ *   points at 128^2 back 241 (20.9 s), the whole 44^2 curve back 172 against 193 (the
+ *   elastic 44^2 curve 165 against 152);
+ * - with two threads (worker 0 forward from the first point / back towards it, split at):
+ *   plastic 44^2 forward 0.35 / 0.4 / 0.45 / 0.5: 0.65 / 0.68 / 0.74 / 0.78 s, back 0.64 /
+ *   0.67 / 0.73 / 0.79 s; elastic 44^2 forward 0.59 / 0.57 / 0.52 / 0.56 s, back 0.58 /
+ *   0.54 / 0.56 / 0.61 s; plastic 128^2 forward 0.3 / 0.35 / 0.4: 20.3 / 21.5 / 23.7 s, back
+ *   0.35 / 0.4: 20.0 / 21.6 s. */
+#define BOTH_ENDS_SMALL 0.35
 static size_t both_ends_split(size_t n)
 {
-  const size_t k = (size_t)floor(BOTH_ENDS_FIRST * (double)n + 0.5);
+  const size_t k = (size_t)floor(BOTH_ENDS_SMALL * (double)n + 0.5);
   return k < 1 ? 1 : k >= n ? n - 1 : k;
 }
 
-/* The line from both ends: worker 0 takes the points from the first on, worker 1 from the
- * last one back (both_ends_split), each continuing from its own last solution (the first
- * from rest); each worker's solver runs on one thread. Where the steady state is unique
- * (rs_sweep_line_both_ends) a point does not depend on the path to it beyond Newton's
- * tolerance. */
+/* The line from both ends (both_ends_split): each worker continues from its own last
+ * solution on one thread. Where the steady state is unique (rs_sweep_line_both_ends) a
+ * point does not depend on the path to it beyond Newton's tolerance. */
 static int line_both_ends(const rs_sweep_line *line, rs_msg *msg)
 {
   rs_elastic3d_planner_thread_safe(); /* each worker creates models and coarse grids */
-  const size_t split = both_ends_split(line->n);
-  size_t lo = 0, hi = line->n; /* worker 0: [0, split) forward; worker 1: [split, n) back */
+  const size_t n = line->n, split = both_ends_split(n);
+  /* in the order from the smaller |value| end: worker 0 takes split - 1 down to 0, worker
+   * 1 n - 1 down to split */
+  const int flip = fabs(line->values[n - 1]) < fabs(line->values[0]);
+  size_t next[2] = {split, n};
   int status = RS_OK;
 #pragma omp parallel num_threads(2)
   {
@@ -605,8 +616,9 @@ static int line_both_ends(const rs_sweep_line *line, rs_msg *msg)
       {
         if (mine != RS_OK && status == RS_OK)
           status = rs_msg_set(msg, mine, "out of memory (sweep line from both ends)");
-        if (status == RS_OK && (w == 0 ? lo < split : hi > split)) {
-          j = w == 0 ? lo++ : --hi;
+        if (status == RS_OK && next[w] > (w == 0 ? 0 : split)) {
+          const size_t k = --next[w];
+          j = flip ? n - 1 - k : k;
           take = 1;
         }
       }
