@@ -379,7 +379,7 @@ def part_jumps(binary, work):
 
 
 def part_threads(binary, work):
-    """solver.threads: 2. A steady sweep solves each continuation line from both ends at
+    """solver.threads: 2. A steady sweep solves each continuation line in two parts at
     once (one thread each): the points agree with one thread's to Newton's tolerance and
     the file does not depend on the threads' timing. A single solve splits the FFT
     products' components and the near field's halves between two threads: one thread's
@@ -396,10 +396,10 @@ def part_threads(binary, work):
         nc = os.path.join(work, f"sweep{t}.nc".replace(" ", "_"))
         out = run(binary, ["sweep", path, "-o", nc, "--set", f"solver.threads={str(t)[0]}"])
         res[t] = (xr.open_dataset(nc), out)
-    both = re.search(r"(\d+) continuation lines? solved from both ends", res[2][1])
-    check("steady sweep, threads 2: both lines solved from both ends",
+    both = re.search(r"(\d+) continuation lines? solved in two parts", res[2][1])
+    check("steady sweep, threads 2: both lines solved in two parts",
           both is not None and int(both.group(1)) == 2, both and both.group(0))
-    check("steady sweep, threads 1: one end", "both ends" not in res[1][1])
+    check("steady sweep, threads 1: in one part", "two parts" not in res[1][1])
     for v in ("Fx", "Fy", "Mz"):
         a, b = res[1][0][v].values, res[2][0][v].values
         d = float(np.abs(a - b).max())

@@ -17,11 +17,11 @@ typedef struct rs_sweep_result {
   size_t points_done, points_failed;
   double wall_seconds;
   long newton_iters;
-  long lin_solves;      /* steady points: linear solves (direct) or Krylov iterations */
-  long jac_evals;       /* steady points: Jacobian evaluations */
-  long refused;         /* steady solutions refused by the physical check (rs_model_check_steady) */
-  long refined;         /* continuation steps halved where the regimes jumped or Newton failed */
-  long lines_both_ends; /* lines solved from both ends at once (solver.threads: 2) */
+  long lin_solves;   /* steady points: linear solves (direct) or Krylov iterations */
+  long jac_evals;    /* steady points: Jacobian evaluations */
+  long refused;      /* steady solutions refused by the physical check (rs_model_check_steady) */
+  long refined;      /* continuation steps halved where the regimes jumped or Newton failed */
+  long lines_in_two; /* lines solved in two parts at once (solver.threads: 2) */
   char file[1024];
   char backup[1040]; /* an older file at the output path kept under this name, or "" */
 } rs_sweep_result;

@@ -200,9 +200,9 @@ static int cmd_sweep(const rs_case *c, const cli_args *a, const rs_sweep *sw, co
   printf("  steady points: linear solves %ld, Jacobian evaluations %ld, continuation steps "
          "halved %ld\n",
          sres.lin_solves, sres.jac_evals, sres.refined);
-  if (sres.lines_both_ends > 0)
-    printf("  solver.threads 2: %ld continuation line%s solved from both ends at once\n",
-           sres.lines_both_ends, sres.lines_both_ends == 1 ? "" : "s");
+  if (sres.lines_in_two > 0)
+    printf("  solver.threads 2: %ld continuation line%s solved in two parts at once\n",
+           sres.lines_in_two, sres.lines_in_two == 1 ? "" : "s");
   if (sres.refused > 0)
     printf("  steady check: %ld Newton solutions refused as not physical (recomputed by "
            "rolling the material)\n",

@@ -406,8 +406,8 @@ int rs_sweep_run(const rs_sweep *s, const char *case_path, const char *const *se
     rs_diag d;
     int ps = rs_case_load(&c, case_path, all, nsets + s->naxes, &point_msg);
     if (ps == RS_OK && last_index == 0 && !grid_x &&
-        rs_sweep_line_both_ends(&c, last->key, (size_t)last->n)) {
-      /* the whole line at once, from both ends (solver.threads: 2) */
+        rs_sweep_line_in_two(&c, last->key, (size_t)last->n)) {
+      /* the whole line at once, in two parts (solver.threads: 2) */
       rs_case_free(&c);
       wr.p0 = p;
       wr.msg.text[0] = '\0';
@@ -422,7 +422,7 @@ int rs_sweep_run(const rs_sweep *s, const char *case_path, const char *const *se
                                   .interrupt_flag = o->interrupt_flag,
                                   .stats = &steady_sum,
                                   .refined = &line_refined,
-                                  .both_ends = &res->lines_both_ends};
+                                  .in_two = &res->lines_in_two};
       status = rs_sweep_line_eval(&line, &point_msg);
       if (status != RS_OK)
         rs_msg_set(msg, status, "%s", wr.msg.text[0] ? wr.msg.text : point_msg.text);
@@ -549,7 +549,7 @@ static void line_totals(const rs_sweep_line *line, const rs_stats *sum, const st
   if (line->refined) *line->refined += ch->refined;
 }
 
-int rs_sweep_line_both_ends(const rs_case *c, const char *key, size_t n)
+int rs_sweep_line_in_two(const rs_case *c, const char *key, size_t n)
 {
 #ifdef _OPENMP
   return n >= 2 && c->mode == RS_MODE_STEADY && rolling_key(key) && rs_threads(c->threads) == 2 &&
@@ -563,9 +563,9 @@ int rs_sweep_line_both_ends(const rs_case *c, const char *key, size_t n)
 }
 
 #ifdef _OPENMP
-/* A line solved from both ends: its points ordered from the end with the smaller |value|
+/* A line solved in two parts: its points ordered from the end with the smaller |value|
  * (a creep curve's rest end, whichever way the sweep runs) to the other, the first
- * BOTH_ENDS_SMALL of them in that order go to worker 0, the rest to worker 1, and each
+ * IN_TWO_SMALL of them in that order go to worker 0, the rest to worker 1, and each
  * worker solves its part from its larger |value| back (its first point from rest). A fixed
  * split, so that a sweep's file does not depend on the threads' timing. Measured on the
  * 30-point creep curves of bench/cases (2-core VM, single runs):
@@ -580,20 +580,20 @@ int rs_sweep_line_both_ends(const rs_case *c, const char *key, size_t n)
  *   0.67 / 0.73 / 0.79 s; elastic 44^2 forward 0.59 / 0.57 / 0.52 / 0.56 s, back 0.58 /
  *   0.54 / 0.56 / 0.61 s; plastic 128^2 forward 0.3 / 0.35 / 0.4: 20.3 / 21.5 / 23.7 s, back
  *   0.35 / 0.4: 20.0 / 21.6 s. */
-#define BOTH_ENDS_SMALL 0.35
-static size_t both_ends_split(size_t n)
+#define IN_TWO_SMALL 0.35
+static size_t in_two_split(size_t n)
 {
-  const size_t k = (size_t)floor(BOTH_ENDS_SMALL * (double)n + 0.5);
+  const size_t k = (size_t)floor(IN_TWO_SMALL * (double)n + 0.5);
   return k < 1 ? 1 : k >= n ? n - 1 : k;
 }
 
-/* The line from both ends (both_ends_split): each worker continues from its own last
- * solution on one thread. Where the steady state is unique (rs_sweep_line_both_ends) a
+/* The line in two parts (in_two_split): each worker continues from its own last
+ * solution on one thread. Where the steady state is unique (rs_sweep_line_in_two) a
  * point does not depend on the path to it beyond Newton's tolerance. */
-static int line_both_ends(const rs_sweep_line *line, rs_msg *msg)
+static int line_in_two(const rs_sweep_line *line, rs_msg *msg)
 {
   rs_elastic3d_planner_thread_safe(); /* each worker creates models and coarse grids */
-  const size_t n = line->n, split = both_ends_split(n);
+  const size_t n = line->n, split = in_two_split(n);
   /* in the order from the smaller |value| end: worker 0 takes split - 1 down to 0, worker
    * 1 n - 1 down to split */
   const int flip = fabs(line->values[n - 1]) < fabs(line->values[0]);
@@ -615,7 +615,7 @@ static int line_both_ends(const rs_sweep_line *line, rs_msg *msg)
 #pragma omp critical(rs_sweep_line)
       {
         if (mine != RS_OK && status == RS_OK)
-          status = rs_msg_set(msg, mine, "out of memory (sweep line from both ends)");
+          status = rs_msg_set(msg, mine, "out of memory (sweep line in two parts)");
         if (status == RS_OK && next[w] > (w == 0 ? 0 : split)) {
           const size_t k = --next[w];
           j = flip ? n - 1 - k : k;
@@ -645,7 +645,7 @@ static int line_both_ends(const rs_sweep_line *line, rs_msg *msg)
     free(y);
     free(all);
   }
-  if (line->both_ends) (*line->both_ends)++;
+  if (line->in_two) (*line->in_two)++;
   return status;
 }
 #endif
@@ -663,11 +663,11 @@ int rs_sweep_line_eval(const rs_sweep_line *line, rs_msg *msg)
     rs_case c;
     rs_msg cm = {{0}};
     if (line_case(line, all, assign, sizeof assign, 0, &c, &cm) == RS_OK) {
-      const int both = rs_sweep_line_both_ends(&c, line->key, line->n);
+      const int both = rs_sweep_line_in_two(&c, line->key, line->n);
       rs_case_free(&c);
       if (both) {
         free(all);
-        return line_both_ends(line, msg);
+        return line_in_two(line, msg);
       }
     }
   }

@@ -47,7 +47,7 @@ typedef struct dist_run {
   int interrupted;
   rs_stats stats;
   long refined;
-  long both_ends;
+  long in_two;
   double started;
   rs_msg msg;
 } dist_run;
@@ -207,7 +207,7 @@ static int compute_line(dist_run *r, size_t line)
                            .interrupt_flag = r->o->interrupt_flag,
                            .stats = &r->stats,
                            .refined = &r->refined,
-                           .both_ends = &r->both_ends};
+                           .in_two = &r->in_two};
   rs_msg m = {{0}};
   const int st = rs_sweep_line_eval(&L, &m);
   if (st != RS_OK && st != RS_ERR_INTERRUPTED && !r->msg.text[0])
@@ -401,7 +401,7 @@ done:
   res->jac_evals = r.stats.jac_evals;
   res->refused = r.stats.refused;
   res->refined = r.refined;
-  res->lines_both_ends = r.both_ends;
+  res->lines_in_two = r.in_two;
   res->wall_seconds = rs_wall_clock() - r.started;
   free(grid_x);
   rs_fields_free(&r.buf);

@@ -16,8 +16,8 @@
 
 /* Called after point j of the line: status RS_OK or RS_ERR_SOLVER (why says why), d its
  * quantities, the line's fields buffer filled (when given and the point has the grid).
- * Returns a status; anything but RS_OK stops the line with it. A line solved from both
- * ends (rs_sweep_line_both_ends) calls it out of order and from two threads, one call at
+ * Returns a status; anything but RS_OK stops the line with it. A line solved in two
+ * parts (rs_sweep_line_in_two) calls it out of order and from two threads, one call at
  * a time. */
 typedef int (*rs_line_point_fn)(void *ctx, size_t j, int status, const rs_diag *d, long newton,
                                 const char *why);
@@ -35,19 +35,19 @@ typedef struct rs_sweep_line {
   volatile sig_atomic_t *interrupt_flag; /* transient points stop at it */
   rs_stats *stats;                       /* steady solver statistics added, or NULL */
   long *refined;                         /* continuation steps halved added, or NULL */
-  long *both_ends;                       /* 1 added when solved from both ends, or NULL */
+  long *in_two;                          /* 1 added when solved in two parts, or NULL */
 } rs_sweep_line;
 
 /* Solve the points key = values[j], j = 0..n-1, in order (each warm-started from the
- * previous one), calling point_done after each; or from both ends at once when
- * rs_sweep_line_both_ends says so. Returns RS_OK, the callback's status, or an
+ * previous one), calling point_done after each; or in two parts at once when
+ * rs_sweep_line_in_two says so. Returns RS_OK, the callback's status, or an
  * input/internal error's (message in msg). */
 int rs_sweep_line_eval(const rs_sweep_line *line, rs_msg *msg);
 
-/* Whether a line of n points of case c (its first point) along key is solved from both
- * ends at once, on two threads: solver.threads 2 with two threads available, steady 3D
+/* Whether a line of n points of case c (its first point) along key is solved in two
+ * parts at once, on two threads: solver.threads 2 with two threads available, steady 3D
  * points along a rolling input, and a unique steady state (Coulomb friction, no
  * softening), where a point solved from rest equals the one continuation reaches. */
-int rs_sweep_line_both_ends(const rs_case *c, const char *key, size_t n);
+int rs_sweep_line_in_two(const rs_case *c, const char *key, size_t n);
 
 #endif
