@@ -413,6 +413,14 @@ def part_threads(binary, work):
     for v in ("n_adhesion", "n_slip", "n_plastic"):
         check(f"steady sweep, threads 2 = threads 1: {v}",
               bool((res[1][0][v].values == res[2][0][v].values).all()))
+    # the parts are chosen by |value|: the same values in reverse order, the same points
+    nc = os.path.join(work, "sweep_reversed.nc")
+    run(binary, ["sweep", path, "-o", nc, "--quiet", "--set", "solver.threads=2", "--set",
+                 "sweep.rolling.creepage=[-0.002, -0.001, -0.0005, 0.0]"])
+    rev = xr.open_dataset(nc)
+    check("steady sweep, threads 2, values reversed: the same points bit for bit",
+          bool((rev.Fx.values[:, ::-1] == res[2][0].Fx.values).all()
+               and (rev.Mz.values[:, ::-1] == res[2][0].Mz.values).all()))
     single = {}
     for t in (1, 2):
         nc = os.path.join(work, f"single{t}.nc")
