@@ -422,7 +422,8 @@ int rs_sweep_run(const rs_sweep *s, const char *case_path, const char *const *se
                                   .interrupt_flag = o->interrupt_flag,
                                   .stats = &steady_sum,
                                   .refined = &line_refined,
-                                  .in_two = &res->lines_in_two};
+                                  .in_two = &res->lines_in_two,
+                                  .in_two_known = 1};
       status = rs_sweep_line_eval(&line, &point_msg);
       if (status != RS_OK)
         rs_msg_set(msg, status, "%s", wr.msg.text[0] ? wr.msg.text : point_msg.text);
@@ -658,6 +659,10 @@ int rs_sweep_line_eval(const rs_sweep_line *line, rs_msg *msg)
   if (!all) return rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory");
   for (int i = 0; i < line->nsets; i++) all[i] = line->sets[i];
 #ifdef _OPENMP
+  if (line->in_two_known) {
+    free(all);
+    return line_in_two(line, msg);
+  }
   if (line->n >= 2 && !line->fields) { /* 3D sweeps store no profiles */
     char assign[320];
     rs_case c;

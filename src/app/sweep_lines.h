@@ -36,6 +36,7 @@ typedef struct rs_sweep_line {
   rs_stats *stats;                       /* steady solver statistics added, or NULL */
   long *refined;                         /* continuation steps halved added, or NULL */
   long *in_two;                          /* 1 added when solved in two parts, or NULL */
+  int in_two_known; /* 1: the caller found rs_sweep_line_in_two true (not checked again) */
 } rs_sweep_line;
 
 /* Solve the points key = values[j], j = 0..n-1, in order (each warm-started from the
