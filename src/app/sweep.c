@@ -655,22 +655,21 @@ static int line_in_two(const rs_sweep_line *line, rs_msg *msg)
  * along its last axis, with the same models, warm starts and continuation. */
 int rs_sweep_line_eval(const rs_sweep_line *line, rs_msg *msg)
 {
+#ifdef _OPENMP
+  if (line->in_two_known) return line_in_two(line, msg);
+#endif
   const char **all = calloc((size_t)line->nsets + 1, sizeof *all);
   if (!all) return rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory");
   for (int i = 0; i < line->nsets; i++) all[i] = line->sets[i];
 #ifdef _OPENMP
-  if (line->in_two_known) {
-    free(all);
-    return line_in_two(line, msg);
-  }
   if (line->n >= 2 && !line->fields) { /* 3D sweeps store no profiles */
     char assign[320];
     rs_case c;
     rs_msg cm = {{0}};
     if (line_case(line, all, assign, sizeof assign, 0, &c, &cm) == RS_OK) {
-      const int both = rs_sweep_line_in_two(&c, line->key, line->n);
+      const int in_two = rs_sweep_line_in_two(&c, line->key, line->n);
       rs_case_free(&c);
-      if (both) {
+      if (in_two) {
         free(all);
         return line_in_two(line, msg);
       }
