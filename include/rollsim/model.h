@@ -184,6 +184,11 @@ int64_t rs_model_jac_capacity(const rs_model *m, int band, int band_y);
  * from them (in and cj as given to rs_model_linearise). */
 int rs_model_linearise(const rs_model *m, rs_work *w, const rs_inputs *in, const double *y,
                        const double *yp, double cj);
+/* rs_model_linearise that also gives the residual at (y, yp) in F (as rs_model_residual): a
+ * Newton iteration's residual at a trial point and, if the point is accepted, the
+ * linearisation there in one evaluation. */
+int rs_model_linearise_residual(const rs_model *m, rs_work *w, const rs_inputs *in, const double *y,
+                                const double *yp, double cj, double *F);
 int rs_model_jacobian_assemble(const rs_model *m, const rs_work *w, const rs_inputs *in, double cj,
                                int band, int band_y, rs_csr *J);
 

@@ -202,13 +202,11 @@ static void put_row(const rs_model *m, const rs_law_out *o, int lr, int I, const
   csr_next_row(J);
 }
 
-int rs_model_linearise(const rs_model *m, rs_work *w, const rs_inputs *in, const double *y,
-                       const double *yp, double cj)
+/* What J v and the assembly need beyond the local laws: each row's dense flag and pivot. */
+static void linearise_flags(const rs_model *m, rs_work *w)
 {
   const rs_layout *L = &m->lay;
   const int n = L->n, nc = L->ncomp;
-  const int status = rs_model_evaluate(m, w, in, y, yp, cj, NULL, 1);
-  if (status != RS_OK) return status;
   for (int i = 0; i < n; i++) {
     for (int c = 0; c < nc; c++) {
       const int row = rs_law_row_f(c), k = rs_at_p(L, c, i);
@@ -224,6 +222,20 @@ int rs_model_linearise(const rs_model *m, rs_work *w, const rs_inputs *in, const
       w->pivot[k] = k;
     }
   }
+}
+
+int rs_model_linearise(const rs_model *m, rs_work *w, const rs_inputs *in, const double *y,
+                       const double *yp, double cj)
+{
+  return rs_model_linearise_residual(m, w, in, y, yp, cj, NULL);
+}
+
+int rs_model_linearise_residual(const rs_model *m, rs_work *w, const rs_inputs *in, const double *y,
+                                const double *yp, double cj, double *F)
+{
+  const int status = rs_model_evaluate(m, w, in, y, yp, cj, F, 1);
+  if (status != RS_OK) return status;
+  linearise_flags(m, w);
   return RS_OK;
 }
 

@@ -72,16 +72,8 @@ static unsigned char cell_signature(const rs_law_out *o)
 /* Whether the factored near field may serve at (cj, velocity): reuse on, a factorisation
  * at hand and not declared stale, cj + V/dx (the iteration matrix is r times a sum of
  * terms in cj and in V/dx) within the reuse ratio of the factorisation's, and at most
- * REUSE_MAX_CELLS cells on other branches than then. Each such cell perturbs the
- * preconditioner locally, whatever the grid's size, so the bound is a count. Measured
- * (start-ups of bench/cases over 10 contact lengths at 44 x 44 cells; before, 5 % of the
- * cells): plastic, rtol 3e-3 5759 -> 4004 GMRES iterations, 15 -> 178 factorisations,
- * 2.63 -> 2.02 s (1 cell: 2.01 s, 0: 2.20 s, 4 / 8: 2.11 s); rtol 1e-3 4.07 -> 3.29 s; rtol
- * 1e-4 12.1 -> 10.3 s; elastic (rtol 1e-3) 2.62 s either way; the plastic 16 x 16 start-up
- * and cases/wheel_rail_3d.yaml (20 x 20) within 1 %. Earlier (16 x 16, ratio 2):
- * refactoring at any change of branch 1381 factorisations, with 5 % 776, GMRES iterations
- * 48093 and 47351. */
-enum { REUSE_MAX_CELLS = 2 };
+ * reuse_cells cells on other branches than then (rs_krylov_set_reuse). Each such cell
+ * perturbs the preconditioner locally, whatever the grid's size, so the bound is a count. */
 static int factor_current(const rs_krylov *k, const rs_inputs *in, double cj)
 {
   if (!(k->reuse_ratio > 1.0) || !k->part[0].num || k->stale) return 0;
@@ -90,7 +82,7 @@ static int factor_current(const rs_krylov *k, const rs_inputs *in, double cj)
   int changed = 0;
   for (int i = 0; i < k->m->lay.n; i++)
     if (cell_signature(&k->w.law[i]) != k->sig_factored[i]) changed++;
-  return changed <= REUSE_MAX_CELLS;
+  return changed <= k->reuse_cells;
 }
 
 /* KLU's options for a part. No row scaling: the rows are scaled already (r gives the
@@ -209,14 +201,18 @@ static int factor_part(rs_klu_part *p, int same)
 
 int rs_krylov_setup(rs_krylov *k, const rs_inputs *in, const double *y, const double *yp, double cj)
 {
+  /* J v needs the local laws at this point, whatever becomes of the factorisation. */
+  const int status = rs_model_linearise(k->m, &k->w, in, y, yp, cj);
+  return status != RS_OK ? status : rs_krylov_setup_linearised(k, in, cj);
+}
+
+int rs_krylov_setup_linearised(rs_krylov *k, const rs_inputs *in, double cj)
+{
   const rs_model *m = k->m;
   const int neq = m->lay.neq;
   k->in = *in;
   k->cj = cj;
   k->setups++;
-  /* J v needs the local laws at this point, whatever becomes of the factorisation. */
-  int status = rs_model_linearise(m, &k->w, in, y, yp, cj);
-  if (status != RS_OK) return status;
   if (factor_current(k, in, cj)) {
     k->reuses++;
     return RS_OK;
@@ -224,7 +220,7 @@ int rs_krylov_setup(rs_krylov *k, const rs_inputs *in, const double *y, const do
   k->stale = 0;
   for (int i = 0; i < m->lay.n; i++) k->sig_factored[i] = cell_signature(&k->w.law[i]);
   k->rate_factored = cj + fabs(in->velocity) / m->grid.dx;
-  status = rs_model_jacobian_assemble(m, &k->w, in, cj, k->band, k->band_y, &k->near);
+  int status = rs_model_jacobian_assemble(m, &k->w, in, cj, k->band, k->band_y, &k->near);
   if (status != RS_OK) return status;
   const int64_t *rp = k->near.rowptr, *ci = k->near.col;
   const int64_t nnz = rp[neq];
@@ -254,7 +250,11 @@ int rs_krylov_setup(rs_krylov *k, const rs_inputs *in, const double *y, const do
   return failed ? RS_ERR_SOLVER : RS_OK;
 }
 
-void rs_krylov_set_reuse(rs_krylov *k, double ratio) { k->reuse_ratio = ratio; }
+void rs_krylov_set_reuse(rs_krylov *k, double ratio, int max_cells)
+{
+  k->reuse_ratio = ratio;
+  k->reuse_cells = max_cells;
+}
 
 void rs_krylov_invalidate(rs_krylov *k) { k->stale = 1; }
 

@@ -48,6 +48,7 @@ typedef struct rs_krylov {
   /* reuse of the factorisation (rs_krylov_set_reuse): the ratio, and the state it was
    * factored in: cj + V/dx and each cell's active-set signature */
   double reuse_ratio, rate_factored;
+  int reuse_cells;
   unsigned char *sig_factored;
   int stale;      /* rs_krylov_invalidate: the next setup factors */
   long lin_iters; /* Krylov iterations (summed by the caller: KINSOL's count) */
@@ -76,11 +77,14 @@ void rs_krylov_free(rs_krylov *k);
  * field assembled and factored (unless rs_krylov_set_reuse lets the last one serve). */
 int rs_krylov_setup(rs_krylov *k, const rs_inputs *in, const double *y, const double *yp,
                     double cj);
+/* rs_krylov_setup where k->w already holds the linearisation at the point (the caller's
+ * rs_model_linearise_residual there, with these in and cj). */
+int rs_krylov_setup_linearised(rs_krylov *k, const rs_inputs *in, double cj);
 /* Let setups keep the factored near field while the active set (the cells' branches) is
- * nearly that of the factorisation and cj + V/dx is within a factor ratio of its value
- * then (ratio <= 1: refactor at every setup, the default). J v stays exact: only the
- * preconditioner lags. */
-void rs_krylov_set_reuse(rs_krylov *k, double ratio);
+ * that of the factorisation but for at most max_cells cells, and cj + V/dx is within a
+ * factor ratio of its value then (ratio <= 1: refactor at every setup, the default). J v
+ * stays exact: only the preconditioner lags. */
+void rs_krylov_set_reuse(rs_krylov *k, double ratio, int max_cells);
 /* The next setup factors whatever the reuse rule says (after a failed solve). */
 void rs_krylov_invalidate(rs_krylov *k);
 /* Jv = J v at the point of the last setup (exact up to roundoff). */

@@ -163,8 +163,15 @@ int rs_transient_create(rs_transient **out, const rs_model *m, SUNContext ctx, d
      * cells changed branch (linsys_krylov.c), not at every Newton iteration. Measured (bench
      * plastic start-up, 16 x 16 cells): factorisations 4110 -> 378, GMRES iterations 68176 ->
      * 68920, CPU time 4.27 -> 3.90 s; ratio 2: 753 factorisations, 8: 239 at the same
-     * GMRES count within 1 %. */
-    rs_krylov_set_reuse(&tr->kry, 4.0);
+     * GMRES count within 1 %. The two cells: start-ups of bench/cases over 10 contact
+     * lengths at 44 x 44 cells, against 5 % of the cells before: plastic, rtol 3e-3 5759 ->
+     * 4004 GMRES iterations, 15 -> 178 factorisations, 2.63 -> 2.02 s (1 cell: 2.01 s, 0:
+     * 2.20 s, 4 / 8: 2.11 s); rtol 1e-3 4.07 -> 3.29 s; rtol 1e-4 12.1 -> 10.3 s; elastic
+     * (rtol 1e-3) 2.62 s either way; the plastic 16 x 16 start-up and
+     * cases/wheel_rail_3d.yaml (20 x 20) within 1 %. Earlier (16 x 16, ratio 2): refactoring
+     * at any change of branch 1381 factorisations, with 5 % 776, GMRES iterations 48093 and
+     * 47351. */
+    rs_krylov_set_reuse(&tr->kry, 4.0, 2);
   }
   tr->cj = 0.0;
   const rs_nls_host host = {.cj_slot = &tr->cj, .inputs_at = host_inputs, .ctx = tr};
