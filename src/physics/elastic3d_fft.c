@@ -190,12 +190,18 @@ void rs_elastic3d_apply_tang(const rs_elastic3d *el, rs_elastic3d_work *work, co
 #pragma omp section
       transform_in(f, el, work->grid2, py, sy);
     }
-    /* (u_x, u_y)^ = [A_xx A_xy; A_xy A_yy]^ (p_x, p_y)^ per frequency */
+    /* (u_x, u_y)^ = [A_xx A_xy; A_xy A_yy]^ (p_x, p_y)^ per frequency, in real arithmetic:
+     * the products (x + iy)(u + iv) = (xu - yv) + i(xv + yu) that C's complex product
+     * computes, without its checks for infinities and NaNs (a tenth of a 3D J v) */
 #pragma omp for schedule(static)
     for (size_t q = 0; q < ncomplex; q++) {
-      const fftw_complex a = sx[q], b = sy[q];
-      sx[q] = f->kxx[q] * a + f->kxy[q] * b;
-      sy[q] = f->kxy[q] * a + f->kyy[q] * b;
+      const double ar = creal(sx[q]), ai = cimag(sx[q]), br = creal(sy[q]), bi = cimag(sy[q]);
+      const double xxr = creal(f->kxx[q]), xxi = cimag(f->kxx[q]), xyr = creal(f->kxy[q]),
+                   xyi = cimag(f->kxy[q]), yyr = creal(f->kyy[q]), yyi = cimag(f->kyy[q]);
+      sx[q] = ((xxr * ar - xxi * ai) + (xyr * br - xyi * bi)) +
+              I * ((xxr * ai + xxi * ar) + (xyr * bi + xyi * br));
+      sy[q] = ((xyr * ar - xyi * ai) + (yyr * br - yyi * bi)) +
+              I * ((xyr * ai + xyi * ar) + (yyr * bi + yyi * br));
     }
 #pragma omp sections
     {
