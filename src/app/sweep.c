@@ -58,6 +58,8 @@ typedef struct steady_chain {
   int nsolved;                     /* points solved on this chain */
   long jac_evals;                  /* of solvers already freed */
   long refined;                    /* continuation steps halved (regime jump or failure) */
+  rs_diag diag;                    /* the point's results, from regimes_of at the last solution */
+  int have_diag;                   /* diag is of the solution in hand */
 } steady_chain;
 
 static void chain_drop(steady_chain *ch)
@@ -126,12 +128,15 @@ static int halve_jumps(const rs_model *m)
   return !unique_steady(m->el.dim, &m->par.friction, m->par.plasticity.on, m->par.plasticity.k_tau);
 }
 
+/* The regimes of a solution y (and its results, kept in ch->diag). */
 static int regimes_of(steady_chain *ch, const double *y, signed char *reg)
 {
-  rs_diag d;
   rs_inputs in;
   rs_model_inputs_at(&ch->m, 0.0, &in);
-  return rs_model_diagnostics(&ch->m, &ch->w, &in, y, ch->yp, &d, NULL, NULL, reg);
+  const int status =
+      rs_model_diagnostics(&ch->m, &ch->w, &in, y, ch->yp, &ch->diag, NULL, NULL, reg);
+  ch->have_diag = status == RS_OK;
+  return status;
 }
 
 /* From the last solution on the chain (in y on entry) to the swept input at x: secant
@@ -208,6 +213,7 @@ static int steady_point(const rs_case *c, steady_chain *ch, double **y, int *ny,
       rs_model_rest_state(&ch->m, *y);
   }
   rs_stats stats = {0};
+  ch->have_diag = 0;
   if (status == RS_OK && chained) {
     status = continue_to(ch, key, x, *y, 0, &stats, msg);
   } else if (status == RS_OK) {
@@ -221,7 +227,9 @@ static int steady_point(const rs_case *c, steady_chain *ch, double **y, int *ny,
   }
   /* the point's profiles (output.fields; 2D sweep files) */
   const int keep = f && f->n == ch->m.grid.n && ch->m.lay.ncomp == 1;
-  if (status == RS_OK) {
+  if (status == RS_OK && !keep && ch->have_diag) { /* regimes_of evaluated the solution */
+    *d = ch->diag;
+  } else if (status == RS_OK) {
     rs_inputs in;
     rs_model_inputs_at(&ch->m, 0.0, &in);
     status = rs_model_diagnostics(&ch->m, &ch->w, &in, *y, ch->yp, d, keep ? f->slip : NULL,
