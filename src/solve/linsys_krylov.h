@@ -52,6 +52,10 @@ typedef struct rs_krylov {
   unsigned char *sig_factored;
   int stale;      /* rs_krylov_invalidate: the next setup factors */
   long lin_iters; /* Krylov iterations (summed by the caller: KINSOL's count) */
+  /* the point of the last rs_krylov_residual, whose linearisation w holds (ev_valid) */
+  double *y_ev, *yp_ev, cj_ev;
+  rs_inputs in_ev;
+  int ev_valid;
 } rs_krylov;
 
 /* 3D near field: the cell's own line along x, 4 cells each way. The steady rolling
@@ -77,9 +81,13 @@ void rs_krylov_free(rs_krylov *k);
  * field assembled and factored (unless rs_krylov_set_reuse lets the last one serve). */
 int rs_krylov_setup(rs_krylov *k, const rs_inputs *in, const double *y, const double *yp,
                     double cj);
-/* rs_krylov_setup where k->w already holds the linearisation at the point (the caller's
- * rs_model_linearise_residual there, with these in and cj). */
-int rs_krylov_setup_linearised(rs_krylov *k, const rs_inputs *in, double cj);
+/* The residual F at (in, y, yp, cj), as rs_model_residual, evaluated with the local laws'
+ * Jacobians into k's work: a set-up at the same point (a Newton iteration's iterate, whose
+ * residual came first) then needs no evaluation of its own. Between a set-up and the J v
+ * products that use it, no residual may be evaluated this way (the Newton iterations of
+ * KINSOL evaluate none there). On failure rs_krylov_error says why. */
+int rs_krylov_residual(rs_krylov *k, const rs_inputs *in, const double *y, const double *yp,
+                       double cj, double *F);
 /* Let setups keep the factored near field while the active set (the cells' branches) is
  * that of the factorisation but for at most max_cells cells, and cj + V/dx is within a
  * factor ratio of its value then (ratio <= 1: refactor at every setup, the default). J v

@@ -47,10 +47,7 @@ struct rs_steady {
   /* 3D Newton-Krylov: the forcing term, set before each linear solve (see forcing_term) */
   int own_forcing;
   double eta_gamma, eta_prev, eta_next, fnorm_prev;
-  /* 3D Newton-Krylov: each residual evaluation linearises too (into kry.w), and the set-up
-   * at the iterate it evaluated last uses that (see steady_residual) */
-  int fused, fused_valid;
-  double *y_fused, cj_fused;
+  int fused; /* 3D Newton-Krylov: residuals through kry (rs_krylov_residual) */
 };
 
 /* A model evaluation that failed stops KINSOL at once (-1: unrecoverable) and keeps the
@@ -111,13 +108,8 @@ static int steady_residual(N_Vector u, N_Vector f, void *data)
   rs_steady *s = data;
   const double *y = N_VGetArrayPointer(u);
   if (s->fused) { /* the residual and, for a set-up at this point, the linearisation */
-    s->fused_valid = 0;
-    if (rs_model_linearise_residual(s->m, &s->kry.w, &s->in, y, rates(s, y), s->cj,
-                                    N_VGetArrayPointer(f)) != RS_OK)
-      return refused(s, s->kry.w.msg.text);
-    memcpy(s->y_fused, y, (size_t)s->m->lay.neq * sizeof *y);
-    s->cj_fused = s->cj;
-    s->fused_valid = 1;
+    if (rs_krylov_residual(&s->kry, &s->in, y, rates(s, y), s->cj, N_VGetArrayPointer(f)) != RS_OK)
+      return refused(s, rs_krylov_error(&s->kry));
   } else if (rs_model_residual(s->m, &s->work, &s->in, y, rates(s, y), s->cj,
                                N_VGetArrayPointer(f)) != RS_OK) {
     return refused(s, s->work.msg.text);
@@ -165,11 +157,7 @@ static int krylov_psetup(N_Vector u, N_Vector uscale, N_Vector fval, N_Vector fs
     s->eta_prev = s->eta_next;
   }
   s->ls.jac_evals++;
-  const int at_fused = s->fused_valid && s->cj_fused == s->cj &&
-                       !memcmp(y, s->y_fused, (size_t)s->m->lay.neq * sizeof *y);
-  const int status = at_fused ? rs_krylov_setup_linearised(&s->kry, &s->in, s->cj)
-                              : rs_krylov_setup(&s->kry, &s->in, y, rates(s, y), s->cj);
-  s->fused_valid = 0; /* kry.w is the linearisation J v uses until the next residual */
+  const int status = rs_krylov_setup(&s->kry, &s->in, y, rates(s, y), s->cj);
   if (status == RS_ERR_SOLVER && !rs_krylov_error(&s->kry)[0]) return 1; /* KLU: recoverable */
   return status == RS_OK ? 0 : refused(s, rs_krylov_error(&s->kry));
 }
@@ -206,7 +194,6 @@ void rs_steady_free(rs_steady *s)
   rs_work_free(&s->work);
   free(s->yp);
   free(s->y_prev);
-  free(s->y_fused);
   if (s->own_ctx) SUNContext_Free(&s->own_ctx);
   free(s);
 }
@@ -332,11 +319,6 @@ int rs_steady_create_with(rs_steady **out, const rs_model *m, SUNContext ctx, rs
       RS_SUN_CHECK(KINSetEtaForm(s->kmem, KIN_ETACONSTANT), msg, what);
       s->own_forcing = 1;
       s->eta_gamma = m->par.plasticity.on ? 0.1 : 0.9;
-      s->y_fused = malloc((size_t)neq * sizeof *s->y_fused);
-      if (!s->y_fused) {
-        rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory (steady solver, %d unknowns)", neq);
-        goto fail;
-      }
       s->fused = 1;
     } else {
       RS_SUN_CHECK(KINSetEtaForm(s->kmem, KIN_ETACONSTANT), msg, what);

@@ -64,11 +64,17 @@ static int dae_residual(sunrealtype t, N_Vector y, N_Vector yp, N_Vector rr, voi
   rs_transient *tr = data;
   if (tr->interrupt && *tr->interrupt) return -1; /* unrecoverable: IDA stops at once */
   /* a model that cannot be evaluated (the normal problem failed) is not cured by a
-   * smaller step: unrecoverable, the reason stays in tr->work.msg */
-  return rs_model_residual(tr->m, &tr->work, inputs_at(tr, t), N_VGetArrayPointer(y),
-                           N_VGetArrayPointer(yp), tr->cj, N_VGetArrayPointer(rr)) == RS_OK
-             ? 0
-             : -1;
+   * smaller step: unrecoverable, the reason stays in tr->work.msg (Krylov: the
+   * linearisation's work, see rs_krylov_residual, as the set-up at the iterate then needs
+   * no evaluation of its own) */
+  const int status =
+      tr->gmres ? rs_krylov_residual(&tr->kry, inputs_at(tr, t), N_VGetArrayPointer(y),
+                                     N_VGetArrayPointer(yp), tr->cj, N_VGetArrayPointer(rr))
+                : rs_model_residual(tr->m, &tr->work, inputs_at(tr, t), N_VGetArrayPointer(y),
+                                    N_VGetArrayPointer(yp), tr->cj, N_VGetArrayPointer(rr));
+  if (status != RS_OK && tr->gmres)
+    rs_msg_set(&tr->work.msg, status, "%s", rs_krylov_error(&tr->kry));
+  return status == RS_OK ? 0 : -1;
 }
 
 void rs_transient_free(rs_transient *tr)
