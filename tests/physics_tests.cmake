@@ -16,6 +16,10 @@ rs_unit_test(test_nvector_fast)
 target_include_directories(test_nvector_fast PRIVATE ${PROJECT_SOURCE_DIR}/src)
 # The model's J v products (Newton-Krylov) against differences of the residual.
 rs_unit_test(test_jacobian_products)
+# The Newton-Krylov set-up on the residual's evaluation equals the one that evaluates anew
+# (a private header of src/).
+rs_unit_test(test_krylov_evaluated)
+target_include_directories(test_krylov_evaluated PRIVATE ${PROJECT_SOURCE_DIR}/src)
 # Velocity-dependent friction: the Coulomb limit and full sliding (verification.md 14).
 rs_unit_test(test_falling_friction)
 # grid.x_range gives the same discrete problem as grid.extent with the same edges.
