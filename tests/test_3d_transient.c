@@ -26,12 +26,7 @@ static void run(int plastic)
   c.lateral_creepage = (rs_history){.kind = RS_HISTORY_CONSTANT, .value = 3e-4};
   c.spin = (rs_history){.kind = RS_HISTORY_CONSTANT, .value = 2e-4};
   c.tangential_force_y = (rs_history){.kind = RS_HISTORY_CONSTANT, .value = 0.0};
-  if (plastic) {
-    c.has_plasticity = 1;
-    c.tau_c0 = 60.0;
-    c.k_tau = c.shear_modulus * 0.3 / 0.7;
-    c.tau_c_min = 6.0;
-  }
+  if (plastic) ts_plasticity(&c, 60.0, 0.3);
   rs_model m;
   rs_msg msg = {{0}};
   if (rs_model_from_case(&m, &c, &msg) != RS_OK) {

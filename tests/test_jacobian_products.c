@@ -28,12 +28,6 @@
 #include "rollsim/steady.h"
 #include "test_support.h"
 
-static double next_random(unsigned long *state) /* uniform in [-1, 1) */
-{
-  *state = *state * 6364136223846793005UL + 1442695040888963407UL;
-  return (double)(*state >> 11) / (double)(1UL << 52) - 1.0;
-}
-
 static double norm_inf(const double *v, int n)
 {
   double m = 0.0;
@@ -79,21 +73,21 @@ static void check_model(const char *name, rs_case *c)
   unsigned long seed = 12345;
   const double ymax = norm_inf(y, neq);
   for (int i = 0; i < neq; i++)
-    y[i] += 0.01 * ymax * next_random(&seed) * (i < m.lay.ncomp * m.grid.n ? 1.0 : 1e-3);
+    y[i] += 0.01 * ymax * ts_random(&seed) * (i < m.lay.ncomp * m.grid.n ? 1.0 : 1e-3);
   const rs_inputs in = ts_inputs(&m, 0.0);
   const double cjs[2] = {0.0, in.velocity / m.grid.dx};
   for (int k = 0; k < 2; k++) {
     const double cj = cjs[k];
     /* yp consistent with a backward-Euler step from y - v0 / cj is not needed: any yp
      * is a point of the residual; take yp = 0 (steady) or a random rate. */
-    for (int i = 0; i < neq; i++) yp[i] = cj > 0.0 ? 0.01 * ymax * cj * next_random(&seed) : 0.0;
+    for (int i = 0; i < neq; i++) yp[i] = cj > 0.0 ? 0.01 * ymax * cj * ts_random(&seed) : 0.0;
     rs_model_jacobian(&m, &w, &in, y, yp, cj, 0, 0, &J);
     memcpy(br, w.branch, (size_t)m.grid.n);
     int used = 0;
     double worst_fd = 0.0, worst_mat = 0.0;
     for (int trial = 0; trial < 20 && used < 5; trial++) {
       for (int i = 0; i < neq; i++)
-        v[i] = next_random(&seed) * (i < m.lay.ncomp * m.grid.n ? ymax : 1e-3 * ymax);
+        v[i] = ts_random(&seed) * (i < m.lay.ncomp * m.grid.n ? ymax : 1e-3 * ymax);
       const double h = 1e-6 * norm_inf(y, neq) / norm_inf(v, neq);
       int same = 1;
       /* central differences at h (into fd) and h/2 (fp - fm), then Richardson */

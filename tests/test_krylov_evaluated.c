@@ -16,12 +16,6 @@
 #include "solve/linsys_krylov.h"
 #include "test_support.h"
 
-static double next_random(unsigned long *state) /* uniform in [-1, 1) */
-{
-  *state = *state * 6364136223846793005UL + 1442695040888963407UL;
-  return (double)(*state >> 11) / (double)(1UL << 52) - 1.0;
-}
-
 static double norm_max(const double *a, int n)
 {
   double d = 0.0;
@@ -58,10 +52,7 @@ int main(void)
 {
   rs_case c;
   ts_ellipse_case(&c, 16, 1.6, -1.0e-3, 5.0e-4, 1.0e-4);
-  c.has_plasticity = 1;
-  c.tau_c0 = 150.0;
-  c.k_tau = c.shear_modulus * 0.3 / 0.7;
-  c.tau_c_min = 15.0;
+  ts_plasticity(&c, 150.0, 0.3);
   rs_model m;
   rs_msg msg = {{0}};
   if (rs_model_from_case(&m, &c, &msg) != RS_OK) {
@@ -92,16 +83,16 @@ int main(void)
                 d.count[RS_ADHESION] > 0 && d.count[RS_SLIP] > 0 && d.count[RS_PLASTIC] > 0);
   unsigned long seed = 2026;
   for (int i = 0; i < neq; i++) {
-    y[i] *= 1.0 + 0.01 * next_random(&seed);
-    y2[i] = y[i] * (1.0 + 0.01 * next_random(&seed));
-    v[i] = next_random(&seed);
+    y[i] *= 1.0 + 0.01 * ts_random(&seed);
+    y2[i] = y[i] * (1.0 + 0.01 * ts_random(&seed));
+    v[i] = ts_random(&seed);
   }
   const rs_inputs in = ts_inputs(&m, 0.0);
   const double rate = in.velocity / m.grid.dx;
   for (int pass = 0; pass < 2; pass++) {
     const double cj = pass == 0 ? 0.0 : rate;
     const char *tag = pass == 0 ? "steady" : "c_j = V/dx";
-    for (int i = 0; i < neq && pass == 1; i++) yp[i] = 1e-3 * rate * next_random(&seed) * y[i];
+    for (int i = 0; i < neq && pass == 1; i++) yp[i] = 1e-3 * rate * ts_random(&seed) * y[i];
     /* 0: direct; 1: after the residual at the point; 2: after a residual elsewhere;
      * 3: after a residual at the point with another c_j */
     int ok = products(&m, &in, y, yp, cj, NULL, 0.0, v, jv[0], pv[0], NULL) == RS_OK &&

@@ -75,6 +75,23 @@ static inline void ts_ellipse_case(rs_case *c, int n, double ratio, double xi, d
   c->tangential_force_y = (rs_history){.kind = RS_HISTORY_CONSTANT, .value = 0.0};
 }
 
+/* Plasticity with the yield limit tau_c0, work hardening k_rel (k_tau = G k_rel / (1 -
+ * k_rel), G the case's shear modulus) and the floor tau_c_min = 0.1 tau_c0. */
+static inline void ts_plasticity(rs_case *c, double tau_c0, double k_rel)
+{
+  c->has_plasticity = 1;
+  c->tau_c0 = tau_c0;
+  c->k_tau = c->shear_modulus * k_rel / (1.0 - k_rel);
+  c->tau_c_min = 0.1 * tau_c0;
+}
+
+/* Deterministic numbers uniform in [-1, 1) (a 64-bit linear congruential generator). */
+static inline double ts_random(unsigned long *state)
+{
+  *state = *state * 6364136223846793005UL + 1442695040888963407UL;
+  return (double)(*state >> 11) / (double)(1UL << 52) - 1.0;
+}
+
 /* The paper's Table-1 contact (cases/meierhofer.yaml): q = 1323.6 N/mm, R = 11.75 mm,
  * G = 77519.4, nu = 0.29, mu = 0.5, grid +-1.05a; tau_c0, k_rel and xi as given. */
 static inline void ts_table1_case(rs_case *c, int cells, double tau_c0, double k_rel, double xi)
@@ -86,10 +103,7 @@ static inline void ts_table1_case(rs_case *c, int cells, double tau_c0, double k
   c->poisson_ratio = 0.29;
   c->mu = 0.5;
   c->creepage.value = xi;
-  c->has_plasticity = 1;
-  c->tau_c0 = tau_c0;
-  c->k_tau = c->shear_modulus * k_rel / (1.0 - k_rel);
-  c->tau_c_min = 0.1 * tau_c0;
+  ts_plasticity(c, tau_c0, k_rel);
 }
 
 /* The inputs of model m at time t. */
