@@ -44,10 +44,10 @@ struct rs_steady {
   int watch;                    /* stop Newton when it stalls (a fallback follows) */
   int stalled;                  /* ... and it did */
   double fhist[STALL_SPAN + 1]; /* residual norms of the last iterates (ring) */
-  /* 3D Newton-Krylov: the forcing term, set before each linear solve (see forcing_term) */
-  int own_forcing;
+  /* 3D Newton-Krylov: residuals through kry (rs_krylov_residual) and the forcing term set
+   * here before each linear solve (forcing_term) */
+  int krylov3d;
   double eta_gamma, eta_prev, eta_next, fnorm_prev;
-  int fused; /* 3D Newton-Krylov: residuals through kry (rs_krylov_residual) */
 };
 
 /* A model evaluation that failed stops KINSOL at once (-1: unrecoverable) and keeps the
@@ -83,9 +83,10 @@ static double *rates(rs_steady *s, const double *u)
  * Measured against KINSOL's choice 2 (30-point creep curves of bench/cases, 2-core VM,
  * paired runs): plastic 44 x 44 cells 193 -> 188 Newton and 1800 -> 1630 GMRES iterations,
  * 8 % less time with the floor, 4 % more with alpha (2: 190 and 1716); elastic 44 x 44 152 ->
- * 179 Newton, 1395 -> 1435 GMRES, the same time (set-ups kept, see the reuse below);
- * plastic 128 x 128 519 -> 528 Newton, 5719 -> 5448 GMRES; elastic 128 x 128 184 -> 204
- * Newton, 15.9 s against 18.9 s with alpha 2. The results agree to 4e-11 of the forces.
+ * 179 Newton (cheap ones: their set-ups are kept, see the reuse below), 1395 -> 1435 GMRES,
+ * alpha (1 + sqrt 5)/2 against 2 the same time; plastic 128 x 128 519 -> 528 Newton, 5719 ->
+ * 5448 GMRES; elastic 128 x 128 184 -> 204 Newton, 15.9 s against 18.9 s with alpha 2. The
+ * results agree to 4e-11 of the forces.
  * KINSOL takes the term at the start of an iteration, before the preconditioner's set-up,
  * so it is set here, at each residual of a trial point (the line search's last trial is
  * the iterate). */
@@ -107,14 +108,14 @@ static int steady_residual(N_Vector u, N_Vector f, void *data)
 {
   rs_steady *s = data;
   const double *y = N_VGetArrayPointer(u);
-  if (s->fused) { /* the residual and, for a set-up at this point, the linearisation */
+  if (s->krylov3d) { /* the residual and, for a set-up at this point, the linearisation */
     if (rs_krylov_residual(&s->kry, &s->in, y, rates(s, y), s->cj, N_VGetArrayPointer(f)) != RS_OK)
       return refused(s, rs_krylov_error(&s->kry));
   } else if (rs_model_residual(s->m, &s->work, &s->in, y, rates(s, y), s->cj,
                                N_VGetArrayPointer(f)) != RS_OK) {
     return refused(s, s->work.msg.text);
   }
-  if (s->own_forcing) forcing_term(s, N_VGetArrayPointer(f));
+  if (s->krylov3d) forcing_term(s, N_VGetArrayPointer(f));
   return 0;
 }
 
@@ -152,7 +153,7 @@ static int krylov_psetup(N_Vector u, N_Vector uscale, N_Vector fval, N_Vector fs
       return -1;
     }
   }
-  if (s->own_forcing) { /* the iterate's norm and the term in force for its linear solve */
+  if (s->krylov3d) { /* the iterate's norm and the term in force for its linear solve */
     KINGetFuncNorm(s->kmem, &s->fnorm_prev);
     s->eta_prev = s->eta_next;
   }
@@ -273,7 +274,7 @@ int rs_steady_create_with(rs_steady **out, const rs_model *m, SUNContext ctx, rs
      * points: the near field's values then change only through the disk laws' curvature
      * and the yield slopes. Measured (30-point creep curves of bench/cases at 44 x 44
      * cells, paired runs, median of 11): plastic 24 of 188 set-ups kept, GMRES iterations
-     * 1635 -> 1630, 2.1 % less time; elastic 89 of 179 kept, 1438 -> 1435, ~15 % less time.
+     * 1635 -> 1630, 2.1 % less time; elastic 89 of 179 kept, 1438 -> 1435, 10 % less time.
      * With up to 2 / 5 / 20 cells on other branches: plastic GMRES 1694 / 1798 / 2097
      * and less gain (1.6 % at 2 cells). */
     if (three) rs_krylov_set_reuse(&s->kry, 2.0, 0);
@@ -317,9 +318,8 @@ int rs_steady_create_with(rs_steady **out, const rs_model *m, SUNContext ctx, rs
      * with it (17 -> 23 Newton iterations), so the elastic model keeps 0.9. */
     if (three) {
       RS_SUN_CHECK(KINSetEtaForm(s->kmem, KIN_ETACONSTANT), msg, what);
-      s->own_forcing = 1;
+      s->krylov3d = 1;
       s->eta_gamma = m->par.plasticity.on ? 0.1 : 0.9;
-      s->fused = 1;
     } else {
       RS_SUN_CHECK(KINSetEtaForm(s->kmem, KIN_ETACONSTANT), msg, what);
       RS_SUN_CHECK(
@@ -360,7 +360,7 @@ static int newton(rs_steady *s, double *y, int plain_iters, int search_iters, rs
     KINSetNumMaxIters(s->kmem, caps[k]);
     memcpy(u, y, (size_t)neq * sizeof *u);
     s->stalled = 0;
-    if (s->own_forcing) { /* KINSOL's initial term for choices 1 and 2 */
+    if (s->krylov3d) { /* KINSOL's initial term for choices 1 and 2 */
       s->eta_next = 0.5;
       s->fnorm_prev = 0.0;
       KINSetEtaConstValue(s->kmem, s->eta_next);
