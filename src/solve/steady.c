@@ -82,8 +82,8 @@ static double *rates(rs_steady *s, const double *u)
  * - alpha = (1 + sqrt 5)/2 (choice 1's) instead of 2.
  * Measured against KINSOL's choice 2 (30-point creep curves of bench/cases, 2-core VM,
  * paired runs): plastic 44 x 44 cells 193 -> 188 Newton and 1800 -> 1630 GMRES iterations,
- * 8 % less time with the floor, 4 % more with alpha (2: 190 and 1716); elastic 44 x 44 152 ->
- * 179 Newton (cheap ones: their set-ups are kept, see the reuse below), 1395 -> 1435 GMRES,
+ * 8 % less time with both, a further 4 % of it from alpha (alpha 2: 190 and 1716); elastic 44 x 44
+ * 152 -> 179 Newton (cheap ones: their set-ups are kept, see the reuse below), 1395 -> 1435 GMRES,
  * alpha (1 + sqrt 5)/2 against 2 the same time; plastic 128 x 128 519 -> 528 Newton, 5719 ->
  * 5448 GMRES; elastic 128 x 128 184 -> 204 Newton, 15.9 s against 18.9 s with alpha 2. The
  * results agree to 4e-11 of the forces.
