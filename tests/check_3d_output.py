@@ -378,6 +378,47 @@ def part_jumps(binary, work):
           halved and halved.group(0))
 
 
+def part_midpoints(binary, work):
+    """Where the steady state is unique a one-thread sweep solves its line from the end
+    with the larger |value| (the order does not change a point beyond Newton's
+    tolerance), and a step over which many cells changed regime (more than 400) is
+    followed by one with an approximate midpoint first; the points stay where the run
+    from rest lands."""
+    path = os.path.join(work, "midpoints.yaml")
+    # 40 x 40 cells: about 1100 in contact, over 400 change regime between -0.3 % and
+    # -0.2 %, so the step to -0.1 % takes a midpoint
+    text = plastic_sweep_case(40, "[0.0, -0.001, -0.002, -0.003]")
+    nc = os.path.join(work, "midpoints.nc")
+    out = run(binary, ["sweep", path, "-o", nc], text, path)
+    mids = re.search(r"intermediate points (\d+)", out)
+    check("a step after many regime changes: an intermediate point",
+          mids is not None and int(mids.group(1)) >= 1, mids and mids.group(0))
+    d = xr.open_dataset(nc)
+    for k, xi in ((0, "0.0"), (1, "-0.001"), (2, "-0.002")):
+        single = os.path.join(work, "single.nc")
+        run(binary, ["run", path, "-o", single, "--quiet", "--set", "rolling.creepage=" + xi,
+                     "--set", "sweep=null"])
+        s = xr.open_dataset(single)
+        for v in ("Fx", "Fy", "Mz"):
+            got, want = float(d[v].values[k]), float(s[v].values[0])
+            # the same root from another start: KINSOL's tolerance (1e-10 of the bound)
+            check(f"midpoints, xi = {xi}: sweep = run from rest: {v} (1e-7 of mu F_n)",
+                  abs(got - want) <= 1e-7 * 3000.0 * (4.0 if v == "Mz" else 1),
+                  f"{got:.10g} vs {want:.10g}")
+        counts = [(int(d[v].values[k]), int(s[v].values[0]))
+                  for v in ("n_adhesion", "n_slip", "n_plastic")]
+        check(f"midpoints, xi = {xi}: regime counts as from rest", all(a == b for a, b in counts),
+              counts)
+    # the order is chosen by |value|: the same values listed the other way round, the same
+    # path and the same points bit for bit
+    rev_nc = os.path.join(work, "midpoints_reversed.nc")
+    run(binary, ["sweep", path, "-o", rev_nc, "--quiet", "--set",
+                 "sweep.rolling.creepage=[-0.003, -0.002, -0.001, 0.0]"])
+    rev = xr.open_dataset(rev_nc)
+    check("one thread, values listed the other way round: the same points bit for bit",
+          all(bool((rev[v].values[::-1] == d[v].values).all()) for v in ("Fx", "Fy", "Mz")))
+
+
 def part_threads(binary, work):
     """solver.threads: 2. A steady sweep solves each continuation line in two parts at
     once (one thread each): the points agree with one thread's to Newton's tolerance and
@@ -452,7 +493,7 @@ def part_threads(binary, work):
         check(f"start-up, threads 2 = threads 1: {v} history (1e-4 of mu F_n)",
               len(a) == len(b) and d <= 1e-4 * 3000.0, f"{d:.2e} N over {len(a)} records")
 
-PARTS = {"threads": part_threads, "jumps": part_jumps, "file": part_file, "restart": part_restart, "sweep": part_sweep, "check": part_check,
+PARTS = {"threads": part_threads, "midpoints": part_midpoints, "jumps": part_jumps, "file": part_file, "restart": part_restart, "sweep": part_sweep, "check": part_check,
          "rig": part_rig}
 
 if __name__ == "__main__":

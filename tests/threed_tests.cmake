@@ -2,7 +2,7 @@
 # every cell of every record, dissipation, restart, sweeps, rollsim check (Hertz closed
 # form, Kalker's table) and the crowned twin-disc rig. Each part is one test.
 set(RS_3D_CHECK ${SYSTEM_PYTHON3} ${RS_TESTS}/check_3d_output.py ${RS_BIN})
-foreach(part file restart sweep jumps threads check rig)
+foreach(part file restart sweep jumps midpoints threads check rig)
   add_test(NAME threed_${part}
            COMMAND ${RS_3D_CHECK} ${CMAKE_CURRENT_BINARY_DIR}/threed/${part} ${part})
 endforeach()

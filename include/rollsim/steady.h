@@ -15,6 +15,12 @@ int rs_steady_create_with(rs_steady **s, const rs_model *m, SUNContext ctx, rs_l
 /* Solve F(y, 0) = 0 at time t (inputs evaluated at t); y holds the initial guess
  * on entry, the solution on return. */
 int rs_steady_solve(rs_steady *s, double t, double *y, rs_stats *stats, rs_msg *msg);
+/* An approximate steady state at time t for a continuation predictor: Newton with the
+ * line search from y until the max norm of the scaled residual is below tol (>= the
+ * solve's own 1e-10), at most max_iters iterations, no fallbacks and no physical check.
+ * Returns RS_OK with the iterate in y, or RS_ERR_SOLVER with y unchanged. */
+int rs_steady_approximate(rs_steady *s, double t, double *y, double tol, int max_iters,
+                          rs_stats *stats);
 void rs_steady_free(rs_steady *s);
 
 #endif

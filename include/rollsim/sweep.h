@@ -21,6 +21,7 @@ typedef struct rs_sweep_result {
   long jac_evals;    /* steady points: Jacobian evaluations */
   long refused;      /* steady solutions refused by the physical check (rs_model_check_steady) */
   long refined;      /* continuation steps halved where the regimes jumped or Newton failed */
+  long midpoints;    /* approximate intermediate points before steps with many regime changes */
   long lines_in_two; /* lines solved in two parts at once (solver.threads: 2) */
   char file[1024];
   char backup[1040]; /* an older file at the output path kept under this name, or "" */

@@ -198,8 +198,8 @@ static int cmd_sweep(const rs_case *c, const cli_args *a, const rs_sweep *sw, co
   printf(": %zu points solved, %zu failed, Newton iterations %ld, wall time %.3f s\n",
          sres.points_done, sres.points_failed, sres.newton_iters, sres.wall_seconds);
   printf("  steady points: linear solves %ld, Jacobian evaluations %ld, continuation steps "
-         "halved %ld\n",
-         sres.lin_solves, sres.jac_evals, sres.refined);
+         "halved %ld, intermediate points %ld\n",
+         sres.lin_solves, sres.jac_evals, sres.refined, sres.midpoints);
   if (sres.lines_in_two > 0)
     printf("  solver.threads 2: %ld continuation line%s solved in two parts at once\n",
            sres.lines_in_two, sres.lines_in_two == 1 ? "" : "s");

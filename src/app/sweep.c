@@ -56,8 +56,10 @@ typedef struct steady_chain {
   double xprev, xlast;   /* their values of the swept input */
   signed char *reg_last, *reg_new; /* regimes of the last solution and of a new one */
   int nsolved;                     /* points solved on this chain */
+  int changed_last;                /* cells whose regime changed over the last step */
   long jac_evals;                  /* of solvers already freed */
   long refined;                    /* continuation steps halved (regime jump or failure) */
+  long midpoints;                  /* approximate midpoints tried (SUBSTEP_CELLS) */
   rs_diag diag;                    /* the point's results, from regimes_of at the last solution */
   int have_diag;                   /* diag is of the solution in hand */
 } steady_chain;
@@ -77,6 +79,7 @@ static void chain_drop(steady_chain *ch)
   ch->yp = ch->yprev = ch->ylast = NULL;
   ch->reg_last = ch->reg_new = NULL;
   ch->nsolved = 0;
+  ch->changed_last = 0;
   if (ch->have_model) rs_model_free(&ch->m);
   ch->have_model = 0;
 }
@@ -139,19 +142,62 @@ static int regimes_of(steady_chain *ch, const double *y, signed char *reg)
   return status;
 }
 
-/* From the last solution on the chain (in y on entry) to the swept input at x: secant
- * predictor y + (y - y_prev)(x - x_last)/(x_last - x_prev) (the tractions follow the
- * input piecewise linearly between changes of the active set), Newton, and the step
- * halved where the regimes jump. On success y and the chain hold the solution at x. */
+/* Where the steady state is unique, a step over which more than SUBSTEP_CELLS cells
+ * changed regime is followed by one with an approximate solution at its midpoint
+ * (rs_steady_approximate to SUBSTEP_TOL, at most SUBSTEP_ITERS Newton iterations), the
+ * next secant predictor's base. Newton's iterations per point grow with the cells that
+ * change regime in a step (the line search cuts the steps while the active set is
+ * searched): along the 30-point plastic creep curve of bench/cases, at most 104 cells per
+ * step and 4-8 iterations per point at 44 x 44 cells, 130-870 and up to 31 iterations at
+ * 128 x 128; with the midpoints there 462 -> 359 Newton iterations (two threads), 19.6 ->
+ * 13.2 s, and every point the same to 2e-12 of the forces. Measured thresholds (128 x 128,
+ * two threads): every step 376 iterations, 200 cells 359, 400 cells 359; up to three
+ * intermediate points (one per 150 / 400 cells): 454 / 375; midpoint tolerance 1e-1 / 3e-2
+ * / 1e-2 / 3e-3: 444 / 361 / 359 / 363. */
+enum { SUBSTEP_CELLS = 400, SUBSTEP_ITERS = 15 };
+#define SUBSTEP_TOL 1e-2
+
+/* The secant predictor y + (y - y_prev)(x - x_last)/(x_last - x_prev) from the last two
+ * solutions on the chain (the tractions follow the input piecewise linearly between
+ * changes of the active set). */
+static void secant(const steady_chain *ch, double x, double *y)
+{
+  if (ch->nsolved < 2 || ch->xlast == ch->xprev) return;
+  const double f = (x - ch->xlast) / (ch->xlast - ch->xprev);
+  for (int i = 0; i < ch->m.lay.neq; i++) y[i] += f * (ch->ylast[i] - ch->yprev[i]);
+}
+
+/* The chain's last two solutions become (last, y at x). */
+static void chain_push(steady_chain *ch, double x, const double *y)
+{
+  const size_t bytes = (size_t)ch->m.lay.neq * sizeof *y;
+  memcpy(ch->yprev, ch->ylast, bytes);
+  memcpy(ch->ylast, y, bytes);
+  ch->xprev = ch->xlast;
+  ch->xlast = x;
+  ch->nsolved++;
+}
+
+/* From the last solution on the chain (in y on entry) to the swept input at x: the
+ * midpoint first after a large change of the active set (SUBSTEP_CELLS), the secant
+ * predictor, Newton, and the step halved where the regimes jump. On success y and the
+ * chain hold the solution at x. */
 static int continue_to(steady_chain *ch, const char *key, double x, double *y, int depth,
                        rs_stats *stats, rs_msg *msg)
 {
   const int neq = ch->m.lay.neq, n = ch->m.grid.n;
-  set_rolling_value(&ch->m, key, x);
-  if (ch->nsolved >= 2 && ch->xlast != ch->xprev) {
-    const double f = (x - ch->xlast) / (ch->xlast - ch->xprev);
-    for (int i = 0; i < neq; i++) y[i] += f * (ch->ylast[i] - ch->yprev[i]);
+  if (depth == 0 && !halve_jumps(&ch->m) && ch->nsolved >= 1 && ch->changed_last > SUBSTEP_CELLS) {
+    const double xmid = 0.5 * (ch->xlast + x);
+    set_rolling_value(&ch->m, key, xmid);
+    secant(ch, xmid, y);
+    ch->midpoints++;
+    if (rs_steady_approximate(ch->st, 0.0, y, SUBSTEP_TOL, SUBSTEP_ITERS, stats) == RS_OK)
+      chain_push(ch, xmid, y); /* the regimes stay those of the last solution */
+    else
+      memcpy(y, ch->ylast, (size_t)neq * sizeof *y);
   }
+  set_rolling_value(&ch->m, key, x);
+  secant(ch, x, y);
   int status = rs_steady_solve(ch->st, 0.0, y, stats, msg);
   int changed = 0;
   if (status == RS_OK && (status = regimes_of(ch, y, ch->reg_new)) == RS_OK)
@@ -168,12 +214,9 @@ static int continue_to(steady_chain *ch, const char *key, double x, double *y, i
     return status;
   }
   if (status != RS_OK) return status;
-  memcpy(ch->yprev, ch->ylast, (size_t)neq * sizeof *y);
-  memcpy(ch->ylast, y, (size_t)neq * sizeof *y);
+  chain_push(ch, x, y);
   memcpy(ch->reg_last, ch->reg_new, (size_t)n);
-  ch->xprev = ch->xlast;
-  ch->xlast = x;
-  ch->nsolved++;
+  ch->changed_last = changed;
   return RS_OK;
 }
 
@@ -399,7 +442,7 @@ int rs_sweep_run(const rs_sweep *s, const char *case_path, const char *const *se
   sweep_writer wr = {
       .s = s, .o = o, .out = out, .res = res, .buf = grid_x ? &buf : NULL, .started = started};
   const rs_sweep_axis *last = &s->axes[s->naxes - 1];
-  long line_refined = 0;
+  long line_refined = 0, line_midpoints = 0;
   for (size_t p = 0; p < s->npoints && status == RS_OK; p++) {
     size_t rest = p;
     int last_index = 0;
@@ -414,8 +457,9 @@ int rs_sweep_run(const rs_sweep *s, const char *case_path, const char *const *se
     rs_diag d;
     int ps = rs_case_load(&c, case_path, all, nsets + s->naxes, &point_msg);
     if (ps == RS_OK && last_index == 0 && !grid_x &&
-        rs_sweep_line_in_two(&c, last->key, (size_t)last->n)) {
-      /* the whole line at once, in two parts (solver.threads: 2) */
+        rs_sweep_line_far_first(&c, last->key, (size_t)last->n)) {
+      /* the whole line at once: far first, in two parts with solver.threads: 2 */
+      const int in_two = rs_sweep_line_in_two(&c, last->key, (size_t)last->n);
       rs_case_free(&c);
       wr.p0 = p;
       wr.msg.text[0] = '\0';
@@ -430,8 +474,9 @@ int rs_sweep_run(const rs_sweep *s, const char *case_path, const char *const *se
                                   .interrupt_flag = o->interrupt_flag,
                                   .stats = &steady_sum,
                                   .refined = &line_refined,
+                                  .midpoints = &line_midpoints,
                                   .in_two = &res->lines_in_two,
-                                  .in_two_known = 1};
+                                  .in_two_known = in_two};
       status = rs_sweep_line_eval(&line, &point_msg);
       if (status != RS_OK)
         rs_msg_set(msg, status, "%s", wr.msg.text[0] ? wr.msg.text : point_msg.text);
@@ -476,6 +521,7 @@ int rs_sweep_run(const rs_sweep *s, const char *case_path, const char *const *se
   res->jac_evals = chain.jac_evals + steady_sum.jac_evals; /* the latter: lines' */
   res->refused = steady_sum.refused;
   res->refined = chain.refined + line_refined;
+  res->midpoints = chain.midpoints + line_midpoints;
   free(y);
   if (status == RS_OK && res->points_failed > 0)
     status =
@@ -556,19 +602,32 @@ static void line_totals(const rs_sweep_line *line, const rs_stats *sum, const st
     line->stats->jac_evals += ch->jac_evals + ch->jac_now;
   }
   if (line->refined) *line->refined += ch->refined;
+  if (line->midpoints) *line->midpoints += ch->midpoints;
+}
+
+int rs_sweep_line_far_first(const rs_case *c, const char *key, size_t n)
+{
+  return n >= 2 && c->mode == RS_MODE_STEADY && rolling_key(key) &&
+         unique_steady(c->dimension, &c->friction, c->has_plasticity, c->k_tau);
 }
 
 int rs_sweep_line_in_two(const rs_case *c, const char *key, size_t n)
 {
 #ifdef _OPENMP
-  return n >= 2 && c->mode == RS_MODE_STEADY && rolling_key(key) && rs_threads(c->threads) == 2 &&
-         unique_steady(c->dimension, &c->friction, c->has_plasticity, c->k_tau);
+  return rs_sweep_line_far_first(c, key, n) && rs_threads(c->threads) == 2;
 #else
   (void)c;
   (void)key;
   (void)n;
   return 0;
 #endif
+}
+
+/* The k-th point of a line solved from its end with the larger |value| (far first). */
+static size_t far_first_point(const rs_sweep_line *line, size_t k)
+{
+  const size_t n = line->n;
+  return fabs(line->values[n - 1]) < fabs(line->values[0]) ? k : n - 1 - k;
 }
 
 #ifdef _OPENMP
@@ -669,21 +728,25 @@ int rs_sweep_line_eval(const rs_sweep_line *line, rs_msg *msg)
   const char **all = calloc((size_t)line->nsets + 1, sizeof *all);
   if (!all) return rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory");
   for (int i = 0; i < line->nsets; i++) all[i] = line->sets[i];
-#ifdef _OPENMP
+  int far = 0;
   if (line->n >= 2 && !line->fields) { /* 3D sweeps store no profiles */
     char assign[320];
     rs_case c;
     rs_msg cm = {{0}};
     if (line_case(line, all, assign, sizeof assign, 0, &c, &cm) == RS_OK) {
+      far = rs_sweep_line_far_first(&c, line->key, line->n);
+#ifdef _OPENMP
       const int in_two = rs_sweep_line_in_two(&c, line->key, line->n);
       rs_case_free(&c);
       if (in_two) {
         free(all);
         return line_in_two(line, msg);
       }
+#else
+      rs_case_free(&c);
+#endif
     }
   }
-#endif
   steady_chain chain = {0};
   if (SUNContext_Create(NULL, &chain.ctx) != 0) {
     free(all);
@@ -692,11 +755,12 @@ int rs_sweep_line_eval(const rs_sweep_line *line, rs_msg *msg)
   double *y = NULL;
   int ny = 0, status = RS_OK;
   rs_stats sum = {0};
-  for (size_t j = 0; j < line->n && status == RS_OK; j++) {
+  for (size_t k = 0; k < line->n && status == RS_OK; k++) {
+    const size_t j = far ? far_first_point(line, k) : k;
     rs_diag d;
     long newton = 0;
     rs_msg pm = {{0}};
-    const int ps = line_point(line, &chain, all, &y, &ny, j, j > 0, 0, &sum, &d, &newton, &pm);
+    const int ps = line_point(line, &chain, all, &y, &ny, j, k > 0, 0, &sum, &d, &newton, &pm);
     if (ps == RS_OK || ps == RS_ERR_SOLVER)
       status = line->point_done(line->ctx, j, ps, &d, newton, pm.text);
     else

@@ -47,6 +47,7 @@ typedef struct dist_run {
   int interrupted;
   rs_stats stats;
   long refined;
+  long midpoints;
   long in_two;
   double started;
   rs_msg msg;
@@ -207,6 +208,7 @@ static int compute_line(dist_run *r, size_t line)
                            .interrupt_flag = r->o->interrupt_flag,
                            .stats = &r->stats,
                            .refined = &r->refined,
+                           .midpoints = &r->midpoints,
                            .in_two = &r->in_two};
   rs_msg m = {{0}};
   const int st = rs_sweep_line_eval(&L, &m);
@@ -401,6 +403,7 @@ done:
   res->jac_evals = r.stats.jac_evals;
   res->refused = r.stats.refused;
   res->refined = r.refined;
+  res->midpoints = r.midpoints;
   res->lines_in_two = r.in_two;
   res->wall_seconds = rs_wall_clock() - r.started;
   free(grid_x);

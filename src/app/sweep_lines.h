@@ -35,20 +35,27 @@ typedef struct rs_sweep_line {
   volatile sig_atomic_t *interrupt_flag; /* transient points stop at it */
   rs_stats *stats;                       /* steady solver statistics added, or NULL */
   long *refined;                         /* continuation steps halved added, or NULL */
+  long *midpoints;                       /* approximate midpoints tried added, or NULL */
   long *in_two;                          /* 1 added when solved in two parts, or NULL */
   int in_two_known; /* 1: the caller found rs_sweep_line_in_two true (not checked again) */
 } rs_sweep_line;
 
-/* Solve the points key = values[j], j = 0..n-1, in order (each warm-started from the
- * previous one), calling point_done after each; or in two parts at once when
+/* Solve the points key = values[j], j = 0..n-1, each warm-started from the one solved
+ * before it, calling point_done after each: in order; from the end with the larger
+ * |value| when rs_sweep_line_far_first says so; or in two parts at once when
  * rs_sweep_line_in_two says so. Returns RS_OK, the callback's status, or an
  * input/internal error's (message in msg). */
 int rs_sweep_line_eval(const rs_sweep_line *line, rs_msg *msg);
 
-/* Whether a line of n points of case c (its first point) along key is solved in two
- * parts at once, on two threads: solver.threads 2 with two threads available, steady 3D
- * points along a rolling input, and a unique steady state (Coulomb friction, no
- * softening), where a point solved from rest equals the one continuation reaches. */
+/* Whether a line of n points of case c (its first point) along key is solved from its
+ * end with the larger |value| back (a creep curve from saturation towards rest): steady
+ * points along a rolling input with a unique steady state (3D, Coulomb friction, no
+ * softening), where a point does not depend on the path to it beyond Newton's
+ * tolerance and the plastic Newton iterations are fewer in that direction. */
+int rs_sweep_line_far_first(const rs_case *c, const char *key, size_t n);
+
+/* Whether such a line (rs_sweep_line_far_first) is solved in two parts at once, on two
+ * threads: solver.threads 2 with two threads available. */
 int rs_sweep_line_in_two(const rs_case *c, const char *key, size_t n);
 
 #endif

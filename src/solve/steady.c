@@ -48,6 +48,7 @@ struct rs_steady {
    * here before each linear solve (forcing_term) */
   int krylov3d;
   double eta_gamma, eta_prev, eta_next, fnorm_prev;
+  double ftol; /* the Newton iteration's stopping test: FNORM_TOL, or an approximate solve's */
 };
 
 /* A model evaluation that failed stops KINSOL at once (-1: unrecoverable) and keeps the
@@ -99,7 +100,7 @@ static void forcing_term(rs_steady *s, const double *f)
   if (!(fnorm > 0.0) || !(s->fnorm_prev > 0.0)) return;
   const double safe = g * pow(s->eta_prev, alpha);
   double eta = fmax(g * pow(fnorm / s->fnorm_prev, alpha), safe < 0.1 ? 0.0 : safe);
-  eta = fmin(fmax(eta, 0.5 * FNORM_TOL / fnorm), 0.9);
+  eta = fmin(fmax(eta, 0.5 * s->ftol / fnorm), 0.9);
   KINSetEtaConstValue(s->kmem, eta);
   s->eta_next = eta;
 }
@@ -334,7 +335,8 @@ int rs_steady_create_with(rs_steady **out, const rs_model *m, SUNContext ctx, rs
   RS_SUN_CHECK(KINSetMaxSetupCalls(s->kmem, 1), msg, what);    /* exact Newton */
   RS_SUN_CHECK(KINSetMaxNewtonStep(s->kmem, 1e12), msg, what); /* steps from p = 0 are large */
   /* relative to the largest bound; roundoff is ~1e-12 */
-  RS_SUN_CHECK(KINSetFuncNormTol(s->kmem, FNORM_TOL), msg, what);
+  s->ftol = FNORM_TOL;
+  RS_SUN_CHECK(KINSetFuncNormTol(s->kmem, s->ftol), msg, what);
   RS_SUN_CHECK(KINSetScaledStepTol(s->kmem, 1e-13), msg, what);
   RS_SUN_CHECK(KINSetErrHandlerFn(s->kmem, rs_sundials_silent, NULL), msg, what);
   *out = s;
@@ -381,7 +383,7 @@ static int newton(rs_steady *s, double *y, int plain_iters, int search_iters, rs
     if (flag == KIN_STEP_LT_STPTOL) { /* stalled: accept only a small residual */
       double fnorm = INFINITY;
       KINGetFuncNorm(s->kmem, &fnorm);
-      if (fnorm > 1e-9) flag = KIN_LINESEARCH_NONCONV;
+      if (fnorm > fmax(1e-9, s->ftol)) flag = KIN_LINESEARCH_NONCONV;
     }
     if (flag >= 0 || s->failed) break;
   }
@@ -734,4 +736,24 @@ int rs_steady_solve(rs_steady *s, double t, double *y, rs_stats *stats, rs_msg *
   if (cold && rs_friction_varies(&m->par.friction) && !m->par.force_control)
     return continuation(s, y, stats, msg);
   return solve_at(s, y, stats, msg);
+}
+
+int rs_steady_approximate(rs_steady *s, double t, double *y, double tol, int max_iters,
+                          rs_stats *stats)
+{
+  const rs_model *m = s->m;
+  rs_model_inputs_at(m, t, &s->in);
+  if (!(s->in.velocity > 0.0) || !(tol >= FNORM_TOL) || max_iters < 1) return RS_ERR_SOLVER;
+  s->failed = 0;
+  s->cj = 0.0;
+  s->ftol = tol;
+  KINSetFuncNormTol(s->kmem, tol);
+  s->watch = 1;
+  int kin_flag = 0;
+  int status = newton(s, y, 0, max_iters, stats, &kin_flag);
+  s->watch = 0;
+  s->ftol = FNORM_TOL;
+  KINSetFuncNormTol(s->kmem, FNORM_TOL);
+  if (s->failed) status = RS_ERR_SOLVER; /* the model refused a point: the caller solves */
+  return status;
 }
