@@ -142,18 +142,20 @@ static int regimes_of(steady_chain *ch, const double *y, signed char *reg)
   return status;
 }
 
-/* Where the steady state is unique, a step over which more than SUBSTEP_CELLS cells
- * changed regime is followed by one with an approximate solution at its midpoint
- * (rs_steady_approximate to SUBSTEP_TOL, at most SUBSTEP_ITERS Newton iterations), the
- * next secant predictor's base. Newton's iterations per point grow with the cells that
- * change regime in a step (the line search cuts the steps while the active set is
- * searched): along the 30-point plastic creep curve of bench/cases, at most 104 cells per
- * step and 4-8 iterations per point at 44 x 44 cells, 130-870 and up to 31 iterations at
- * 128 x 128; with the midpoints there 462 -> 359 Newton iterations (two threads), 19.6 ->
- * 13.2 s, and every point the same to 2e-12 of the forces. Measured thresholds (128 x 128,
- * two threads): every step 376 iterations, 200 cells 359, 400 cells 359; up to three
- * intermediate points (one per 150 / 400 cells): 454 / 375; midpoint tolerance 1e-1 / 3e-2
- * / 1e-2 / 3e-3: 444 / 361 / 359 / 363. */
+/* Plastic models where the steady state is unique: a step over which more than
+ * SUBSTEP_CELLS cells changed regime is followed by one with an approximate solution at
+ * its midpoint (rs_steady_approximate to SUBSTEP_TOL, at most SUBSTEP_ITERS Newton
+ * iterations), the next secant predictor's base. The plastic Newton iterations per point
+ * grow with the cells that change regime in a step (the line search cuts the steps while
+ * the active set of the plastic unknowns is searched): along the 30-point plastic creep
+ * curve of bench/cases, at most 104 cells per step and 4-8 iterations per point at 44 x 44
+ * cells, 130-870 and up to 31 iterations at 128 x 128; with the midpoints there 462 -> 359
+ * Newton iterations (two threads), 19.6 -> 13.2 s, and every point the same to 2e-12 of the
+ * forces. Measured thresholds (128 x 128, two threads): every step 376 iterations, 200 cells
+ * 359, 400 cells 359; up to three intermediate points (one per 150 / 400 cells): 454 / 375;
+ * midpoint tolerance 1e-1 / 3e-2 / 1e-2 / 3e-3: 444 / 361 / 359 / 363. Elastic models take
+ * such steps whole: the elastic curve at 128 x 128 took 204 Newton iterations without
+ * midpoints and 280 with them (16.3 against 19.6 s). */
 enum { SUBSTEP_CELLS = 400, SUBSTEP_ITERS = 15 };
 #define SUBSTEP_TOL 1e-2
 
@@ -186,7 +188,8 @@ static int continue_to(steady_chain *ch, const char *key, double x, double *y, i
                        rs_stats *stats, rs_msg *msg)
 {
   const int neq = ch->m.lay.neq, n = ch->m.grid.n;
-  if (depth == 0 && !halve_jumps(&ch->m) && ch->nsolved >= 1 && ch->changed_last > SUBSTEP_CELLS) {
+  if (depth == 0 && !halve_jumps(&ch->m) && ch->m.par.plasticity.on && ch->nsolved >= 1 &&
+      ch->changed_last > SUBSTEP_CELLS) {
     const double xmid = 0.5 * (ch->xlast + x);
     set_rolling_value(&ch->m, key, xmid);
     secant(ch, xmid, y);
@@ -456,10 +459,10 @@ int rs_sweep_run(const rs_sweep *s, const char *case_path, const char *const *se
     rs_case c;
     rs_diag d;
     int ps = rs_case_load(&c, case_path, all, nsets + s->naxes, &point_msg);
+    const int in_two = ps == RS_OK && rs_sweep_line_in_two(&c, last->key, (size_t)last->n);
     if (ps == RS_OK && last_index == 0 && !grid_x &&
-        rs_sweep_line_far_first(&c, last->key, (size_t)last->n)) {
-      /* the whole line at once: far first, in two parts with solver.threads: 2 */
-      const int in_two = rs_sweep_line_in_two(&c, last->key, (size_t)last->n);
+        (in_two || rs_sweep_line_far_first(&c, last->key, (size_t)last->n))) {
+      /* the whole line at once: in two parts (solver.threads: 2), or far first */
       rs_case_free(&c);
       wr.p0 = p;
       wr.msg.text[0] = '\0';
@@ -605,16 +608,22 @@ static void line_totals(const rs_sweep_line *line, const rs_stats *sum, const st
   if (line->midpoints) *line->midpoints += ch->midpoints;
 }
 
-int rs_sweep_line_far_first(const rs_case *c, const char *key, size_t n)
+/* A line of steady points along a rolling input where the steady state is unique. */
+static int unique_line(const rs_case *c, const char *key, size_t n)
 {
   return n >= 2 && c->mode == RS_MODE_STEADY && rolling_key(key) &&
          unique_steady(c->dimension, &c->friction, c->has_plasticity, c->k_tau);
 }
 
+int rs_sweep_line_far_first(const rs_case *c, const char *key, size_t n)
+{
+  return unique_line(c, key, n) && c->has_plasticity;
+}
+
 int rs_sweep_line_in_two(const rs_case *c, const char *key, size_t n)
 {
 #ifdef _OPENMP
-  return rs_sweep_line_far_first(c, key, n) && rs_threads(c->threads) == 2;
+  return unique_line(c, key, n) && rs_threads(c->threads) == 2;
 #else
   (void)c;
   (void)key;

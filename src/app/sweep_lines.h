@@ -49,13 +49,16 @@ int rs_sweep_line_eval(const rs_sweep_line *line, rs_msg *msg);
 
 /* Whether a line of n points of case c (its first point) along key is solved from its
  * end with the larger |value| back (a creep curve from saturation towards rest): steady
- * points along a rolling input with a unique steady state (3D, Coulomb friction, no
- * softening), where a point does not depend on the path to it beyond Newton's
- * tolerance and the plastic Newton iterations are fewer in that direction. */
+ * plastic points along a rolling input with a unique steady state (3D, Coulomb friction,
+ * no softening), where a point does not depend on the path to it beyond Newton's
+ * tolerance and the plastic Newton iterations are fewer in that direction (elastic
+ * lines: more, so they run in order). */
 int rs_sweep_line_far_first(const rs_case *c, const char *key, size_t n);
 
-/* Whether such a line (rs_sweep_line_far_first) is solved in two parts at once, on two
- * threads: solver.threads 2 with two threads available. */
+/* Whether a line of n points of case c along key is solved in two parts at once, on two
+ * threads, each part from its end with the larger |value| back: steady points along a
+ * rolling input with a unique steady state (elastic or plastic), solver.threads 2 with
+ * two threads available. */
 int rs_sweep_line_in_two(const rs_case *c, const char *key, size_t n);
 
 #endif
