@@ -344,20 +344,18 @@ sweep:
 """
 
 
-def part_jumps(binary, work):
-    """A coarse 3D sweep leaps across changes of regime where the steady state is unique
-    (Coulomb friction, no softening) and lands where the run from rest lands; with
-    softening (several steady states) continuation still halves such steps."""
-    path = os.path.join(work, "jumps.yaml")
-    text = plastic_sweep_case(24, "[0.0, -0.001, -0.002]")
-    nc = os.path.join(work, "jumps.nc")
-    out = run(binary, ["sweep", path, "-o", nc], text, path)
-    halved = re.search(r"continuation steps halved (\d+)", out)
-    # 0 -> -0.1 %: about 330 of the 384 cells in contact leave adhesion (slip, yield)
-    check("hardening: the steps of 0.1 % taken whole (no halving)",
-          halved is not None and int(halved.group(1)) == 0, halved and halved.group(0))
-    d = xr.open_dataset(nc)
-    for k, xi in ((1, "-0.001"), (2, "-0.002")):
+def sweep_count(binary, args, counter, text=None, path=None):
+    """Run `rollsim sweep` and read one count of its summary ("continuation steps halved
+    N"): (N or None, the matched text)."""
+    out = run(binary, ["sweep"] + args, text, path)
+    m = re.search(counter + r" (\d+)", out)
+    return (int(m.group(1)) if m else None), (m.group(0) if m else "no " + counter)
+
+
+def check_as_from_rest(binary, work, path, d, points, label, plastic=False):
+    """Points k of the sweep file d (creepage xi) against a run of the same case from
+    rest at each: the forces to KINSOL's tolerance and the regime counts exactly."""
+    for k, xi in points:
         single = os.path.join(work, "single.nc")
         run(binary, ["run", path, "-o", single, "--quiet", "--set", "rolling.creepage=" + xi,
                      "--set", "sweep=null"])
@@ -365,17 +363,32 @@ def part_jumps(binary, work):
         for v in ("Fx", "Fy", "Mz"):
             got, want = float(d[v].values[k]), float(s[v].values[0])
             # the same root from another start: KINSOL's tolerance (1e-10 of the bound)
-            check(f"hardening, xi = {xi}: leap = run from rest: {v} (1e-7 of mu F_n)",
+            check(f"{label}, xi = {xi}: sweep = run from rest: {v} (1e-7 of mu F_n)",
                   abs(got - want) <= 1e-7 * 3000.0 * (4.0 if v == "Mz" else 1),
                   f"{got:.10g} vs {want:.10g}")
         counts = [(int(d[v].values[k]), int(s[v].values[0]))
                   for v in ("n_adhesion", "n_slip", "n_plastic")]
-        check(f"hardening, xi = {xi}: leap = run from rest: regime counts (adhesion, slip, "
-              "plastic)", all(a == b for a, b in counts) and counts[2][0] > 0, counts)
-    out = run(binary, ["sweep", path, "-o", nc, "--set", "plasticity.k_rel=-0.3"])
-    halved = re.search(r"continuation steps halved (\d+)", out)
-    check("softening: the same step halved", halved is not None and int(halved.group(1)) > 0,
-          halved and halved.group(0))
+        check(f"{label}, xi = {xi}: sweep = run from rest: regime counts (adhesion, slip, "
+              "plastic)", all(a == b for a, b in counts) and (counts[2][0] > 0 or not plastic),
+              counts)
+
+
+def part_jumps(binary, work):
+    """A coarse 3D sweep leaps across changes of regime where the steady state is unique
+    (Coulomb friction, no softening) and lands where the run from rest lands; with
+    softening (several steady states) continuation still halves such steps."""
+    path = os.path.join(work, "jumps.yaml")
+    text = plastic_sweep_case(24, "[0.0, -0.001, -0.002]")
+    nc = os.path.join(work, "jumps.nc")
+    halved, said = sweep_count(binary, [path, "-o", nc], "continuation steps halved", text, path)
+    # 0 -> -0.1 %: about 330 of the 384 cells in contact leave adhesion (slip, yield)
+    check("hardening: the steps of 0.1 % taken whole (no halving)", halved == 0, said)
+    d = xr.open_dataset(nc)
+    check_as_from_rest(binary, work, path, d, ((1, "-0.001"), (2, "-0.002")),
+                       "hardening, leap", plastic=True)
+    halved, said = sweep_count(binary, [path, "-o", nc, "--set", "plasticity.k_rel=-0.3"],
+                               "continuation steps halved")
+    check("softening: the same step halved", halved is not None and halved > 0, said)
 
 
 def part_midpoints(binary, work):
@@ -389,26 +402,12 @@ def part_midpoints(binary, work):
     # -0.2 %, so the step to -0.1 % takes a midpoint
     text = plastic_sweep_case(40, "[0.0, -0.001, -0.002, -0.003]")
     nc = os.path.join(work, "midpoints.nc")
-    out = run(binary, ["sweep", path, "-o", nc], text, path)
-    mids = re.search(r"intermediate points (\d+)", out)
+    mids, said = sweep_count(binary, [path, "-o", nc], "intermediate points", text, path)
     check("a step after many regime changes: an intermediate point",
-          mids is not None and int(mids.group(1)) >= 1, mids and mids.group(0))
+          mids is not None and mids >= 1, said)
     d = xr.open_dataset(nc)
-    for k, xi in ((0, "0.0"), (1, "-0.001"), (2, "-0.002")):
-        single = os.path.join(work, "single.nc")
-        run(binary, ["run", path, "-o", single, "--quiet", "--set", "rolling.creepage=" + xi,
-                     "--set", "sweep=null"])
-        s = xr.open_dataset(single)
-        for v in ("Fx", "Fy", "Mz"):
-            got, want = float(d[v].values[k]), float(s[v].values[0])
-            # the same root from another start: KINSOL's tolerance (1e-10 of the bound)
-            check(f"midpoints, xi = {xi}: sweep = run from rest: {v} (1e-7 of mu F_n)",
-                  abs(got - want) <= 1e-7 * 3000.0 * (4.0 if v == "Mz" else 1),
-                  f"{got:.10g} vs {want:.10g}")
-        counts = [(int(d[v].values[k]), int(s[v].values[0]))
-                  for v in ("n_adhesion", "n_slip", "n_plastic")]
-        check(f"midpoints, xi = {xi}: regime counts as from rest", all(a == b for a, b in counts),
-              counts)
+    check_as_from_rest(binary, work, path, d, ((0, "0.0"), (1, "-0.001"), (2, "-0.002")),
+                       "midpoints")
     # the order is chosen by |value|: the same values listed the other way round, the same
     # path and the same points bit for bit
     rev_nc = os.path.join(work, "midpoints_reversed.nc")
