@@ -671,9 +671,8 @@ static int line_in_two(const rs_sweep_line *line, rs_msg *msg)
 {
   rs_elastic3d_planner_thread_safe(); /* each worker creates models and coarse grids */
   const size_t n = line->n, split = in_two_split(n);
-  /* in the order from the smaller |value| end: worker 0 takes split - 1 down to 0, worker
-   * 1 n - 1 down to split */
-  const int flip = fabs(line->values[n - 1]) < fabs(line->values[0]);
+  /* point k in the order from the smaller |value| end (far_first_point(line, n - 1 - k)):
+   * worker 0 takes split - 1 down to 0, worker 1 n - 1 down to split */
   size_t next[2] = {split, n};
   int status = RS_OK;
 #pragma omp parallel num_threads(2)
@@ -695,7 +694,7 @@ static int line_in_two(const rs_sweep_line *line, rs_msg *msg)
           status = rs_msg_set(msg, mine, "out of memory (sweep line in two parts)");
         if (status == RS_OK && next[w] > (w == 0 ? 0 : split)) {
           const size_t k = --next[w];
-          j = flip ? n - 1 - k : k;
+          j = far_first_point(line, n - 1 - k);
           take = 1;
         }
       }
@@ -744,15 +743,15 @@ int rs_sweep_line_eval(const rs_sweep_line *line, rs_msg *msg)
     rs_msg cm = {{0}};
     if (line_case(line, all, assign, sizeof assign, 0, &c, &cm) == RS_OK) {
       far = rs_sweep_line_far_first(&c, line->key, line->n);
-#ifdef _OPENMP
-      const int in_two = rs_sweep_line_in_two(&c, line->key, line->n);
+      const int in_two = rs_sweep_line_in_two(&c, line->key, line->n); /* 0 without OpenMP */
       rs_case_free(&c);
+#ifdef _OPENMP
       if (in_two) {
         free(all);
         return line_in_two(line, msg);
       }
 #else
-      rs_case_free(&c);
+      (void)in_two;
 #endif
     }
   }
