@@ -137,6 +137,13 @@ typedef struct rs_work {
    * displacement when the cell's yield rows fix the traction; mu for a memory row). */
   unsigned char *dense;
   int *pivot;
+  /* The local Jacobians' present entries, cell by cell (cell i: jv_start[i] to
+   * jv_start[i + 1]), each its local row times 16 plus its variable, and its value: the J v
+   * products read these instead of every entry of law[i].jac [n + 1, n rows vars]; allocated
+   * by the first linearisation (NULL in a work that only evaluates). */
+  int *jv_start;
+  unsigned char *jv_idx;
+  double *jv_val;
   double r;                   /* scaling of the last evaluation */
   double r_yield;             /* and of its yield projections (3D) */
   const double *pn, *bound;   /* pressure and traction bound at the time of the last evaluation */

@@ -266,6 +266,9 @@ void rs_work_free(rs_work *w)
   free(w->law);
   free(w->dense);
   free(w->pivot);
+  free(w->jv_start);
+  free(w->jv_idx);
+  free(w->jv_val);
   free(w->pn_buf);
   free(w->bound_buf);
   free(w->inflow);
