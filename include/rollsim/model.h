@@ -199,6 +199,16 @@ int rs_model_linearise_residual(const rs_model *m, rs_work *w, const rs_inputs *
 int rs_model_jacobian_assemble(const rs_model *m, const rs_work *w, const rs_inputs *in, double cj,
                                int band, int band_y, rs_csr *J);
 
+/* The 3D near field's couplings between neighbouring lines along x, for a line
+ * Gauss-Seidel preconditioner: the entries that a near field with band_y = 1 adds to the
+ * one with band_y = 0 (rows of the cells of line iy, the tractions of lines iy - 1 and
+ * iy + 1 within `band` cells in x), applied as r <- r - J_y x to the rows of the cells of
+ * lines iy0 <= iy < iy1 whose parity is `parity`; x is read on the lines of the other
+ * parity only. w holds the linearisation (rs_model_linearise). */
+enum { RS_YLINK_MAX_BAND = 8 };
+void rs_model_near_ylink(const rs_model *m, const rs_work *w, const rs_inputs *in, double cj,
+                         int band, int parity, int iy0, int iy1, const double *x, double *r);
+
 /* Jv = (dF/dy + cj dF/dy') v, exactly (up to roundoff), at the point of the last
  * rs_model_jacobian or rs_model_linearise on w; wlin is scratch for the kinematics of v (a second
  * work). */

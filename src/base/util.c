@@ -15,6 +15,24 @@ double rs_wall_clock(void)
   return ts.tv_sec + 1e-9 * ts.tv_nsec;
 }
 
+int rs_thread_num(void)
+{
+#ifdef _OPENMP
+  return omp_get_thread_num();
+#else
+  return 0;
+#endif
+}
+
+int rs_thread_count(void)
+{
+#ifdef _OPENMP
+  return omp_get_num_threads();
+#else
+  return 1;
+#endif
+}
+
 int rs_threads(int requested)
 {
 #ifdef _OPENMP

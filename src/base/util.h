@@ -18,5 +18,9 @@ double rs_wall_clock(void);
  * what OpenMP allows (OMP_NUM_THREADS; 1 under MPI with several ranks). The results do not
  * depend on it. */
 int rs_threads(int requested);
+/* Inside a parallel region: this thread's number and the team's size (0 and 1 without
+ * OpenMP). */
+int rs_thread_num(void);
+int rs_thread_count(void);
 
 #endif

@@ -69,8 +69,36 @@ static void add(double *v, unsigned char *has, double x)
 }
 
 /* Traction row of cell I, local row lr: its entries in the columns of the tractions. */
+/* The 3D near field along x (band_y = 0, two components) as a table of
+ * d(c, b, kx) = cj A - a (A(kx + 1) - A(kx)) (+ the layer on the cell and its upstream
+ * neighbour), t[(2 c + b) (2 band + 1) + band + kx]: the same sums as the loop below, once
+ * per assembly instead of once per row. */
+typedef struct line_table {
+  int on;
+  double t[4][2 * RS_YLINK_MAX_BAND + 1];
+} line_table;
+
+static void line_table_make(const rs_model *m, double cj, double a, int band, int band_y,
+                            line_table *tab)
+{
+  tab->on =
+      m->el.dim == 3 && m->lay.ncomp == 2 && band > 0 && band_y == 0 && band <= RS_YLINK_MAX_BAND;
+  if (!tab->on) return;
+  const double c3 = m->layer_flex;
+  for (int c = 0; c < 2; c++)
+    for (int b = 0; b < 2; b++)
+      for (int kx = -band; kx <= band; kx++) {
+        const double A0 = rs_elastic_op_coef(&m->el, c, b, kx, 0);
+        double d = cj * A0 - a * (rs_elastic_op_coef(&m->el, c, b, kx + 1, 0) - A0);
+        if (b == c && kx == 0) d += (cj + a) * c3;
+        if (b == c && kx == -1) d -= a * c3; /* the upstream neighbour I + 1 */
+        tab->t[2 * c + b][band + kx] = d;
+      }
+}
+
 static void put_traction_columns(const rs_model *m, const rs_law_out *o, int lr, int I, double cj,
-                                 double a, int band, int band_y, int keep_own, rs_csr *J)
+                                 double a, int band, int band_y, int keep_own,
+                                 const line_table *tab, rs_csr *J)
 {
   const rs_layout *L = &m->lay;
   const int nc = L->ncomp, nx = m->grid.nx;
@@ -117,6 +145,24 @@ static void put_traction_columns(const rs_model *m, const rs_law_out *o, int lr,
       J->rowptr[J->nrows + 1] = k0 + (jx1 - jx0);
       continue;
     }
+    if (tab->on && band > 0) { /* 3D along x: the table */
+      const int v0 = rs_law_var_vs(2, 0), v1 = rs_law_var_vs(2, 1);
+      const double j0 = o->present[lr][v0] ? o->jac[lr][v0] : 0.0;
+      const double j1 = o->present[lr][v1] ? o->jac[lr][v1] : 0.0;
+      const int p0 = o->present[lr][v0], p1 = o->present[lr][v1];
+      const double *t0 = tab->t[b] + band + ix, *t1 = tab->t[2 + b] + band + ix;
+      const int64_t k0 = J->rowptr[J->nrows + 1], c0 = rs_at_p(L, b, iy * nx);
+      for (int jx = jx0; jx < jx1; jx++) {
+        double v = 0.0; /* the sum of the loop below, term for term */
+        if (p0) v += j0 * t0[-jx];
+        if (p1) v += j1 * t1[-jx];
+        if (has_p && jx == ix) v += cp;
+        J->col[k0 + jx - jx0] = c0 + jx;
+        J->val[k0 + jx - jx0] = v;
+      }
+      J->rowptr[J->nrows + 1] = k0 + (jx1 - jx0);
+      continue;
+    }
     for (int jy = jy0; jy < jy1; jy++)
       for (int jx = jx0; jx < jx1; jx++) {
         const int Jc = jy * nx + jx, kx = ix - jx, ky = iy - jy;
@@ -152,7 +198,8 @@ static void put_traction_columns(const rs_model *m, const rs_law_out *o, int lr,
 
 /* One residual row of cell I (local row lr), all columns, sorted. */
 static void put_row(const rs_model *m, const rs_law_out *o, int lr, int I, const rs_inputs *in,
-                    double cj, int band, int band_y, int traction_row, rs_csr *J)
+                    double cj, int band, int band_y, int traction_row, const line_table *tab,
+                    rs_csr *J)
 {
   const rs_layout *L = &m->lay;
   const int nc = L->ncomp;
@@ -173,7 +220,8 @@ static void put_row(const rs_model *m, const rs_law_out *o, int lr, int I, const
   const int out3 =
       traction_row && band > 0 && m->el.dim == 3 && cj == 0.0 && (o->branch & RS_BRANCH_EXTERIOR);
   const int fixed = traction_row && band > 0 && !out3, fixed3 = band > 0 && m->el.dim == 3 && !out3;
-  put_traction_columns(m, o, lr, I, cj, a, traction_row && !out3 ? band : 0, band_y, fixed3, J);
+  put_traction_columns(m, o, lr, I, cj, a, traction_row && !out3 ? band : 0, band_y, fixed3, tab,
+                       J);
   sparse_cols s;
   memset(&s, 0, sizeof s);
   for (int c = 0; c < nc; c++) {
@@ -305,17 +353,19 @@ int rs_model_jacobian_assemble(const rs_model *m, const rs_work *w, const rs_inp
   J->nrows = 0;
   J->cap_rows = L->neq;
   J->rowptr[0] = J->rowptr[1] = 0;
+  line_table tab;
+  line_table_make(m, cj, in->velocity / m->grid.dx, band, band_y, &tab);
   for (int c = 0; c < nc; c++)
     for (int i = 0; i < n; i++)
-      put_row(m, &w->law[i], rs_law_row_f(c), i, in, cj, band, band_y, 1, J);
+      put_row(m, &w->law[i], rs_law_row_f(c), i, in, cj, band, band_y, 1, &tab, J);
   for (int c = 0; c < nc; c++)
     for (int i = 0; i < n; i++)
-      put_row(m, &w->law[i], rs_law_row_pl(nc, c), i, in, cj, band, band_y, 0, J);
+      put_row(m, &w->law[i], rs_law_row_pl(nc, c), i, in, cj, band, band_y, 0, &tab, J);
   for (int i = 0; i < n; i++)
-    put_row(m, &w->law[i], rs_law_row_star(nc), i, in, cj, band, band_y, 0, J);
+    put_row(m, &w->law[i], rs_law_row_star(nc), i, in, cj, band, band_y, 0, &tab, J);
   /* Memory rows: in the near field like traction rows (a pattern fixed by the contact) */
   for (int i = 0; i < n && L->memory; i++)
-    put_row(m, &w->law[i], rs_law_row_mu(nc), i, in, cj, band, band_y, 1, J);
+    put_row(m, &w->law[i], rs_law_row_mu(nc), i, in, cj, band, band_y, 1, &tab, J);
   /* Force rows: (dA sum p_k - F_k)/(2a). */
   const double force_row = m->grid.area / m->contact_measure;
   for (int k = 0; k < L->nextra; k++) {
@@ -324,6 +374,61 @@ int rs_model_jacobian_assemble(const rs_model *m, const rs_work *w, const rs_inp
     csr_next_row(J);
   }
   return RS_OK;
+}
+
+void rs_model_near_ylink(const rs_model *m, const rs_work *w, const rs_inputs *in, double cj,
+                         int band, int parity, int iy0, int iy1, const double *x, double *r)
+{
+  const rs_layout *L = &m->lay;
+  const int nc = L->ncomp, nx = m->grid.nx, ny = m->grid.ny, nb = 2 * band + 1;
+  const double a = in->velocity / m->grid.dx;
+  if (nc != 2 || band > RS_YLINK_MAX_BAND) return;
+  /* d(c, b, kx, ky) = cj A - a (A(kx + 1) - A(kx)), as put_traction_columns; ky = +-1 carries
+   * no layer term (the layer acts on the cell and its upstream neighbour only) */
+  double st[2][2][2][2 * RS_YLINK_MAX_BAND + 1];
+  for (int c = 0; c < 2; c++)
+    for (int b = 0; b < 2; b++)
+      for (int s = 0; s < 2; s++)
+        for (int q = 0; q < nb; q++) {
+          const int kx = q - band, ky = s == 0 ? 1 : -1;
+          const double A0 = rs_elastic_op_coef(&m->el, c, b, kx, ky);
+          st[c][b][s][q] = cj * A0 - a * (rs_elastic_op_coef(&m->el, c, b, kx + 1, ky) - A0);
+        }
+  const int nrow = L->memory ? 3 : 2;
+  for (int iy = iy0 + ((iy0 & 1) != parity); iy < iy1; iy += 2)
+    for (int ix = 0; ix < nx; ix++) {
+      const int I = iy * nx + ix;
+      const rs_law_out *o = &w->law[I];
+      /* rows as put_row: a steady assembly keeps the exterior's own entries only */
+      if (cj == 0.0 && (o->branch & RS_BRANCH_EXTERIOR)) continue;
+      int any = 0;
+      for (int k = 0; k < nrow; k++) {
+        const int lr = k < 2 ? rs_law_row_f(k) : rs_law_row_mu(nc);
+        for (int c = 0; c < 2; c++) any |= o->present[lr][rs_law_var_vs(nc, c)];
+      }
+      if (!any) continue;
+      double sum[2] = {0.0, 0.0};
+      const int jx0 = ix > band ? ix - band : 0, jx1 = ix + band < nx ? ix + band + 1 : nx;
+      for (int s = 0; s < 2; s++) {
+        const int jy = s == 0 ? iy - 1 : iy + 1;
+        if (jy < 0 || jy >= ny) continue;
+        for (int b = 0; b < 2; b++) {
+          const double *xb = x + rs_at_p(L, b, jy * nx);
+          for (int jx = jx0; jx < jx1; jx++) {
+            const int q = ix - jx + band;
+            sum[0] += st[0][b][s][q] * xb[jx];
+            sum[1] += st[1][b][s][q] * xb[jx];
+          }
+        }
+      }
+      for (int k = 0; k < nrow; k++) {
+        const int lr = k < 2 ? rs_law_row_f(k) : rs_law_row_mu(nc);
+        double v = 0.0;
+        for (int c = 0; c < 2; c++)
+          if (o->present[lr][rs_law_var_vs(nc, c)]) v += o->jac[lr][rs_law_var_vs(nc, c)] * sum[c];
+        r[k < 2 ? rs_at_p(L, k, I) : rs_at_mu(L, I)] -= v;
+      }
+    }
 }
 
 int rs_model_jacobian(const rs_model *m, rs_work *w, const rs_inputs *in, const double *y,

@@ -13,6 +13,8 @@ int rs_krylov_create(rs_krylov *k, const rs_model *m, int band, int band_y)
   k->m = m;
   k->band = band;
   k->band_y = band_y;
+  k->ylink = m->el.dim == 3 && m->lay.ncomp == 2 && band_y == 0 && m->lay.nextra == 0 &&
+             band <= RS_YLINK_MAX_BAND;
   const int neq = m->lay.neq;
   k->cap = rs_model_jac_capacity(m, band, band_y);
   k->near.rowptr = malloc(((size_t)neq + 1) * sizeof *k->near.rowptr);
@@ -50,7 +52,7 @@ static void part_free(rs_klu_part *p)
 
 void rs_krylov_free(rs_krylov *k)
 {
-  for (int q = 0; q < 2; q++) part_free(&k->part[q]);
+  for (int q = 0; q < 4; q++) part_free(&k->part[q]);
   rs_work_free(&k->w);
   rs_work_free(&k->wlin);
   free(k->near.rowptr);
@@ -102,45 +104,51 @@ static int part_defaults(rs_klu_part *p)
   return RS_OK;
 }
 
-/* Two parts when two threads factor and solve them side by side (solver.threads: 2): 3D,
- * a band along x only, no unknowns beyond the cells' (a prescribed force couples every
- * traction), a grid large enough, and no entry coupling the two halves of rows. Part q
- * holds the unknowns of the cells in rows iy >= q ny/2 (q = 0, 1), in their global order.
- * KLU then orders each half on its own: the results agree with one thread's to roundoff.
- * Measured (2-core VM, 30-point plastic creep curve of bench/cases at 44 x 44 cells):
- * 1.05 -> 0.92 s, with the FFT products' two components in parallel as well (1.20 s with
- * one thread); with one thread the split cost 6 % (gathers), so one thread keeps the whole. */
+/* The parts the near field is factored in. Two halves of the grid's rows (q = 0, 1) when
+ * two threads factor and solve them side by side (solver.threads: 2): 3D, a band along x
+ * only, no unknowns beyond the cells' (a prescribed force couples every traction), a grid
+ * large enough, and no entry coupling the two halves of rows. Part q holds the unknowns of
+ * the cells in rows iy >= q ny/2, in their global order. KLU then orders each half on its
+ * own: the results agree with one thread's to roundoff. Measured (2-core VM, 30-point
+ * plastic creep curve of bench/cases at 44 x 44 cells): 1.05 -> 0.92 s, with the FFT
+ * products' two components in parallel as well (1.20 s with one thread); with one thread
+ * the split cost 6 % (gathers), so one thread keeps the whole.
+ * With the line Gauss-Seidel (k->ylink) the lines of even and of odd iy are parts of their
+ * own (colour 0 and 1), each split in halves with two threads: part colour nsplit + half. */
 enum { SPLIT_MIN_UNKNOWNS = 4000 };
 static int split_parts(rs_krylov *k)
 {
   const rs_model *m = k->m;
   const rs_layout *L = &m->lay;
   const int64_t neq = L->neq, *rp = k->near.rowptr, *ci = k->near.col;
-  if (rs_threads(m->par.threads) < 2 || m->el.dim != 3 || k->band_y != 0 || L->nextra != 0 ||
-      neq < SPLIT_MIN_UNKNOWNS)
-    return 0;
+  const int lines = m->el.dim == 3 && k->band_y == 0 && L->nextra == 0;
+  const int halves = lines && rs_threads(m->par.threads) >= 2 && neq >= SPLIT_MIN_UNKNOWNS;
+  const int colours = lines && k->ylink && m->grid.ny >= 2;
+  if (!halves && !colours) return 0;
   const int nx = m->grid.nx, half = m->grid.ny / 2, n = L->n;
+  const int nsplit = halves ? 2 : 1, nparts = (colours ? 2 : 1) * nsplit;
   unsigned char *owner = malloc((size_t)neq);
   int64_t *loc = malloc((size_t)neq * sizeof *loc);
-  int ok = owner && loc, count[2] = {0, 0};
+  int ok = owner && loc, count[4] = {0, 0, 0, 0};
   for (int64_t g = 0; ok && g < neq; g++) {
-    owner[g] = (unsigned char)((g % n) / nx >= half);
+    const int iy = (int)((g % n) / nx);
+    owner[g] = (unsigned char)((colours ? (iy & 1) * nsplit : 0) + (halves ? iy >= half : 0));
     loc[g] = count[owner[g]]++;
   }
   for (int64_t r = 0; ok && r < neq; r++)
     for (int64_t e = rp[r]; e < rp[r + 1] && ok; e++) ok = owner[ci[e]] == owner[r];
-  for (int q = 0; ok && q < 2; q++) {
+  for (int q = 0; ok && q < nparts; q++) {
     rs_klu_part *p = &k->part[q];
     int64_t nnz = 0;
     for (int64_t r = 0; r < neq; r++)
       if (owner[r] == q) nnz += rp[r + 1] - rp[r];
     p->n = count[q];
-    p->idx = malloc((size_t)p->n * sizeof *p->idx);
+    p->idx = malloc(((size_t)p->n + 1) * sizeof *p->idx);
     p->rowptr = malloc(((size_t)p->n + 1) * sizeof *p->rowptr);
     p->col = malloc((size_t)(nnz > 0 ? nnz : 1) * sizeof *p->col);
     p->src = malloc((size_t)(nnz > 0 ? nnz : 1) * sizeof *p->src);
     p->val = malloc((size_t)(nnz > 0 ? nnz : 1) * sizeof *p->val);
-    p->x = malloc((size_t)p->n * sizeof *p->x);
+    p->x = malloc(((size_t)p->n + 1) * sizeof *p->x);
     ok = p->idx && p->rowptr && p->col && p->src && p->val && p->x && part_defaults(p) == RS_OK;
     if (!ok) break;
     int64_t i = 0, e2 = 0;
@@ -157,19 +165,25 @@ static int split_parts(rs_krylov *k)
   }
   free(owner);
   free(loc);
-  if (!ok)
-    for (int q = 0; q < 2; q++) part_free(&k->part[q]);
-  return ok;
+  if (!ok) {
+    for (int q = 0; q < 4; q++) part_free(&k->part[q]);
+    return 0;
+  }
+  k->nsplit = nsplit;
+  return nparts;
 }
 
 /* A new pattern: the parts and KLU's symbolic analysis of each. */
 static int analyse(rs_krylov *k)
 {
-  for (int q = 0; q < 2; q++) part_free(&k->part[q]);
+  for (int q = 0; q < 4; q++) part_free(&k->part[q]);
   k->nparts = 0;
-  if (split_parts(k)) {
-    k->nparts = 2;
+  k->nsplit = 1;
+  const int parts = split_parts(k);
+  if (parts) {
+    k->nparts = parts;
   } else {
+    k->ylink = 0; /* the whole matrix: no lines of their own */
     rs_klu_part *p = &k->part[0];
     if (part_defaults(p) != RS_OK) return RS_ERR_INTERNAL;
     p->n = k->m->lay.neq;
@@ -278,9 +292,10 @@ static int setup_linearised(rs_krylov *k, const rs_inputs *in, double cj)
   }
   k->factorizations++;
   int failed = 0;
-  if (k->nparts == 2) {
-#pragma omp parallel for num_threads(rs_threads(k->m->par.threads)) schedule(static, 1) reduction(+ : failed)
-    for (int q = 0; q < 2; q++) { /* each part's values from the assembled matrix, factored */
+  if (k->nparts >= 2) {
+#pragma omp parallel for num_threads(k->nsplit) schedule(static, 1) reduction(+ : failed)
+    for (int q = 0; q < k->nparts;
+         q++) { /* each part's values from the assembled matrix, factored */
       rs_klu_part *p = &k->part[q];
       for (int64_t e = 0; e < p->rowptr[p->n]; e++) p->val[e] = k->near.val[p->src[e]];
       failed += factor_part(p, same) != RS_OK;
@@ -319,11 +334,23 @@ static int solve_part(rs_klu_part *p, double *v)
 
 int rs_krylov_psolve(rs_krylov *k, double *v)
 {
-  if (k->nparts == 2) {
-    int failed = 0;
-#pragma omp parallel for num_threads(rs_threads(k->m->par.threads)) schedule(static, 1) reduction(+ : failed)
-    for (int q = 0; q < 2; q++) failed += solve_part(&k->part[q], v) != RS_OK;
-    return failed ? RS_ERR_SOLVER : RS_OK;
+  if (k->nparts == 1) return solve_part(&k->part[0], v);
+  if (k->nparts < 2) return RS_ERR_SOLVER;
+  const int T = k->nsplit, colours = k->nparts / T, ny = k->m->grid.ny;
+  int failed = 0;
+#pragma omp parallel num_threads(T) reduction(+ : failed)
+  {
+    const int tid = rs_thread_num(), nth = rs_thread_count();
+    for (int c = 0; c < colours; c++) {
+      if (c > 0) { /* the odd lines' right-hand side: their couplings to the even lines */
+#pragma omp barrier
+        for (int h = tid; h < T; h += nth) {
+          const int iy0 = h == 0 ? 0 : ny / 2, iy1 = h == T - 1 ? ny : ny / 2;
+          rs_model_near_ylink(k->m, &k->w, &k->in, k->cj, k->band, 1, iy0, iy1, v, v);
+        }
+      }
+      for (int h = tid; h < T; h += nth) failed += solve_part(&k->part[c * T + h], v) != RS_OK;
+    }
   }
-  return k->nparts == 1 ? solve_part(&k->part[0], v) : RS_ERR_SOLVER;
+  return failed ? RS_ERR_SOLVER : RS_OK;
 }

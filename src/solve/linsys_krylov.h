@@ -5,7 +5,8 @@
  *
  * Preconditioner: the Jacobian's near field (rs_model_jacobian with a band: tractions
  * of cells at most `band` cells away, on a pattern that does not depend on the contact
- * regimes, so that KLU's symbolic analysis is done once), factored by KLU. The far field
+ * regimes, so that KLU's symbolic analysis is done once), factored by KLU; in 3D its
+ * lines along x, coupled by a red-black Gauss-Seidel sweep across y (below). The far field
  * is never assembled: O(n band) entries. */
 #ifndef ROLLSIM_LINSYS_KRYLOV_H
 #define ROLLSIM_LINSYS_KRYLOV_H
@@ -15,9 +16,10 @@
 
 #include "rollsim/model.h"
 
-/* A part of the near field that KLU factors on its own: the whole matrix, or (two
- * threads) the unknowns of the cells of half of the grid's rows, which the near field does
- * not couple to the other half (its band runs along x only). */
+/* A part of the near field that KLU factors on its own: the whole matrix, or the unknowns
+ * of the cells of a set of the grid's rows (lines along x), which the near field does not
+ * couple to the others (its band runs along x only): the lines of even or of odd iy (line
+ * Gauss-Seidel), each in two halves of the grid when two threads solve them side by side. */
 typedef struct rs_klu_part {
   int64_t n;             /* unknowns */
   int64_t *idx;          /* global index of each local unknown (NULL: the whole matrix) */
@@ -40,8 +42,11 @@ typedef struct rs_krylov {
   /* near-field matrix, CSR (KLU factors it as the CSC of its transpose) */
   rs_csr near;
   int64_t *rp_old, *ci_old, cap, nnz_old;
-  rs_klu_part part[2];
+  rs_klu_part part[4];
   int nparts; /* 0 before the first analysis */
+  /* line Gauss-Seidel (3D, a band along x only, no extras; see below): parts
+   * colour nsplit + half, nsplit = 2 with two threads */
+  int ylink, nsplit;
   long setups, analyses, products;
   long factorizations; /* KLU numeric factorisations and refactorisations */
   long reuses;         /* setups that kept the factored near field */
@@ -66,6 +71,24 @@ typedef struct rs_krylov {
  * wall time 0.28 -> 0.12 s, 1.47 -> 0.40 s, 76 -> 4.1 s. Half widths 2 and 8 in x: within
  * 15 % of 4; the whole line (64): 4x slower at 128 x 128. */
 enum { RS_KRYLOV_BAND_3D = 4, RS_KRYLOV_BAND_3D_Y = 0 };
+/* 3D: the lines are coupled by one red-black Gauss-Seidel sweep across y. P^-1 solves the
+ * lines of even iy on their own, subtracts their couplings to the lines of odd iy (the
+ * Jacobian's entries at iy +- 1 within the band in x: rs_model_near_ylink, applied from a
+ * table, nothing assembled), then solves the odd lines: P is the near field plus those
+ * couplings, block lower triangular, and costs one triangular solve of the near field and
+ * a product of O(n band). Truncating the kernel in y inside the factored matrix made the
+ * preconditioner ill-conditioned (see above); here the couplings only enter a right-hand
+ * side. Measured (GMRES iterations, Newton unchanged but for one): 30-point plastic creep
+ * curve of bench/cases at 44 x 44 cells 1557 -> 1032, elastic 1338 -> 937, the plastic
+ * ellipse at 128 x 128 cells 441 -> 294, the 44 x 44 plastic start-up (rtol 3e-3)
+ * 3017 -> 2243. Measured and not kept, on the 44 x 44 plastic curve: the symmetric sweep
+ * (even, odd, even) 1008 for half a solve more; a forward sweep line by line with the
+ * couplings to the previous 1 / 2 / 4 lines 1372 / 1282 / 1166; red-black with the
+ * couplings up to iy +- 3 / 5 1211 / 1475; couplings over 0 / 2 / 6 / 8 cells in x 1829 /
+ * 1125 / 991 / 986 (4: 1032); the omitted kernel lumped into the line (sums over
+ * iy +- 1 ... 43) 1615 ... 4661; a multiplicative coarse correction on aggregates of
+ * 4 x 4 / 2 x 2 cells 1328 / 1104 (elastic 847 / 709, but at 128 x 128 cells 516 / 461
+ * against 441: the slow modes are not smooth ones). */
 /* The transient's near field: half width 2 along x. With c_j in the iteration matrix the
  * GMRES count hardly depends on the width (elastic start-up over 10 contact lengths at
  * 44 x 44 cells, rtol 1e-3: 10157, 10449, 10485 and 10623 GMRES iterations with half
