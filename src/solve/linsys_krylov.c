@@ -45,7 +45,6 @@ static void part_free(rs_klu_part *p)
     free(p->val);
   }
   free(p->idx);
-  free(p->src);
   free(p->x);
   memset(p, 0, sizeof *p);
 }
@@ -146,20 +145,16 @@ static int split_parts(rs_krylov *k)
     p->idx = malloc(((size_t)p->n + 1) * sizeof *p->idx);
     p->rowptr = malloc(((size_t)p->n + 1) * sizeof *p->rowptr);
     p->col = malloc((size_t)(nnz > 0 ? nnz : 1) * sizeof *p->col);
-    p->src = malloc((size_t)(nnz > 0 ? nnz : 1) * sizeof *p->src);
     p->val = malloc((size_t)(nnz > 0 ? nnz : 1) * sizeof *p->val);
     p->x = malloc(((size_t)p->n + 1) * sizeof *p->x);
-    ok = p->idx && p->rowptr && p->col && p->src && p->val && p->x && part_defaults(p) == RS_OK;
+    ok = p->idx && p->rowptr && p->col && p->val && p->x && part_defaults(p) == RS_OK;
     if (!ok) break;
     int64_t i = 0, e2 = 0;
     p->rowptr[0] = 0;
     for (int64_t r = 0; r < neq; r++) {
       if (owner[r] != q) continue;
       p->idx[i] = r;
-      for (int64_t e = rp[r]; e < rp[r + 1]; e++, e2++) {
-        p->col[e2] = loc[ci[e]];
-        p->src[e2] = e;
-      }
+      for (int64_t e = rp[r]; e < rp[r + 1]; e++, e2++) p->col[e2] = loc[ci[e]];
       p->rowptr[++i] = e2;
     }
   }
@@ -297,7 +292,10 @@ static int setup_linearised(rs_krylov *k, const rs_inputs *in, double cj)
     for (int q = 0; q < k->nparts;
          q++) { /* each part's values from the assembled matrix, factored */
       rs_klu_part *p = &k->part[q];
-      for (int64_t e = 0; e < p->rowptr[p->n]; e++) p->val[e] = k->near.val[p->src[e]];
+      const int64_t *grp = k->near.rowptr; /* a part's rows are whole global rows */
+      for (int64_t i = 0; i < p->n; i++)
+        memcpy(p->val + p->rowptr[i], k->near.val + grp[p->idx[i]],
+               (size_t)(p->rowptr[i + 1] - p->rowptr[i]) * sizeof *p->val);
       failed += factor_part(p, same) != RS_OK;
     }
   } else {

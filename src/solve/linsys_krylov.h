@@ -24,7 +24,6 @@ typedef struct rs_klu_part {
   int64_t n;             /* unknowns */
   int64_t *idx;          /* global index of each local unknown (NULL: the whole matrix) */
   int64_t *rowptr, *col; /* local CSR pattern */
-  int64_t *src;          /* the global entry of each local entry */
   double *val, *x;       /* local values, solve buffer */
   int borrowed;          /* rowptr, col, val are the assembled matrix's (the whole) */
   klu_l_common common;
