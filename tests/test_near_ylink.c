@@ -145,7 +145,8 @@ int main(void)
       TS_CHECK(rs_krylov_setup(&k, &in, y, yp, cj) == RS_OK, "%s: set-up", tag);
       printf("%s, %d thread(s): %d parts, line Gauss-Seidel %s\n", tag, threads, k.nparts,
              k.ylink ? "on" : "off");
-      TS_CHECK(k.ylink && k.nparts == 2 * rs_threads(threads), "%s: parts %d", tag, k.nparts);
+      TS_CHECK(k.ylink && k.nparts == m.grid.ny && k.nsplit == rs_threads(threads), "%s: parts %d",
+               tag, k.nparts);
       memcpy(x, r, (size_t)neq * sizeof *x);
       TS_CHECK(rs_krylov_psolve(&k, x) == RS_OK, "%s: psolve", tag);
       /* (J_0 + Y) x - r, J_0 as factored (k.near), Y from J1 */

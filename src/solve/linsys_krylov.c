@@ -49,9 +49,19 @@ static void part_free(rs_klu_part *p)
   memset(p, 0, sizeof *p);
 }
 
+static void parts_free(rs_krylov *k)
+{
+  for (int q = 0; q < k->nparts; q++) part_free(&k->part[q]);
+  free(k->part);
+  free(k->refresh);
+  k->part = NULL;
+  k->refresh = NULL;
+  k->nparts = 0;
+}
+
 void rs_krylov_free(rs_krylov *k)
 {
-  for (int q = 0; q < 4; q++) part_free(&k->part[q]);
+  parts_free(k);
   rs_work_free(&k->w);
   rs_work_free(&k->wlin);
   free(k->near.rowptr);
@@ -81,7 +91,7 @@ static unsigned char cell_signature(const rs_law_out *o)
  * perturbs the preconditioner locally, whatever the grid's size, so the bound is a count. */
 static int factor_current(const rs_krylov *k, const rs_inputs *in, double cj)
 {
-  if (!(k->reuse_ratio > 1.0) || !k->part[0].num || k->stale) return 0;
+  if (!(k->reuse_ratio > 1.0) || k->nparts == 0 || !k->part[0].num || k->stale) return 0;
   const double s = cj + fabs(in->velocity) / k->m->grid.dx;
   if (!(s <= k->reuse_ratio * k->rate_factored && k->rate_factored <= k->reuse_ratio * s)) return 0;
   int changed = 0;
@@ -103,82 +113,82 @@ static int part_defaults(rs_klu_part *p)
   return RS_OK;
 }
 
-/* The parts the near field is factored in. Two halves of the grid's rows (q = 0, 1) when
- * two threads factor and solve them side by side (solver.threads: 2): 3D, a band along x
- * only, no unknowns beyond the cells' (a prescribed force couples every traction), a grid
- * large enough, and no entry coupling the two halves of rows. Part q holds the unknowns of
- * the cells in rows iy >= q ny/2, in their global order. KLU then orders each half on its
- * own: the results agree with one thread's to roundoff. Measured (2-core VM, 30-point
- * plastic creep curve of bench/cases at 44 x 44 cells): 1.05 -> 0.92 s, with the FFT
- * products' two components in parallel as well (1.20 s with one thread); with one thread
- * the split cost 6 % (gathers), so one thread keeps the whole.
- * With the line Gauss-Seidel (k->ylink) the lines of even and of odd iy are parts of their
- * own (colour 0 and 1), each split in halves with two threads: part colour nsplit + half. */
+/* The parts the near field is factored in: in 3D with a band along x only and no unknowns
+ * beyond the cells' (a prescribed force couples every traction) one per line of cells
+ * along x (the unknowns of the cells of row iy, in their global order), which the near
+ * field does not couple to each other; else the whole matrix. Per line, KLU orders each on
+ * its own (the results agree with the whole matrix's to roundoff), the line Gauss-Seidel
+ * takes the lines by colour, two threads take the halves iy < ny/2 and iy >= ny/2 of the
+ * grid (solver.threads: 2, grids from SPLIT_MIN_UNKNOWNS unknowns), and a set-up refactors
+ * only the lines whose cells changed branch (setup_linearised). */
 enum { SPLIT_MIN_UNKNOWNS = 4000 };
-static int split_parts(rs_krylov *k)
+static int line_parts(rs_krylov *k)
 {
   const rs_model *m = k->m;
   const rs_layout *L = &m->lay;
   const int64_t neq = L->neq, *rp = k->near.rowptr, *ci = k->near.col;
-  const int lines = m->el.dim == 3 && k->band_y == 0 && L->nextra == 0;
-  const int halves = lines && rs_threads(m->par.threads) >= 2 && neq >= SPLIT_MIN_UNKNOWNS;
-  const int colours = lines && k->ylink && m->grid.ny >= 2;
-  if (!halves && !colours) return 0;
-  const int nx = m->grid.nx, half = m->grid.ny / 2, n = L->n;
-  const int nsplit = halves ? 2 : 1, nparts = (colours ? 2 : 1) * nsplit;
-  unsigned char *owner = malloc((size_t)neq);
-  int64_t *loc = malloc((size_t)neq * sizeof *loc);
-  int ok = owner && loc, count[4] = {0, 0, 0, 0};
+  if (!(m->el.dim == 3 && k->band_y == 0 && L->nextra == 0 && k->ylink && m->grid.ny >= 2))
+    return 0;
+  const int nx = m->grid.nx, ny = m->grid.ny, n = L->n;
+  int *owner = malloc((size_t)neq * sizeof *owner);
+  int64_t *loc = malloc((size_t)neq * sizeof *loc), *count = calloc((size_t)ny, sizeof *count),
+          *nnz = calloc((size_t)ny, sizeof *nnz);
+  k->part = calloc((size_t)ny, sizeof *k->part);
+  k->refresh = calloc((size_t)ny, 1);
+  int ok = owner && loc && count && nnz && k->part && k->refresh;
+  if (ok) k->nparts = ny;
   for (int64_t g = 0; ok && g < neq; g++) {
-    const int iy = (int)((g % n) / nx);
-    owner[g] = (unsigned char)((colours ? (iy & 1) * nsplit : 0) + (halves ? iy >= half : 0));
+    owner[g] = (int)((g % n) / nx);
     loc[g] = count[owner[g]]++;
   }
-  for (int64_t r = 0; ok && r < neq; r++)
+  for (int64_t r = 0; ok && r < neq; r++) {
+    nnz[owner[r]] += rp[r + 1] - rp[r];
     for (int64_t e = rp[r]; e < rp[r + 1] && ok; e++) ok = owner[ci[e]] == owner[r];
-  for (int q = 0; ok && q < nparts; q++) {
+  }
+  for (int q = 0; ok && q < ny; q++) {
     rs_klu_part *p = &k->part[q];
-    int64_t nnz = 0;
-    for (int64_t r = 0; r < neq; r++)
-      if (owner[r] == q) nnz += rp[r + 1] - rp[r];
+    const int64_t nz = nnz[q] > 0 ? nnz[q] : 1;
     p->n = count[q];
     p->idx = malloc(((size_t)p->n + 1) * sizeof *p->idx);
     p->rowptr = malloc(((size_t)p->n + 1) * sizeof *p->rowptr);
-    p->col = malloc((size_t)(nnz > 0 ? nnz : 1) * sizeof *p->col);
-    p->val = malloc((size_t)(nnz > 0 ? nnz : 1) * sizeof *p->val);
+    p->col = malloc((size_t)nz * sizeof *p->col);
+    p->val = malloc((size_t)nz * sizeof *p->val);
     p->x = malloc(((size_t)p->n + 1) * sizeof *p->x);
     ok = p->idx && p->rowptr && p->col && p->val && p->x && part_defaults(p) == RS_OK;
-    if (!ok) break;
-    int64_t i = 0, e2 = 0;
-    p->rowptr[0] = 0;
-    for (int64_t r = 0; r < neq; r++) {
-      if (owner[r] != q) continue;
-      p->idx[i] = r;
-      for (int64_t e = rp[r]; e < rp[r + 1]; e++, e2++) p->col[e2] = loc[ci[e]];
-      p->rowptr[++i] = e2;
-    }
+    if (ok) p->rowptr[0] = 0;
+  }
+  /* the rows of each line in global order (one pass over the matrix) */
+  for (int q = 0; ok && q < ny; q++) count[q] = 0;
+  for (int64_t r = 0; ok && r < neq; r++) {
+    rs_klu_part *p = &k->part[owner[r]];
+    const int64_t i = count[owner[r]]++, e0 = p->rowptr[i];
+    p->idx[i] = r;
+    for (int64_t e = rp[r]; e < rp[r + 1]; e++) p->col[e0 + e - rp[r]] = loc[ci[e]];
+    p->rowptr[i + 1] = e0 + rp[r + 1] - rp[r];
   }
   free(owner);
   free(loc);
+  free(count);
+  free(nnz);
   if (!ok) {
-    for (int q = 0; q < 4; q++) part_free(&k->part[q]);
+    parts_free(k);
     return 0;
   }
-  k->nsplit = nsplit;
-  return nparts;
+  k->nsplit = rs_threads(m->par.threads) >= 2 && neq >= SPLIT_MIN_UNKNOWNS ? 2 : 1;
+  return ny;
 }
 
 /* A new pattern: the parts and KLU's symbolic analysis of each. */
 static int analyse(rs_krylov *k)
 {
-  for (int q = 0; q < 4; q++) part_free(&k->part[q]);
-  k->nparts = 0;
+  parts_free(k);
   k->nsplit = 1;
-  const int parts = split_parts(k);
-  if (parts) {
-    k->nparts = parts;
-  } else {
+  if (!line_parts(k)) {
     k->ylink = 0; /* the whole matrix: no lines of their own */
+    k->part = calloc(1, sizeof *k->part);
+    k->refresh = calloc(1, 1);
+    if (!k->part || !k->refresh) return RS_ERR_INTERNAL;
+    k->nparts = 1;
     rs_klu_part *p = &k->part[0];
     if (part_defaults(p) != RS_OK) return RS_ERR_INTERNAL;
     p->n = k->m->lay.neq;
@@ -186,7 +196,6 @@ static int analyse(rs_krylov *k)
     p->col = k->near.col;
     p->val = k->near.val;
     p->borrowed = 1;
-    k->nparts = 1;
   }
   for (int q = 0; q < k->nparts; q++) {
     rs_klu_part *p = &k->part[q];
@@ -267,9 +276,13 @@ static int setup_linearised(rs_krylov *k, const rs_inputs *in, double cj)
     k->reuses++;
     return RS_OK;
   }
+  /* Lines: only those with cells on other branches than at their own factorisation are
+   * refactored, when the others may serve (reuse on, the same cj + V/dx, not declared
+   * stale, the same pattern); their values then lag as in a set-up kept whole. */
+  const double rate = cj + fabs(in->velocity) / m->grid.dx;
+  int all = !(k->reuse_ratio > 1.0) || k->stale || rate != k->rate_factored || k->nparts == 0;
   k->stale = 0;
-  for (int i = 0; i < m->lay.n; i++) k->sig_factored[i] = cell_signature(&k->w.law[i]);
-  k->rate_factored = cj + fabs(in->velocity) / m->grid.dx;
+  k->rate_factored = rate;
   int status = rs_model_jacobian_assemble(m, &k->w, in, cj, k->band, k->band_y, &k->near);
   if (status != RS_OK) return status;
   const int64_t *rp = k->near.rowptr, *ci = k->near.col;
@@ -284,19 +297,29 @@ static int setup_linearised(rs_krylov *k, const rs_inputs *in, double cj)
     status = analyse(k);
     k->analyses++;
     if (status != RS_OK) return status;
+    all = 1;
+  }
+  const int nx = m->grid.nx, lines = k->nparts > 1;
+  for (int q = 0; q < k->nparts; q++) {
+    const int i0 = lines ? q * nx : 0, i1 = lines ? i0 + nx : m->lay.n;
+    int changed = all || !k->part[q].num;
+    for (int i = i0; i < i1 && !changed; i++)
+      changed = cell_signature(&k->w.law[i]) != k->sig_factored[i];
+    k->refresh[q] = (unsigned char)changed;
+    for (int i = i0; i < i1 && changed; i++) k->sig_factored[i] = cell_signature(&k->w.law[i]);
+    k->lines_factored += changed;
   }
   k->factorizations++;
   int failed = 0;
-  if (k->nparts >= 2) {
-#pragma omp parallel for num_threads(k->nsplit) schedule(static, 1) reduction(+ : failed)
-    for (int q = 0; q < k->nparts;
-         q++) { /* each part's values from the assembled matrix, factored */
+  if (lines) {
+#pragma omp parallel for num_threads(k->nsplit) schedule(static) reduction(+ : failed)
+    for (int q = 0; q < k->nparts; q++) { /* each line's values from the assembled rows */
       rs_klu_part *p = &k->part[q];
-      const int64_t *grp = k->near.rowptr; /* a part's rows are whole global rows */
+      if (!k->refresh[q]) continue;
       for (int64_t i = 0; i < p->n; i++)
-        memcpy(p->val + p->rowptr[i], k->near.val + grp[p->idx[i]],
+        memcpy(p->val + p->rowptr[i], k->near.val + rp[p->idx[i]],
                (size_t)(p->rowptr[i + 1] - p->rowptr[i]) * sizeof *p->val);
-      failed += factor_part(p, same) != RS_OK;
+      failed += factor_part(p, same && p->num) != RS_OK;
     }
   } else {
     failed = factor_part(&k->part[0], same) != RS_OK;
@@ -334,12 +357,12 @@ int rs_krylov_psolve(rs_krylov *k, double *v)
 {
   if (k->nparts == 1) return solve_part(&k->part[0], v);
   if (k->nparts < 2) return RS_ERR_SOLVER;
-  const int T = k->nsplit, colours = k->nparts / T, ny = k->m->grid.ny;
+  const int T = k->nsplit, ny = k->m->grid.ny;
   int failed = 0;
 #pragma omp parallel num_threads(T) reduction(+ : failed)
   {
     const int tid = rs_thread_num(), nth = rs_thread_count();
-    for (int c = 0; c < colours; c++) {
+    for (int c = 0; c < 2; c++) {
       if (c > 0) { /* the odd lines' right-hand side: their couplings to the even lines */
 #pragma omp barrier
         for (int h = tid; h < T; h += nth) {
@@ -347,7 +370,11 @@ int rs_krylov_psolve(rs_krylov *k, double *v)
           rs_model_near_ylink(k->m, &k->w, &k->in, k->cj, k->band, 1, iy0, iy1, v, v);
         }
       }
-      for (int h = tid; h < T; h += nth) failed += solve_part(&k->part[c * T + h], v) != RS_OK;
+      for (int h = tid; h < T; h += nth) {
+        const int iy0 = h == 0 ? 0 : ny / 2, iy1 = h == T - 1 ? ny : ny / 2;
+        for (int iy = iy0 + ((iy0 & 1) != c); iy < iy1; iy += 2)
+          failed += solve_part(&k->part[iy], v) != RS_OK;
+      }
     }
   }
   return failed ? RS_ERR_SOLVER : RS_OK;
