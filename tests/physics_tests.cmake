@@ -21,7 +21,8 @@ rs_unit_test(test_jacobian_products)
 rs_unit_test(test_krylov_evaluated)
 target_include_directories(test_krylov_evaluated PRIVATE ${PROJECT_SOURCE_DIR}/src)
 # The 3D preconditioner's line Gauss-Seidel: its couplings against the general assembly,
-# its solve against the block lower-triangular system it inverts (one and two threads).
+# its solve against the block lower-triangular system it inverts (one and two threads),
+# the assembly of chosen lines against the whole assembly.
 rs_unit_test(test_near_ylink)
 target_include_directories(test_near_ylink PRIVATE ${PROJECT_SOURCE_DIR}/src)
 # Velocity-dependent friction: the Coulomb limit and full sliding (verification.md 14).

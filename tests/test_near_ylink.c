@@ -12,7 +12,10 @@
  *    couplings of the odd lines' rows to the even lines' tractions (band_y = 1 entries):
  *    the residual of x in that system is at the LU solve's roundoff (1e-10 of |J| |x|,
  *    KLU's partial pivoting), while J_0 x - r alone is not (checked, so that the first
- *    test of 2. can fail), with one thread (two colours) and two (four parts). */
+ *    test of 2. can fail), with one thread and two.
+ * 3. rs_model_jacobian_assemble_lines at a second state into the matrix of the first: the
+ *    rows of the chosen lines equal the whole assembly's at the second state, bit for bit,
+ *    and the other rows the first state's (the two states differ in those rows, checked). */
 #include <stdlib.h>
 #include <string.h>
 
@@ -175,6 +178,50 @@ int main(void)
       TS_CHECK(res0 > 1e-4 * scale, "%s: the couplings did not enter the solve", tag);
       rs_krylov_free(&k);
     }
+  }
+  /* 3. the lines' assembly: J0 at y, the lines iy = 3 mod 4 then at y2 */
+  {
+    const rs_inputs in0 = ts_inputs(&m, 0.0);
+    double *y2 = malloc((size_t)neq * sizeof *y2), *yp0 = calloc((size_t)neq, sizeof *yp0);
+    unsigned char *lines = calloc((size_t)m.grid.ny, 1);
+    rs_csr J2;
+    TS_CHECK(y2 && yp0 && lines && csr_alloc(&J2, &m, RS_KRYLOV_BAND_3D, 0) == RS_OK, "memory");
+    for (int i = 0; i < neq; i++) y2[i] = y[i] * (1.0 + 0.01 * ts_random(&seed));
+    for (int iy = 3; iy < m.grid.ny; iy += 4) lines[iy] = 1;
+    rs_model_linearise(&m, &w, &in0, y, yp0, 0.0);
+    rs_model_jacobian_assemble(&m, &w, &in0, 0.0, RS_KRYLOV_BAND_3D, 0, &J0);
+    rs_model_linearise(&m, &w, &in0, y2, yp0, 0.0);
+    rs_model_jacobian_assemble(&m, &w, &in0, 0.0, RS_KRYLOV_BAND_3D, 0, &J2);
+    const int st3 =
+        rs_model_jacobian_assemble_lines(&m, &w, &in0, 0.0, RS_KRYLOV_BAND_3D, 0, lines, &J0);
+    TS_CHECK(st3 == RS_OK, "lines' assembly refused the pattern");
+    long wrong = 0, moved = 0, kept = 0;
+    for (int64_t i = 0; i < neq; i++) {
+      const int mine = lines[line_of(&m, i)];
+      wrong += J0.rowptr[i + 1] != J2.rowptr[i + 1];
+      for (int64_t e = J2.rowptr[i]; e < J2.rowptr[i + 1] && J0.rowptr[i + 1] == J2.rowptr[i + 1];
+           e++) {
+        if (mine) wrong += J0.col[e] != J2.col[e] || J0.val[e] != J2.val[e];
+        if (!mine) kept += J0.val[e] != J2.val[e]; /* the first state's, not the second's */
+      }
+    }
+    rs_model_linearise(&m, &w, &in0, y, yp0, 0.0);
+    rs_model_jacobian_assemble(&m, &w, &in0, 0.0, RS_KRYLOV_BAND_3D, 0, &J1);
+    for (int64_t i = 0; i < neq; i++)
+      for (int64_t e = J1.rowptr[i]; e < J1.rowptr[i + 1] && !lines[line_of(&m, i)]; e++)
+        wrong += J1.val[e] != J0.val[e];
+    for (int64_t i = 0; i < neq; i++)
+      for (int64_t e = J1.rowptr[i]; e < J1.rowptr[i + 1] && lines[line_of(&m, i)]; e++)
+        moved += J1.val[e] != J0.val[e];
+    printf("lines' assembly: %ld entries wrong; %ld entries of the chosen lines moved, %ld of "
+           "the others differ from the second state's\n",
+           wrong, moved, kept);
+    TS_CHECK(wrong == 0, "lines' assembly: %ld entries differ", wrong);
+    TS_CHECK(moved > 0 && kept > 0, "lines' assembly: the two states do not differ");
+    csr_free(&J2);
+    free(y2);
+    free(yp0);
+    free(lines);
   }
   csr_free(&J0);
   csr_free(&J1);

@@ -208,6 +208,13 @@ int rs_model_jacobian_assemble(const rs_model *m, const rs_work *w, const rs_inp
 enum { RS_YLINK_MAX_BAND = 8 };
 void rs_model_near_ylink(const rs_model *m, const rs_work *w, const rs_inputs *in, double cj,
                          int band, int parity, int iy0, int iy1, const double *x, double *r);
+/* rs_model_jacobian_assemble for the rows of the cells of the lines iy with lines[iy] set,
+ * into J as it was assembled last with the same band, band_y and pattern (no extras):
+ * those rows rewritten in place, the others kept. RS_ERR_SOLVER if a row's length is not
+ * what it was (J is then to be assembled whole). */
+int rs_model_jacobian_assemble_lines(const rs_model *m, const rs_work *w, const rs_inputs *in,
+                                     double cj, int band, int band_y, const unsigned char *lines,
+                                     rs_csr *J);
 
 /* Jv = (dF/dy + cj dF/dy') v, exactly (up to roundoff), at the point of the last
  * rs_model_jacobian or rs_model_linearise on w; wlin is scratch for the kinematics of v (a second

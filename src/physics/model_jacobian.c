@@ -431,6 +431,53 @@ void rs_model_near_ylink(const rs_model *m, const rs_work *w, const rs_inputs *i
     }
 }
 
+/* put_row for row r of a matrix assembled before with the same pattern: the row rewritten
+ * in place, the other rows' bounds kept; 0 if its length is not the row's there. */
+static int put_row_at(const rs_model *m, const rs_law_out *o, int lr, int I, const rs_inputs *in,
+                      double cj, int band, int band_y, int traction_row, const line_table *tab,
+                      int64_t r, rs_csr *J)
+{
+  const int64_t end = J->rowptr[r + 1], next = r + 1 < J->cap_rows ? J->rowptr[r + 2] : 0;
+  J->nrows = r;
+  J->rowptr[r + 1] = J->rowptr[r];
+  put_row(m, o, lr, I, in, cj, band, band_y, traction_row, tab, J);
+  const int same = J->rowptr[r + 1] == end;
+  J->rowptr[r + 1] = end;
+  if (r + 1 < J->cap_rows) J->rowptr[r + 2] = next;
+  return same;
+}
+
+int rs_model_jacobian_assemble_lines(const rs_model *m, const rs_work *w, const rs_inputs *in,
+                                     double cj, int band, int band_y, const unsigned char *lines,
+                                     rs_csr *J)
+{
+  const rs_layout *L = &m->lay;
+  const int nc = L->ncomp, nx = m->grid.nx, ny = m->grid.ny;
+  if (L->nextra != 0 || J->nrows != L->neq) return RS_ERR_SOLVER;
+  line_table tab;
+  line_table_make(m, cj, in->velocity / m->grid.dx, band, band_y, &tab);
+  int same = 1;
+  for (int iy = 0; iy < ny && same; iy++) {
+    if (!lines[iy]) continue;
+    for (int I = iy * nx; I < (iy + 1) * nx && same; I++) {
+      const rs_law_out *o = &w->law[I];
+      for (int c = 0; c < nc; c++) {
+        same &= put_row_at(m, o, rs_law_row_f(c), I, in, cj, band, band_y, 1, &tab,
+                           rs_at_p(L, c, I), J);
+        same &= put_row_at(m, o, rs_law_row_pl(nc, c), I, in, cj, band, band_y, 0, &tab,
+                           rs_at_upl(L, c, I), J);
+      }
+      same &= put_row_at(m, o, rs_law_row_star(nc), I, in, cj, band, band_y, 0, &tab,
+                         rs_at_ustar(L, I), J);
+      if (L->memory)
+        same &= put_row_at(m, o, rs_law_row_mu(nc), I, in, cj, band, band_y, 1, &tab,
+                           rs_at_mu(L, I), J);
+    }
+  }
+  J->nrows = L->neq;
+  return same ? RS_OK : RS_ERR_SOLVER;
+}
+
 int rs_model_jacobian(const rs_model *m, rs_work *w, const rs_inputs *in, const double *y,
                       const double *yp, double cj, int band, int band_y, rs_csr *J)
 {

@@ -277,37 +277,64 @@ static int setup_linearised(rs_krylov *k, const rs_inputs *in, double cj)
     return RS_OK;
   }
   /* Lines: only those with cells on other branches than at their own factorisation are
-   * refactored, when the others may serve (reuse on, the same cj + V/dx, not declared
-   * stale, the same pattern); their values then lag as in a set-up kept whole. */
+   * assembled and refactored, when the others may serve (reuse on, the same cj + V/dx, not
+   * declared stale, the same pattern); their values then lag as in a set-up kept whole. */
   const double rate = cj + fabs(in->velocity) / m->grid.dx;
-  int all = !(k->reuse_ratio > 1.0) || k->stale || rate != k->rate_factored || k->nparts == 0;
+  int all = !(k->reuse_ratio > 1.0) || k->stale || rate != k->rate_factored || k->nparts < 2;
   k->stale = 0;
   k->rate_factored = rate;
-  int status = rs_model_jacobian_assemble(m, &k->w, in, cj, k->band, k->band_y, &k->near);
-  if (status != RS_OK) return status;
-  const int64_t *rp = k->near.rowptr, *ci = k->near.col;
-  const int64_t nnz = rp[neq];
-  const int same = k->nparts > 0 && nnz == k->nnz_old &&
-                   !memcmp(rp, k->rp_old, ((size_t)neq + 1) * sizeof *rp) &&
-                   !memcmp(ci, k->ci_old, (size_t)nnz * sizeof *ci);
-  if (!same) {
-    memcpy(k->rp_old, rp, ((size_t)neq + 1) * sizeof *rp);
-    memcpy(k->ci_old, ci, (size_t)nnz * sizeof *ci);
-    k->nnz_old = nnz;
-    status = analyse(k);
-    k->analyses++;
-    if (status != RS_OK) return status;
-    all = 1;
+  const int nx = m->grid.nx;
+  int lines = k->nparts > 1;
+  int64_t *rp = k->near.rowptr;
+  int status = RS_ERR_SOLVER, same = 1;
+  if (!all) { /* the changed lines' rows only, on the pattern of the last assembly */
+    for (int q = 0; q < k->nparts; q++) {
+      int changed = 0;
+      for (int i = q * nx; i < (q + 1) * nx && !changed; i++)
+        changed = cell_signature(&k->w.law[i]) != k->sig_factored[i];
+      k->refresh[q] = (unsigned char)changed;
+    }
+    status = rs_model_jacobian_assemble_lines(m, &k->w, in, cj, k->band, k->band_y, k->refresh,
+                                              &k->near);
+    for (int q = 0; q < k->nparts && status == RS_OK; q++) {
+      const rs_klu_part *p = &k->part[q];
+      for (int64_t i = 0; i < p->n && k->refresh[q] && status == RS_OK; i++) {
+        const int64_t r = p->idx[i];
+        if (memcmp(k->near.col + rp[r], k->ci_old + rp[r], (size_t)(rp[r + 1] - rp[r]) * 8))
+          status = RS_ERR_SOLVER;
+      }
+    }
   }
-  const int nx = m->grid.nx, lines = k->nparts > 1;
+  if (status != RS_OK) { /* the whole matrix */
+    status = rs_model_jacobian_assemble(m, &k->w, in, cj, k->band, k->band_y, &k->near);
+    if (status != RS_OK) return status;
+    const int64_t *ci = k->near.col, nnz = rp[neq];
+    same = k->nparts > 0 && nnz == k->nnz_old &&
+           !memcmp(rp, k->rp_old, ((size_t)neq + 1) * sizeof *rp) &&
+           !memcmp(ci, k->ci_old, (size_t)nnz * sizeof *ci);
+    if (!same) {
+      memcpy(k->rp_old, rp, ((size_t)neq + 1) * sizeof *rp);
+      memcpy(k->ci_old, ci, (size_t)nnz * sizeof *ci);
+      k->nnz_old = nnz;
+      status = analyse(k);
+      k->analyses++;
+      if (status != RS_OK) return status;
+      all = 1;
+      lines = k->nparts > 1;
+    }
+    for (int q = 0; q < k->nparts; q++) {
+      const int i0 = lines ? q * nx : 0, i1 = lines ? i0 + nx : m->lay.n;
+      int changed = all || !k->part[q].num;
+      for (int i = i0; i < i1 && !changed; i++)
+        changed = cell_signature(&k->w.law[i]) != k->sig_factored[i];
+      k->refresh[q] = (unsigned char)changed;
+    }
+  }
   for (int q = 0; q < k->nparts; q++) {
     const int i0 = lines ? q * nx : 0, i1 = lines ? i0 + nx : m->lay.n;
-    int changed = all || !k->part[q].num;
-    for (int i = i0; i < i1 && !changed; i++)
-      changed = cell_signature(&k->w.law[i]) != k->sig_factored[i];
-    k->refresh[q] = (unsigned char)changed;
-    for (int i = i0; i < i1 && changed; i++) k->sig_factored[i] = cell_signature(&k->w.law[i]);
-    k->lines_factored += changed;
+    for (int i = i0; i < i1 && k->refresh[q]; i++)
+      k->sig_factored[i] = cell_signature(&k->w.law[i]);
+    k->lines_factored += k->refresh[q];
   }
   k->factorizations++;
   int failed = 0;

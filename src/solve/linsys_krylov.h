@@ -115,12 +115,14 @@ int rs_krylov_residual(rs_krylov *k, const rs_inputs *in, const double *y, const
  * that of the factorisation but for at most max_cells cells, and cj + V/dx is within a
  * factor ratio of its value then (ratio <= 1: refactor at every setup, the default). J v
  * stays exact: only the preconditioner lags. In 3D a set-up that does not keep it whole
- * refactors only the lines with a cell on another branch than at that line's own
- * factorisation, if cj + V/dx is the same (else every line). Measured against refactoring
- * every line (30-point plastic creep curve of bench/cases at 44 x 44 cells, 2-core Intel
- * VM, paired medians of 11): 0.955 with one thread, 0.945 with two; GMRES iterations 1032
- * -> 1049, Newton 174 both; a set-up there changes 11-50 cells in about 18 of the 44 lines
- * (150 set-ups: 15 with at most 2 cells, 26 with 3-10, 80 with 11-50, 29 with more). */
+ * assembles and refactors only the lines with a cell on another branch than at that line's
+ * own factorisation, if cj + V/dx is the same (else every line). Measured against
+ * refactoring every line (30-point plastic creep curve of bench/cases at 44 x 44 cells,
+ * 2-core Intel VM, paired medians of 11): 0.955 with one thread, 0.945 with two, and with
+ * only those lines assembled a further 0.940 / 0.964; GMRES iterations 1032 -> 1049, Newton
+ * 174 both; a set-up there changes 11-50 cells in about 18 of the 44 lines (150 set-ups: 15
+ * with at most 2 cells, 26 with 3-10, 80 with 11-50, 29 with more). The 44 x 44 plastic
+ * start-up (rtol 3e-3): 2243 -> 2283 GMRES, 423 -> 430 Newton, 0.90 of the time (9 pairs). */
 void rs_krylov_set_reuse(rs_krylov *k, double ratio, int max_cells);
 /* The next setup factors whatever the reuse rule says (after a failed solve). */
 void rs_krylov_invalidate(rs_krylov *k);
