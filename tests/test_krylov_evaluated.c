@@ -12,9 +12,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "rollsim/steady.h"
 #include "solve/linsys_krylov.h"
-#include "test_support.h"
+#include "test_krylov_support.h"
 
 static double norm_max(const double *a, int n)
 {
@@ -50,17 +49,11 @@ static int products(const rs_model *m, const rs_inputs *in, const double *y, con
 
 int main(void)
 {
-  rs_case c;
-  ts_ellipse_case(&c, 16, 1.6, -1.0e-3, 5.0e-4, 1.0e-4);
-  ts_plasticity(&c, 150.0, 0.3);
   rs_model m;
-  rs_msg msg = {{0}};
-  if (rs_model_from_case(&m, &c, &msg) != RS_OK) {
-    printf("FAIL model: %s\n", msg.text);
-    return 1;
-  }
+  double *y = NULL;
+  if (ts_plastic_ellipse_state(16, &m, &y)) return 1;
   const int neq = m.lay.neq;
-  double *y = calloc((size_t)neq, sizeof *y), *y2 = malloc((size_t)neq * sizeof *y2);
+  double *y2 = malloc((size_t)neq * sizeof *y2);
   double *yp = calloc((size_t)neq, sizeof *yp), *v = malloc((size_t)neq * sizeof *v);
   double *F1 = malloc((size_t)neq * sizeof *F1), *F2 = malloc((size_t)neq * sizeof *F2);
   double *jv[4], *pv[4];
@@ -70,17 +63,6 @@ int main(void)
   }
   rs_work w;
   rs_work_create(&w, &m);
-  rs_steady *s = NULL;
-  rs_stats st = {0};
-  if (rs_steady_create(&s, &m, NULL, &msg) != RS_OK ||
-      rs_steady_solve(s, 0.0, y, &st, &msg) != RS_OK) {
-    printf("FAIL steady: %s\n", msg.text);
-    return 1;
-  }
-  rs_diag d;
-  ts_diagnostics(&m, &w, 0.0, y, yp, &d, NULL, NULL, NULL);
-  ts_check_true("the state has cells in adhesion, slip and yield",
-                d.count[RS_ADHESION] > 0 && d.count[RS_SLIP] > 0 && d.count[RS_PLASTIC] > 0);
   unsigned long seed = 2026;
   for (int i = 0; i < neq; i++) {
     y[i] *= 1.0 + 0.01 * ts_random(&seed);
@@ -90,9 +72,8 @@ int main(void)
   const rs_inputs in = ts_inputs(&m, 0.0);
   const double rate = in.velocity / m.grid.dx;
   for (int pass = 0; pass < 2; pass++) {
-    const double cj = pass == 0 ? 0.0 : rate;
-    const char *tag = pass == 0 ? "steady" : "c_j = V/dx";
-    for (int i = 0; i < neq && pass == 1; i++) yp[i] = 1e-3 * rate * ts_random(&seed) * y[i];
+    const char *tag = NULL;
+    const double cj = ts_krylov_pass(&m, pass, y, yp, &seed, &tag);
     /* 0: direct; 1: after the residual at the point; 2: after a residual elsewhere;
      * 3: after a residual at the point with another c_j */
     int ok = products(&m, &in, y, yp, cj, NULL, 0.0, v, jv[0], pv[0], NULL) == RS_OK &&
@@ -119,7 +100,6 @@ int main(void)
     printf("%s: J v at the other state differs by %.3e\n", tag, other);
     TS_CHECK(other > 1e-6 * norm_max(jv[0], neq), "%s: the other state's J v is the same", tag);
   }
-  rs_steady_free(s);
   rs_work_free(&w);
   rs_model_free(&m);
   for (int k = 0; k < 4; k++) {
