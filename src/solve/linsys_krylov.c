@@ -264,6 +264,21 @@ int rs_krylov_setup(rs_krylov *k, const rs_inputs *in, const double *y, const do
   return status != RS_OK ? status : setup_linearised(k, in, cj);
 }
 
+/* refresh[q]: whether part q is to be refactored: all of them, or those not factored yet or
+ * with a cell on another branch than at their factorisation (a line's cells; the whole
+ * matrix's). */
+static void mark_refresh(rs_krylov *k, int all)
+{
+  const int nx = k->m->grid.nx, lines = k->nparts > 1;
+  for (int q = 0; q < k->nparts; q++) {
+    const int i0 = lines ? q * nx : 0, i1 = lines ? i0 + nx : k->m->lay.n;
+    int changed = all || !k->part[q].num;
+    for (int i = i0; i < i1 && !changed; i++)
+      changed = cell_signature(&k->w.law[i]) != k->sig_factored[i];
+    k->refresh[q] = (unsigned char)changed;
+  }
+}
+
 /* The set-up once w holds the linearisation at the point. */
 static int setup_linearised(rs_krylov *k, const rs_inputs *in, double cj)
 {
@@ -288,19 +303,15 @@ static int setup_linearised(rs_krylov *k, const rs_inputs *in, double cj)
   int64_t *rp = k->near.rowptr;
   int status = RS_ERR_SOLVER, same = 1;
   if (!all) { /* the changed lines' rows only, on the pattern of the last assembly */
-    for (int q = 0; q < k->nparts; q++) {
-      int changed = 0;
-      for (int i = q * nx; i < (q + 1) * nx && !changed; i++)
-        changed = cell_signature(&k->w.law[i]) != k->sig_factored[i];
-      k->refresh[q] = (unsigned char)changed;
-    }
+    mark_refresh(k, 0);
     status = rs_model_jacobian_assemble_lines(m, &k->w, in, cj, k->band, k->band_y, k->refresh,
                                               &k->near);
     for (int q = 0; q < k->nparts && status == RS_OK; q++) {
       const rs_klu_part *p = &k->part[q];
       for (int64_t i = 0; i < p->n && k->refresh[q] && status == RS_OK; i++) {
         const int64_t r = p->idx[i];
-        if (memcmp(k->near.col + rp[r], k->ci_old + rp[r], (size_t)(rp[r + 1] - rp[r]) * 8))
+        if (memcmp(k->near.col + rp[r], k->ci_old + rp[r],
+                   (size_t)(rp[r + 1] - rp[r]) * sizeof *k->ci_old))
           status = RS_ERR_SOLVER;
       }
     }
@@ -322,19 +333,12 @@ static int setup_linearised(rs_krylov *k, const rs_inputs *in, double cj)
       all = 1;
       lines = k->nparts > 1;
     }
-    for (int q = 0; q < k->nparts; q++) {
-      const int i0 = lines ? q * nx : 0, i1 = lines ? i0 + nx : m->lay.n;
-      int changed = all || !k->part[q].num;
-      for (int i = i0; i < i1 && !changed; i++)
-        changed = cell_signature(&k->w.law[i]) != k->sig_factored[i];
-      k->refresh[q] = (unsigned char)changed;
-    }
+    mark_refresh(k, all);
   }
   for (int q = 0; q < k->nparts; q++) {
     const int i0 = lines ? q * nx : 0, i1 = lines ? i0 + nx : m->lay.n;
     for (int i = i0; i < i1 && k->refresh[q]; i++)
       k->sig_factored[i] = cell_signature(&k->w.law[i]);
-    k->lines_factored += k->refresh[q];
   }
   k->factorizations++;
   int failed = 0;

@@ -49,7 +49,6 @@ typedef struct rs_krylov {
   long setups, analyses, products;
   long factorizations; /* KLU numeric factorisations and refactorisations */
   long reuses;         /* setups that kept the factored near field */
-  long lines_factored; /* parts refactored (lines, in 3D) */
   /* reuse of the factorisation (rs_krylov_set_reuse): the ratio, and the state it was
    * factored in: cj + V/dx and each cell's active-set signature */
   double reuse_ratio, rate_factored;
