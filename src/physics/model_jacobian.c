@@ -68,11 +68,17 @@ static void add(double *v, unsigned char *has, double x)
   *has = 1;
 }
 
-/* Traction row of cell I, local row lr: its entries in the columns of the tractions. */
-/* The 3D near field along x (band_y = 0, two components) as a table of
- * d(c, b, kx) = cj A - a (A(kx + 1) - A(kx)) (+ the layer on the cell and its upstream
- * neighbour), t[(2 c + b) (2 band + 1) + band + kx]: the same sums as the loop below, once
- * per assembly instead of once per row. */
+/* r dv_s,c/dp_b at the offset (kx, ky) from the cell, without the layer: the kinematics'
+ * cj A_cb(kx, ky) - a (A_cb(kx + 1, ky) - A_cb(kx, ky)), a = V/dx (model.md §5). */
+static double kin_coef(const rs_model *m, int c, int b, int kx, int ky, double cj, double a)
+{
+  const double A0 = rs_elastic_op_coef(&m->el, c, b, kx, ky);
+  return cj * A0 - a * (rs_elastic_op_coef(&m->el, c, b, kx + 1, ky) - A0);
+}
+
+/* The 3D near field along x (band_y = 0, two components) as a table of kin_coef(c, b, kx, 0)
+ * (+ the layer on the cell and its upstream neighbour), t[2 c + b][band + kx]: the same sums
+ * as the loop of put_traction_columns, once per assembly instead of once per row. */
 typedef struct line_table {
   int on;
   double t[4][2 * RS_YLINK_MAX_BAND + 1];
@@ -88,14 +94,14 @@ static void line_table_make(const rs_model *m, double cj, double a, int band, in
   for (int c = 0; c < 2; c++)
     for (int b = 0; b < 2; b++)
       for (int kx = -band; kx <= band; kx++) {
-        const double A0 = rs_elastic_op_coef(&m->el, c, b, kx, 0);
-        double d = cj * A0 - a * (rs_elastic_op_coef(&m->el, c, b, kx + 1, 0) - A0);
+        double d = kin_coef(m, c, b, kx, 0, cj, a);
         if (b == c && kx == 0) d += (cj + a) * c3;
         if (b == c && kx == -1) d -= a * c3; /* the upstream neighbour I + 1 */
         tab->t[2 * c + b][band + kx] = d;
       }
 }
 
+/* Traction row of cell I, local row lr: its entries in the columns of the tractions. */
 static void put_traction_columns(const rs_model *m, const rs_law_out *o, int lr, int I, double cj,
                                  double a, int band, int band_y, int keep_own,
                                  const line_table *tab, rs_csr *J)
@@ -170,8 +176,7 @@ static void put_traction_columns(const rs_model *m, const rs_law_out *o, int lr,
         for (int c = 0; c < nc && any_vs; c++) {
           if (!o->present[lr][rs_law_var_vs(nc, c)]) continue;
           /* r dv_s/dp_j = r [cj A(i-j) - a (A(i+1-j) - A(i-j))] (+ layer on the diagonal) */
-          const double A0 = rs_elastic_op_coef(&m->el, c, b, kx, ky);
-          double d = cj * A0 - a * (rs_elastic_op_coef(&m->el, c, b, kx + 1, ky) - A0);
+          double d = kin_coef(m, c, b, kx, ky, cj, a);
           if (b == c && Jc == I) d += (cj + a) * c3;
           if (b == c && Jc == up) d -= a * c3;
           v += o->jac[lr][rs_law_var_vs(nc, c)] * d;
@@ -383,16 +388,14 @@ void rs_model_near_ylink(const rs_model *m, const rs_work *w, const rs_inputs *i
   const int nc = L->ncomp, nx = m->grid.nx, ny = m->grid.ny, nb = 2 * band + 1;
   const double a = in->velocity / m->grid.dx;
   if (nc != 2 || band > RS_YLINK_MAX_BAND) return;
-  /* d(c, b, kx, ky) = cj A - a (A(kx + 1) - A(kx)), as put_traction_columns; ky = +-1 carries
-   * no layer term (the layer acts on the cell and its upstream neighbour only) */
+  /* kin_coef at ky = +-1, as put_traction_columns; no layer term there (the layer acts on
+   * the cell and its upstream neighbour only) */
   double st[2][2][2][2 * RS_YLINK_MAX_BAND + 1];
   for (int c = 0; c < 2; c++)
     for (int b = 0; b < 2; b++)
       for (int s = 0; s < 2; s++)
         for (int q = 0; q < nb; q++) {
-          const int kx = q - band, ky = s == 0 ? 1 : -1;
-          const double A0 = rs_elastic_op_coef(&m->el, c, b, kx, ky);
-          st[c][b][s][q] = cj * A0 - a * (rs_elastic_op_coef(&m->el, c, b, kx + 1, ky) - A0);
+          st[c][b][s][q] = kin_coef(m, c, b, q - band, s == 0 ? 1 : -1, cj, a);
         }
   const int nrow = L->memory ? 3 : 2;
   for (int iy = iy0 + ((iy0 & 1) != parity); iy < iy1; iy += 2)
