@@ -255,6 +255,11 @@ typedef struct rs_diag {
 int rs_model_diagnostics(const rs_model *m, rs_work *w, const rs_inputs *in, const double *y,
                          const double *yp, rs_diag *d, double *slip, double *tauc,
                          signed char *regime);
+/* The same from a work evaluated at (in, y, yp) with c_j = 0 already (rs_model_residual or
+ * rs_model_linearise_residual): no evaluation of its own. */
+void rs_model_diagnostics_of(const rs_model *m, const rs_work *w, const rs_inputs *in,
+                             const double *y, rs_diag *d, double *slip, double *tauc,
+                             signed char *regime);
 
 /* Checks a steady state y (y' = 0): the paper's contact conditions cell by cell (eqs.
  * 7-10: |p| <= min(g, tau_c); slip only at the bound and opposite to p; plastic flow
@@ -266,6 +271,10 @@ int rs_model_diagnostics(const rs_model *m, rs_work *w, const rs_inputs *in, con
 #define RS_STEADY_CHECK_TOL 1e-6
 int rs_model_check_steady(const rs_model *m, rs_work *w, const rs_inputs *in, const double *y,
                           rs_msg *msg);
+/* The same with ws a work evaluated at the steady state already (in, y, y' = 0, c_j = 0),
+ * or NULL; w is evaluated for the rest. */
+int rs_model_check_steady_with(const rs_model *m, const rs_work *ws, rs_work *w,
+                               const rs_inputs *in, const double *y, rs_msg *msg);
 
 /* Next kink or jump of an input history after t (INFINITY if none). */
 double rs_model_next_breakpoint(const rs_model *m, double t);

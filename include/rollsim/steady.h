@@ -21,6 +21,10 @@ int rs_steady_solve(rs_steady *s, double t, double *y, rs_stats *stats, rs_msg *
  * Returns RS_OK with the iterate in y, or RS_ERR_SOLVER with y unchanged. */
 int rs_steady_approximate(rs_steady *s, double t, double *y, double tol, int max_iters,
                           rs_stats *stats);
+/* The model evaluated at the steady state y (y' = 0) by the solver's last residual, if
+ * that was at y (3D Newton-Krylov), else NULL: a solution's diagnostics without an
+ * evaluation of their own (rs_model_diagnostics_of). Valid until the next solve. */
+const rs_work *rs_steady_evaluated(rs_steady *s, const double *y);
 void rs_steady_free(rs_steady *s);
 
 #endif

@@ -136,8 +136,12 @@ static int regimes_of(steady_chain *ch, const double *y, signed char *reg)
 {
   rs_inputs in;
   rs_model_inputs_at(&ch->m, 0.0, &in);
-  const int status =
-      rs_model_diagnostics(&ch->m, &ch->w, &in, y, ch->yp, &ch->diag, NULL, NULL, reg);
+  const rs_work *we = ch->st ? rs_steady_evaluated(ch->st, y) : NULL;
+  int status = RS_OK;
+  if (we) /* the solver's last residual was evaluated at y */
+    rs_model_diagnostics_of(&ch->m, we, &in, y, &ch->diag, NULL, NULL, reg);
+  else
+    status = rs_model_diagnostics(&ch->m, &ch->w, &in, y, ch->yp, &ch->diag, NULL, NULL, reg);
   ch->have_diag = status == RS_OK;
   return status;
 }

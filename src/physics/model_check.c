@@ -10,14 +10,22 @@ int rs_model_diagnostics(const rs_model *m, rs_work *w, const rs_inputs *in, con
                          const double *yp, rs_diag *d, double *slip, double *tauc,
                          signed char *regime)
 {
+  /* Branches with the steady scaling (any r > 0 gives the same regimes at a solution). */
+  const int status = rs_model_residual(m, w, in, y, yp, 0.0, NULL);
+  if (status != RS_OK) return status;
+  rs_model_diagnostics_of(m, w, in, y, d, slip, tauc, regime);
+  return RS_OK;
+}
+
+void rs_model_diagnostics_of(const rs_model *m, const rs_work *w, const rs_inputs *in,
+                             const double *y, rs_diag *d, double *slip, double *tauc,
+                             signed char *regime)
+{
   const rs_layout *L = &m->lay;
   const rs_grid *g = &m->grid;
   const int n = L->n, nc = L->ncomp, px = g->nx + 1;
   const double V = in->velocity, xi = rs_model_creepage(m, in, y), dA = g->area;
   const double eta = rs_model_lateral_creepage(m, in, y), phi = nc > 1 ? in->spin : 0.0;
-  /* Branches with the steady scaling (any r > 0 gives the same regimes at a solution). */
-  const int status = rs_model_residual(m, w, in, y, yp, 0.0, NULL);
-  if (status != RS_OK) return status;
   memset(d, 0, sizeof *d);
   d->creepage = xi;
   d->lateral_creepage = eta;
@@ -53,7 +61,6 @@ int rs_model_diagnostics(const rs_model *m, rs_work *w, const rs_inputs *in, con
     if (tauc) tauc[i] = rs_model_yield_limit(m, y[rs_at_ustar(L, i)]);
     if (regime) regime[i] = (signed char)reg;
   }
-  return RS_OK;
 }
 
 /* Reason of the first failed condition, in the user's terms. */
@@ -136,6 +143,12 @@ static int check_cells(const rs_model *m, const rs_work *w, const double *y, dou
 int rs_model_check_steady(const rs_model *m, rs_work *w, const rs_inputs *in, const double *y,
                           rs_msg *msg)
 {
+  return rs_model_check_steady_with(m, NULL, w, in, y, msg);
+}
+
+int rs_model_check_steady_with(const rs_model *m, const rs_work *ws, rs_work *w,
+                               const rs_inputs *in, const double *y, rs_msg *msg)
+{
   const int neq = m->lay.neq;
   double *F = malloc((size_t)neq * sizeof *F), *yp = calloc((size_t)neq, sizeof *yp);
   if (!F || !yp) {
@@ -145,15 +158,19 @@ int rs_model_check_steady(const rs_model *m, rs_work *w, const rs_inputs *in, co
   }
   /* Kinematics of the steady state: y' = 0 gives the same v_s, Du_pl/Dt and Dustar/Dt
    * for every c_j. */
-  int status = rs_model_residual(m, w, in, y, yp, 0.0, NULL);
+  int status = RS_OK;
+  if (!ws) {
+    status = rs_model_residual(m, w, in, y, yp, 0.0, NULL);
+    ws = w;
+  }
   double pref = 0.0;
-  for (int i = 0; i < m->grid.n && status == RS_OK; i++) pref = fmax(pref, w->bound[i]);
+  for (int i = 0; i < m->grid.n && status == RS_OK; i++) pref = fmax(pref, ws->bound[i]);
   if (!(pref > 0.0)) pref = 1.0;
   const double tol = RS_STEADY_CHECK_TOL * pref;
   if (status != RS_OK)
     rs_msg_set(msg, status, "%s", w->msg.text);
   else
-    status = check_cells(m, w, y, tol, msg);
+    status = check_cells(m, ws, y, tol, msg);
   /* The residual of the transient at y' = 0, with the scaling of a time step of one
    * cell passage (c_j = V/dx): another r, the same zero set. */
   if (status == RS_OK) {

@@ -235,15 +235,26 @@ int rs_krylov_residual(rs_krylov *k, const rs_inputs *in, const double *y, const
                        double cj, double *F)
 {
   const size_t bytes = (size_t)k->m->lay.neq * sizeof *y;
-  k->ev_valid = 0;
+  k->ev_valid = k->w_at_ev = 0;
   const int status = rs_model_linearise_residual(k->m, &k->w, in, y, yp, cj, F);
   if (status != RS_OK) return status;
+  k->w_at_ev = 1;
   memcpy(k->y_ev, y, bytes);
   memcpy(k->yp_ev, yp, bytes);
   k->cj_ev = cj;
   k->in_ev = *in;
   k->ev_valid = 1;
   return RS_OK;
+}
+
+const rs_work *rs_krylov_evaluated_at(const rs_krylov *k, const rs_inputs *in, const double *y,
+                                      const double *yp, double cj)
+{
+  const size_t bytes = (size_t)k->m->lay.neq * sizeof *y;
+  return k->w_at_ev && k->cj_ev == cj && same_inputs(&k->in_ev, in) && !memcmp(k->y_ev, y, bytes) &&
+                 !memcmp(k->yp_ev, yp, bytes)
+             ? &k->w
+             : NULL;
 }
 
 static int setup_linearised(rs_krylov *k, const rs_inputs *in, double cj);
@@ -260,6 +271,7 @@ int rs_krylov_setup(rs_krylov *k, const rs_inputs *in, const double *y, const do
   const int evaluated = k->ev_valid && k->cj_ev == cj && same_inputs(&k->in_ev, in) &&
                         !memcmp(k->y_ev, y, bytes) && !memcmp(k->yp_ev, yp, bytes);
   k->ev_valid = 0;
+  if (!evaluated) k->w_at_ev = 0;
   const int status = evaluated ? RS_OK : rs_model_linearise(k->m, &k->w, in, y, yp, cj);
   return status != RS_OK ? status : setup_linearised(k, in, cj);
 }

@@ -60,6 +60,7 @@ typedef struct rs_krylov {
   double *y_ev, *yp_ev, cj_ev;
   rs_inputs in_ev;
   int ev_valid;
+  int w_at_ev; /* w holds the evaluation at that point (until a set-up elsewhere) */
 } rs_krylov;
 
 /* 3D near field: the cell's own line along x, 4 cells each way. The steady rolling
@@ -129,6 +130,10 @@ void rs_krylov_invalidate(rs_krylov *k);
 int rs_krylov_times(rs_krylov *k, const double *v, double *Jv);
 /* v <- P^-1 v. */
 int rs_krylov_psolve(rs_krylov *k, double *v);
+/* w if it holds the model evaluated at (in, y, yp, cj) (the last residual was evaluated
+ * there, and no set-up elsewhere came after it), else NULL. */
+const rs_work *rs_krylov_evaluated_at(const rs_krylov *k, const rs_inputs *in, const double *y,
+                                      const double *yp, double cj);
 /* Why the last model evaluation failed (when setup or times did not return RS_OK). */
 const char *rs_krylov_error(const rs_krylov *k);
 

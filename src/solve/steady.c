@@ -649,7 +649,8 @@ static int solve_at(rs_steady *s, double *y, rs_stats *stats, rs_msg *msg)
    * a physical steady state is refused; the transient path from the caller's start
    * then decides, and its result must pass the same check. */
   rs_msg why = {{0}};
-  if (status == RS_OK && (status = rs_model_check_steady(m, &s->work, &s->in, y, &why)) != RS_OK) {
+  if (status == RS_OK && (status = rs_model_check_steady_with(
+                              m, rs_steady_evaluated(s, y), &s->work, &s->in, y, &why)) != RS_OK) {
     if (stats) stats->refused++;
     if (!rolled && status == RS_ERR_SOLVER) {
       memcpy(y, start, (size_t)neq * sizeof *y);
@@ -747,6 +748,12 @@ int rs_steady_solve(rs_steady *s, double t, double *y, rs_stats *stats, rs_msg *
   if (cold && rs_friction_varies(&m->par.friction) && !m->par.force_control)
     return continuation(s, y, stats, msg);
   return solve_at(s, y, stats, msg);
+}
+
+const rs_work *rs_steady_evaluated(rs_steady *s, const double *y)
+{
+  if (!s->krylov3d || s->cj != 0.0) return NULL;
+  return rs_krylov_evaluated_at(&s->kry, &s->in, y, rates(s, y), 0.0);
 }
 
 int rs_steady_approximate(rs_steady *s, double t, double *y, double tol, int max_iters,
