@@ -85,7 +85,18 @@ struct rs_elastic3d_fft *rs_elastic3d_fft_create(const rs_elastic3d *el)
   f->kxy = fftw_alloc_complex(ncomplex);
   f->kyy = fftw_alloc_complex(ncomplex);
   f->kzz = fftw_alloc_complex(ncomplex);
-  int ok = grid && spec && f->kxx && f->kxy && f->kyy && f->kzz;
+  /* The offsets beyond the tables: the four coefficients of each |kx|, |ky| at once, by
+   * one evaluation of the rectangle's integrals, which are even in kx and ky but for the
+   * xy coefficient, odd in each (mirrored rectangles give mirrored values bit for bit:
+   * rs_elastic3d_rect). At 44 x 44 cells (90 x 128) 1,010 evaluations instead of 15,108. */
+  const int hx = f->mx / 2 + 1, hy = f->my / 2 + 1;
+  double(*outside)[4] = malloc((size_t)hx * (size_t)hy * sizeof *outside);
+  int ok = grid && spec && f->kxx && f->kxy && f->kyy && f->kzz && outside;
+  for (int ay = 0; ok && ay < hy; ay++)
+    for (int ax = 0; ax < hx; ax++)
+      if (ax > nx || ay > ny - 1)
+        rs_elastic3d_rect(el->dx, el->dy, ax * el->dx, ay * el->dy, el->shear_modulus,
+                          el->poisson_ratio, outside[(size_t)ay * (size_t)hx + (size_t)ax]);
   if (ok) {
     f->forward = fftw_plan_dft_r2c_2d(f->my, f->mx, grid, spec, FFTW_ESTIMATE);
     const int nrow = f->mx, ncol = f->my;
@@ -111,22 +122,18 @@ struct rs_elastic3d_fft *rs_elastic3d_fft_create(const rs_elastic3d *el)
     for (int qy = 0; qy < f->my; qy++)
       for (int qx = 0; qx < f->mx; qx++) {
         const int kx = 2 * qx <= f->mx ? qx : qx - f->mx, ky = 2 * qy <= f->my ? qy : qy - f->my;
-        double value;
-        if (kx <= nx && -kx <= nx && ky <= ny - 1 && -ky <= ny - 1) {
-          value = rs_elastic3d_coef(el, ci[comp], cj[comp], kx, ky);
-        } else {
-          double c[4];
-          rs_elastic3d_rect(el->dx, el->dy, kx * el->dx, ky * el->dy, el->shear_modulus,
-                            el->poisson_ratio, c);
-          value = c[comp];
-        }
-        grid[(size_t)qy * (size_t)f->mx + (size_t)qx] = value;
+        const int ax = kx < 0 ? -kx : kx, ay = ky < 0 ? -ky : ky;
+        const double sign = comp == 1 && (kx < 0) != (ky < 0) ? -1.0 : 1.0;
+        grid[(size_t)qy * (size_t)f->mx + (size_t)qx] =
+            ax <= nx && ay <= ny - 1 ? rs_elastic3d_coef(el, ci[comp], cj[comp], kx, ky)
+                                     : sign * outside[(size_t)ay * (size_t)hx + (size_t)ax][comp];
       }
     fftw_execute_dft_r2c(f->forward, grid, spec);
     for (size_t q = 0; q < ncomplex; q++) kernel[q] = spec[q] / (double)nreal;
   }
   fftw_free(grid);
   fftw_free(spec);
+  free(outside);
   if (!ok) {
     rs_elastic3d_fft_free(f);
     return NULL;
