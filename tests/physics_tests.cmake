@@ -25,6 +25,10 @@ target_include_directories(test_krylov_evaluated PRIVATE ${PROJECT_SOURCE_DIR}/s
 # the assembly of chosen lines against the whole assembly.
 rs_unit_test(test_near_ylink)
 target_include_directories(test_near_ylink PRIVATE ${PROJECT_SOURCE_DIR}/src)
+# The near field's lines factored and solved side by side: residuals of their own systems,
+# a line that needs other pivots reported, a refactorisation of one line only.
+rs_unit_test(test_lanes)
+target_include_directories(test_lanes PRIVATE ${PROJECT_SOURCE_DIR}/src)
 # Velocity-dependent friction: the Coulomb limit and full sliding (verification.md 14).
 rs_unit_test(test_falling_friction)
 # grid.x_range gives the same discrete problem as grid.extent with the same edges.

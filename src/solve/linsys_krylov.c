@@ -54,8 +54,14 @@ static void parts_free(rs_krylov *k)
   for (int q = 0; q < k->nparts; q++) part_free(&k->part[q]);
   free(k->part);
   free(k->refresh);
+  free(k->ready);
+  free(k->lane_values);
+  k->lane_values = NULL;
+  if (k->lanes_on) rs_lanes_free(&k->lanes);
+  k->lanes_on = 0;
   k->part = NULL;
   k->refresh = NULL;
+  k->ready = NULL;
   k->nparts = 0;
 }
 
@@ -91,7 +97,7 @@ static unsigned char cell_signature(const rs_law_out *o)
  * perturbs the preconditioner locally, whatever the grid's size, so the bound is a count. */
 static int factor_current(const rs_krylov *k, const rs_inputs *in, double cj)
 {
-  if (!(k->reuse_ratio > 1.0) || k->nparts == 0 || !k->part[0].num || k->stale) return 0;
+  if (!(k->reuse_ratio > 1.0) || k->nparts == 0 || !k->ready[0] || k->stale) return 0;
   const double s = cj + fabs(in->velocity) / k->m->grid.dx;
   if (!(s <= k->reuse_ratio * k->rate_factored && k->rate_factored <= k->reuse_ratio * s)) return 0;
   int changed = 0;
@@ -178,6 +184,58 @@ static int line_parts(rs_krylov *k)
   return ny;
 }
 
+/* A line's values from the assembled near field. */
+static void part_values(const rs_krylov *k, rs_klu_part *p)
+{
+  const int64_t *rp = k->near.rowptr;
+  for (int64_t i = 0; i < p->n; i++)
+    memcpy(p->val + p->rowptr[i], k->near.val + rp[p->idx[i]],
+           (size_t)(p->rowptr[i + 1] - p->rowptr[i]) * sizeof *p->val);
+}
+
+/* The lines side by side (linsys_lanes.h): groups by half of the grid (the threads) and
+ * parity (the sweep's colours), the pivot order from the middle line's values. Where that
+ * fails the lines keep KLU alone. */
+static void lanes_create(rs_krylov *k)
+{
+  const int ny = k->m->grid.ny, T = k->nsplit, n = (int)k->part[0].n;
+  for (int q = 0; q < k->nparts; q++)
+    if (k->part[q].n != n) return;
+  rs_lane_line *lines = malloc((size_t)ny * sizeof *lines);
+  const double **values = malloc((size_t)ny * sizeof *values);
+  int *order = malloc((size_t)ny * sizeof *order);
+  unsigned char *first = calloc((size_t)ny, 1);
+  if (lines && values && order && first) {
+    for (int q = 0; q < ny; q++) {
+      lines[q] = (rs_lane_line){k->part[q].rowptr, k->part[q].col, k->part[q].idx};
+      values[q] = k->part[q].val;
+    }
+    part_values(k, &k->part[ny / 2]);
+    int m = 0, groups = 0;
+    for (int h = 0; h < T; h++)
+      for (int c = 0; c < 2; c++) {
+        const int iy0 = h == 0 ? 0 : ny / 2, iy1 = h == T - 1 ? ny : ny / 2;
+        k->gfirst[h][c] = groups;
+        int in_run = 0;
+        for (int iy = iy0 + ((iy0 & 1) != c); iy < iy1; iy += 2, in_run++) {
+          first[m] = in_run == 0;
+          order[m++] = iy;
+          if (in_run % RS_LANES == 0) groups++;
+        }
+        k->gfirst[h][c + 1] = groups;
+      }
+    k->lanes_on =
+        rs_lanes_create(&k->lanes, n, ny, lines, values, ny / 2, order, m, first) == RS_OK;
+  }
+  if (k->lanes_on)
+    k->lane_values = values;
+  else
+    free(values);
+  free(lines);
+  free(order);
+  free(first);
+}
+
 /* A new pattern: the parts and KLU's symbolic analysis of each. */
 static int analyse(rs_krylov *k)
 {
@@ -197,11 +255,14 @@ static int analyse(rs_krylov *k)
     p->val = k->near.val;
     p->borrowed = 1;
   }
+  k->ready = calloc((size_t)k->nparts, 1);
+  if (!k->ready) return RS_ERR_INTERNAL;
   for (int q = 0; q < k->nparts; q++) {
     rs_klu_part *p = &k->part[q];
     p->sym = klu_l_analyze(p->n, p->rowptr, p->col, &p->common);
     if (!p->sym) return RS_ERR_SOLVER;
   }
+  if (k->nparts > 1) lanes_create(k);
   return RS_OK;
 }
 
@@ -284,7 +345,7 @@ static void mark_refresh(rs_krylov *k, int all)
   const int nx = k->m->grid.nx, lines = k->nparts > 1;
   for (int q = 0; q < k->nparts; q++) {
     const int i0 = lines ? q * nx : 0, i1 = lines ? i0 + nx : k->m->lay.n;
-    int changed = all || !k->part[q].num;
+    int changed = all || !k->ready[q];
     for (int i = i0; i < i1 && !changed; i++)
       changed = cell_signature(&k->w.law[i]) != k->sig_factored[i];
     k->refresh[q] = (unsigned char)changed;
@@ -354,18 +415,42 @@ static int setup_linearised(rs_krylov *k, const rs_inputs *in, double cj)
   }
   k->factorizations++;
   int failed = 0;
-  if (lines) {
+  if (lines && k->lanes_on) {
+    const rs_lanes *ln = &k->lanes;
+    const double *const *values = k->lane_values;
+#pragma omp parallel for num_threads(k->nsplit) schedule(static) reduction(+ : failed)
+    for (int g = 0; g < ln->ngroups; g++) {
+      const rs_lane_group *gr = &ln->group[g];
+      int any = 0;
+      for (int l = 0; l < RS_LANES; l++) {
+        const int q = gr->line[l];
+        if (q >= 0 && k->refresh[q]) {
+          part_values(k, &k->part[q]);
+          any = 1;
+        }
+      }
+      if (!any) continue;
+      rs_lanes_refactor(&k->lanes, g, values, k->refresh);
+      for (int l = 0; l < RS_LANES; l++) { /* lanes whose pivots did not hold: KLU */
+        const int q = gr->line[l];
+        if (q < 0 || !k->refresh[q]) continue;
+        rs_klu_part *p = &k->part[q];
+        k->ready[q] = gr->ok[l] || factor_part(p, same && p->num) == RS_OK;
+        failed += !k->ready[q];
+      }
+    }
+  } else if (lines) {
 #pragma omp parallel for num_threads(k->nsplit) schedule(static) reduction(+ : failed)
     for (int q = 0; q < k->nparts; q++) { /* each line's values from the assembled rows */
       rs_klu_part *p = &k->part[q];
       if (!k->refresh[q]) continue;
-      for (int64_t i = 0; i < p->n; i++)
-        memcpy(p->val + p->rowptr[i], k->near.val + rp[p->idx[i]],
-               (size_t)(p->rowptr[i + 1] - p->rowptr[i]) * sizeof *p->val);
-      failed += factor_part(p, same && p->num) != RS_OK;
+      part_values(k, p);
+      k->ready[q] = factor_part(p, same && p->num) == RS_OK;
+      failed += !k->ready[q];
     }
   } else {
-    failed = factor_part(&k->part[0], same) != RS_OK;
+    k->ready[0] = factor_part(&k->part[0], same) == RS_OK;
+    failed = !k->ready[0];
   }
   return failed ? RS_ERR_SOLVER : RS_OK;
 }
@@ -415,8 +500,18 @@ int rs_krylov_psolve(rs_krylov *k, double *v)
       }
       for (int h = tid; h < T; h += nth) {
         const int iy0 = h == 0 ? 0 : ny / 2, iy1 = h == T - 1 ? ny : ny / 2;
-        for (int iy = iy0 + ((iy0 & 1) != c); iy < iy1; iy += 2)
-          failed += solve_part(&k->part[iy], v) != RS_OK;
+        if (k->lanes_on) {
+          for (int g = k->gfirst[h][c]; g < k->gfirst[h][c + 1]; g++) {
+            const rs_lane_group *gr = &k->lanes.group[g];
+            rs_lanes_solve(&k->lanes, g, v);
+            for (int l = 0; l < RS_LANES; l++)
+              if (gr->line[l] >= 0 && !gr->ok[l])
+                failed += solve_part(&k->part[gr->line[l]], v) != RS_OK;
+          }
+        } else {
+          for (int iy = iy0 + ((iy0 & 1) != c); iy < iy1; iy += 2)
+            failed += solve_part(&k->part[iy], v) != RS_OK;
+        }
       }
     }
   }

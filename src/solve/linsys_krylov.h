@@ -15,6 +15,7 @@
 #include <stdint.h>
 
 #include "rollsim/model.h"
+#include "solve/linsys_lanes.h"
 
 /* A part of the near field that KLU factors on its own: the whole matrix, or (3D) the
  * unknowns of the cells of one of the grid's rows (a line along x), which the near field
@@ -46,6 +47,13 @@ typedef struct rs_krylov {
   /* line Gauss-Seidel (3D, a band along x only, no extras; see below), the lines' parts
    * taken by nsplit threads (halves of the grid) */
   int ylink, nsplit;
+  /* the lines factored and solved side by side (linsys_lanes.h) when lanes_on: groups
+   * gfirst[h][c] .. gfirst[h][c + 1] - 1 hold the lines of parity c in half h; ready[q]:
+   * part q factored (by the lanes, or by KLU where its lane's pivots did not hold) */
+  rs_lanes lanes;
+  int lanes_on, gfirst[2][3];
+  const double **lane_values; /* each part's values (its val) */
+  unsigned char *ready;
   long setups, analyses, products;
   long factorizations; /* KLU numeric factorisations and refactorisations */
   long reuses;         /* setups that kept the factored near field */

@@ -1,0 +1,333 @@
+/* Lines of the 3D near field factored and solved side by side (see linsys_lanes.h). */
+#include "solve/linsys_lanes.h"
+
+#include <klu.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "rollsim/status.h"
+
+/* The vector operations in 256-bit registers where the processor has them (one function
+ * of each kind, chosen when the program is loaded). */
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+#define RS_LANES_CLONES __attribute__((target_clones("avx2", "default")))
+#else
+#define RS_LANES_CLONES
+#endif
+
+/* count vectors, zeroed, aligned to their size (calloc aligns to 16 bytes only). */
+static rs_lane_vec *lane_alloc(int64_t count)
+{
+  const size_t bytes = (size_t)(count > 0 ? count : 1) * sizeof(rs_lane_vec);
+  rs_lane_vec *v = aligned_alloc(sizeof(rs_lane_vec), bytes);
+  if (v) memset(v, 0, bytes);
+  return v;
+}
+
+static int cmp_int(const void *a, const void *b)
+{
+  const int x = *(const int *)a, y = *(const int *)b;
+  return (x > y) - (x < y);
+}
+
+/* The union of the lines' patterns, as CSC (rows ascending in each column). */
+static int union_pattern(rs_lanes *s, const rs_lane_line *lines)
+{
+  const int n = s->n;
+  int *mark = malloc((size_t)n * sizeof *mark);
+  int64_t *count = calloc((size_t)n + 1, sizeof *count), cap = 0, nnz = 0;
+  int64_t *urp = malloc(((size_t)n + 1) * sizeof *urp);
+  int *ucol = NULL;
+  int status = mark && count && urp ? RS_OK : RS_ERR_INTERNAL;
+  for (int c = 0; status == RS_OK && c < n; c++) mark[c] = -1;
+  if (status == RS_OK) urp[0] = 0;
+  for (int r = 0; status == RS_OK && r < n; r++) {
+    const int64_t start = nnz;
+    for (int q = 0; q < s->nlines && status == RS_OK; q++)
+      for (int64_t e = lines[q].rowptr[r]; e < lines[q].rowptr[r + 1]; e++) {
+        const int c = (int)lines[q].col[e];
+        if (mark[c] == r) continue;
+        mark[c] = r;
+        if (nnz == cap) {
+          cap = cap ? 2 * cap : 16 * (int64_t)n;
+          int *grown = realloc(ucol, (size_t)cap * sizeof *ucol);
+          if (!grown) {
+            status = RS_ERR_INTERNAL;
+            break;
+          }
+          ucol = grown;
+        }
+        ucol[nnz++] = c;
+      }
+    if (status != RS_OK) break;
+    qsort(ucol + start, (size_t)(nnz - start), sizeof *ucol, cmp_int);
+    urp[r + 1] = nnz;
+  }
+  if (status == RS_OK) {
+    s->ap = calloc((size_t)n + 2, sizeof *s->ap);
+    s->ai = malloc((size_t)(nnz > 0 ? nnz : 1) * sizeof *s->ai);
+    if (!s->ap || !s->ai) status = RS_ERR_INTERNAL;
+  }
+  if (status == RS_OK) { /* transpose: the rows of each column come out ascending */
+    for (int64_t e = 0; e < nnz; e++) s->ap[ucol[e] + 2]++;
+    for (int c = 0; c < n; c++) s->ap[c + 2] += s->ap[c + 1];
+    for (int r = 0; r < n; r++)
+      for (int64_t e = urp[r]; e < urp[r + 1]; e++) s->ai[s->ap[ucol[e] + 1]++] = r;
+  }
+  free(mark);
+  free(count);
+  free(urp);
+  free(ucol);
+  return status;
+}
+
+/* The CSC position of (r, c) in the common pattern (present by construction). */
+static int position(const rs_lanes *s, int64_t r, int64_t c)
+{
+  int64_t lo = s->ap[c], hi = s->ap[c + 1] - 1;
+  while (lo < hi) {
+    const int64_t mid = (lo + hi) / 2;
+    if (s->ai[mid] < r)
+      lo = mid + 1;
+    else
+      hi = mid;
+  }
+  return (int)lo;
+}
+
+/* KLU's ordering and pivot order for the common pattern with line rep's values, and the
+ * patterns of L and U without their diagonals (U's rows ascending in each column: a
+ * left-looking refactorisation takes them in that order). */
+static int pivot_order(rs_lanes *s, const double *rep_values, int rep)
+{
+  const int n = s->n;
+  const int64_t nnz = s->ap[n];
+  klu_l_common common;
+  if (!klu_l_defaults(&common)) return RS_ERR_INTERNAL;
+  common.scale = -1;
+  common.btf = 0;
+  double *ax = calloc((size_t)(nnz > 0 ? nnz : 1), sizeof *ax);
+  if (!ax) return RS_ERR_INTERNAL;
+  const int *map = s->amap[rep];
+  for (int64_t e = 0; e < (int64_t)s->amap_len[rep]; e++) ax[map[e]] = rep_values[e];
+  klu_l_symbolic *sym = klu_l_analyze(n, s->ap, s->ai, &common);
+  klu_l_numeric *num = sym ? klu_l_factor(s->ap, s->ai, ax, sym, &common) : NULL;
+  int status = num && common.status == KLU_OK ? RS_OK : RS_ERR_SOLVER;
+  int64_t *ia = NULL;
+  double *xa = NULL;
+  if (status == RS_OK) {
+    const int64_t lnz = num->lnz, unz = num->unz;
+    ia = malloc((size_t)(2 * (n + 1) + lnz + unz + 2 * n + 2) * sizeof *ia);
+    xa = malloc((size_t)(lnz + unz) * sizeof *xa);
+    s->lp = malloc(((size_t)n + 1) * sizeof *s->lp);
+    s->up = malloc(((size_t)n + 1) * sizeof *s->up);
+    s->li = malloc((size_t)(lnz > 0 ? lnz : 1) * sizeof *s->li);
+    s->ui = malloc((size_t)(unz > 0 ? unz : 1) * sizeof *s->ui);
+    s->q = malloc((size_t)n * sizeof *s->q);
+    s->pinv = malloc((size_t)n * sizeof *s->pinv);
+    s->prow = malloc((size_t)n * sizeof *s->prow);
+    if (!ia || !xa || !s->lp || !s->up || !s->li || !s->ui || !s->q || !s->pinv || !s->prow)
+      status = RS_ERR_INTERNAL;
+    int64_t *Lp = ia, *Up = Lp + n + 1, *Li = Up + n + 1, *Ui = Li + lnz, *P = Ui + unz, *Q = P + n;
+    double *Lx = xa, *Ux = Lx + lnz;
+    if (status == RS_OK && !klu_l_extract(num, sym, Lp, Li, Lx, Up, Ui, Ux, NULL, NULL, NULL, P, Q,
+                                          NULL, NULL, &common))
+      status = RS_ERR_SOLVER;
+    int nl = 0, nu = 0;
+    for (int k = 0; status == RS_OK && k < n; k++) {
+      s->lp[k] = nl;
+      for (int64_t e = Lp[k]; e < Lp[k + 1]; e++)
+        if (Li[e] != k) s->li[nl++] = (int)Li[e];
+      s->up[k] = nu;
+      for (int64_t e = Up[k]; e < Up[k + 1]; e++)
+        if (Ui[e] != k) s->ui[nu++] = (int)Ui[e];
+      qsort(s->ui + s->up[k], (size_t)(nu - s->up[k]), sizeof *s->ui, cmp_int);
+      s->q[k] = (int)Q[k];
+      s->prow[k] = (int)P[k];
+      s->pinv[P[k]] = k;
+    }
+    if (status == RS_OK) {
+      s->lp[n] = nl;
+      s->up[n] = nu;
+    }
+  }
+  (void)rep;
+  free(ia);
+  free(xa);
+  free(ax);
+  if (num) klu_l_free_numeric(&num, &common);
+  if (sym) klu_l_free_symbolic(&sym, &common);
+  return status;
+}
+
+int rs_lanes_create(rs_lanes *s, int n, int nlines, const rs_lane_line *lines,
+                    const double *const *values, int rep, const int *order, int norder,
+                    const unsigned char *first_of_group)
+{
+  memset(s, 0, sizeof *s);
+  s->n = n;
+  s->nlines = nlines;
+  int status = union_pattern(s, lines);
+  if (status == RS_OK) {
+    s->amap = calloc((size_t)nlines, sizeof *s->amap);
+    s->amap_len = calloc((size_t)nlines, sizeof *s->amap_len);
+    if (!s->amap || !s->amap_len) status = RS_ERR_INTERNAL;
+  }
+  for (int q = 0; status == RS_OK && q < nlines; q++) {
+    const int64_t nz = lines[q].rowptr[n];
+    s->amap_len[q] = nz;
+    s->amap[q] = malloc((size_t)(nz > 0 ? nz : 1) * sizeof **s->amap);
+    if (!s->amap[q]) {
+      status = RS_ERR_INTERNAL;
+      break;
+    }
+    for (int r = 0; r < n; r++)
+      for (int64_t e = lines[q].rowptr[r]; e < lines[q].rowptr[r + 1]; e++)
+        s->amap[q][e] = position(s, r, lines[q].col[e]);
+  }
+  if (status == RS_OK) status = pivot_order(s, values[rep], rep);
+  /* the groups */
+  if (status == RS_OK) {
+    s->group = calloc((size_t)(norder > 0 ? norder : 1), sizeof *s->group);
+    if (!s->group) status = RS_ERR_INTERNAL;
+  }
+  const int64_t nnz = status == RS_OK ? s->ap[n] : 0;
+  for (int i = 0; status == RS_OK && i < norder; i++) {
+    rs_lane_group *g = s->ngroups > 0 ? &s->group[s->ngroups - 1] : NULL;
+    int lane = 0;
+    if (g && !first_of_group[i])
+      while (lane < RS_LANES && g->line[lane] >= 0) lane++;
+    if (!g || first_of_group[i] || lane == RS_LANES) {
+      g = &s->group[s->ngroups++];
+      for (int l = 0; l < RS_LANES; l++) g->line[l] = -1;
+      g->ax = lane_alloc(nnz);
+      g->lx = lane_alloc(s->lp[n]);
+      g->ux = lane_alloc(s->up[n]);
+      g->ud = lane_alloc(n);
+      g->w = lane_alloc(n);
+      g->gin = malloc((size_t)n * RS_LANES * sizeof *g->gin);
+      g->gout = malloc((size_t)n * RS_LANES * sizeof *g->gout);
+      if (!g->ax || !g->lx || !g->ux || !g->ud || !g->w || !g->gin || !g->gout) {
+        status = RS_ERR_INTERNAL;
+        break;
+      }
+      lane = 0;
+    }
+    const int q = order[i];
+    g->line[lane] = q;
+    for (int k = 0; k < n; k++) {
+      g->gin[k * RS_LANES + lane] = (int)lines[q].idx[s->prow[k]];
+      g->gout[k * RS_LANES + lane] = (int)lines[q].idx[s->q[k]];
+    }
+  }
+  for (int j = 0; status == RS_OK && j < s->ngroups; j++) { /* unused lanes read lane 0's */
+    rs_lane_group *g = &s->group[j];
+    for (int l = 1; l < RS_LANES; l++)
+      if (g->line[l] < 0)
+        for (int k = 0; k < n; k++) g->gin[k * RS_LANES + l] = g->gin[k * RS_LANES];
+  }
+  if (status != RS_OK) rs_lanes_free(s);
+  return status;
+}
+
+void rs_lanes_free(rs_lanes *s)
+{
+  for (int j = 0; s->group && j < s->ngroups; j++) {
+    rs_lane_group *g = &s->group[j];
+    free(g->ax);
+    free(g->lx);
+    free(g->ux);
+    free(g->ud);
+    free(g->w);
+    free(g->gin);
+    free(g->gout);
+  }
+  free(s->group);
+  for (int q = 0; s->amap && q < s->nlines; q++) free(s->amap[q]);
+  free(s->amap);
+  free(s->amap_len);
+  free(s->ap);
+  free(s->ai);
+  free(s->q);
+  free(s->pinv);
+  free(s->prow);
+  free(s->lp);
+  free(s->li);
+  free(s->up);
+  free(s->ui);
+  memset(s, 0, sizeof *s);
+}
+
+RS_LANES_CLONES void rs_lanes_refactor(rs_lanes *s, int gi, const double *const *values,
+                                       const unsigned char *refresh)
+{
+  rs_lane_group *g = &s->group[gi];
+  const int n = s->n;
+  const int64_t nnz = s->ap[n];
+  for (int l = 0; l < RS_LANES; l++) {
+    const int q = g->line[l];
+    if (q < 0 || !refresh[q]) continue;
+    const int *map = s->amap[q];
+    const double *v = values[q];
+    for (int64_t e = 0; e < s->amap_len[q]; e++) g->ax[map[e]][l] = v[e];
+  }
+  for (int l = 1; l < RS_LANES; l++) /* unused lanes: lane 0's matrix, never written back */
+    if (g->line[l] < 0)
+      for (int64_t e = 0; e < nnz; e++) g->ax[e][l] = g->ax[e][0];
+  /* left-looking LU on the fixed pattern: column k of P A Q */
+  rs_lane_vec *W = g->w, *lx = g->lx, *ux = g->ux;
+  const int *lp = s->lp, *li = s->li, *up = s->up, *ui = s->ui;
+  double umin[RS_LANES], umax[RS_LANES];
+  for (int l = 0; l < RS_LANES; l++) {
+    umin[l] = INFINITY;
+    umax[l] = 0.0;
+  }
+  const rs_lane_vec zero = {0.0};
+  for (int k = 0; k < n; k++) {
+    for (int e = up[k]; e < up[k + 1]; e++) W[ui[e]] = zero;
+    W[k] = zero;
+    for (int e = lp[k]; e < lp[k + 1]; e++) W[li[e]] = zero;
+    const int c = s->q[k];
+    for (int64_t e = s->ap[c]; e < s->ap[c + 1]; e++) W[s->pinv[s->ai[e]]] = g->ax[e];
+    for (int e = up[k]; e < up[k + 1]; e++) {
+      const int j = ui[e];
+      const rs_lane_vec ujk = W[j];
+      ux[e] = ujk;
+      for (int f = lp[j]; f < lp[j + 1]; f++) W[li[f]] -= lx[f] * ujk;
+    }
+    const rs_lane_vec ukk = W[k], inv = 1.0 / ukk;
+    g->ud[k] = inv;
+    for (int e = lp[k]; e < lp[k + 1]; e++) lx[e] = W[li[e]] * inv;
+    for (int l = 0; l < RS_LANES; l++) {
+      const double a = fabs(ukk[l]);
+      umin[l] = a < umin[l] || a != a ? a : umin[l];
+      umax[l] = a > umax[l] ? a : umax[l];
+    }
+  }
+  for (int l = 0; l < RS_LANES; l++)
+    g->ok[l] = g->line[l] >= 0 && umin[l] > 1e-8 * umax[l] && isfinite(umax[l]);
+}
+
+RS_LANES_CLONES void rs_lanes_solve(const rs_lanes *s, int gi, double *v)
+{
+  const rs_lane_group *g = &s->group[gi];
+  const int n = s->n;
+  rs_lane_vec *X = g->w;
+  const rs_lane_vec *lx = g->lx, *ux = g->ux, *ud = g->ud;
+  const int *lp = s->lp, *li = s->li, *up = s->up, *ui = s->ui;
+  for (int k = 0; k < n; k++)
+    for (int l = 0; l < RS_LANES; l++) X[k][l] = v[g->gin[k * RS_LANES + l]];
+  for (int k = 0; k < n; k++) { /* L: unit lower triangular */
+    const rs_lane_vec xk = X[k];
+    for (int e = lp[k]; e < lp[k + 1]; e++) X[li[e]] -= lx[e] * xk;
+  }
+  for (int k = n - 1; k >= 0; k--) { /* U */
+    const rs_lane_vec xk = X[k] * ud[k];
+    X[k] = xk;
+    for (int e = up[k]; e < up[k + 1]; e++) X[ui[e]] -= ux[e] * xk;
+  }
+  for (int l = 0; l < RS_LANES; l++)
+    if (g->ok[l])
+      for (int k = 0; k < n; k++) v[g->gout[k * RS_LANES + l]] = X[k][l];
+}

@@ -1,0 +1,72 @@
+/* Private: the lines of the 3D near-field preconditioner (linsys_krylov.h) factored and
+ * solved side by side, RS_LANES lines at a time, one line per lane of a vector.
+ *
+ * Every line has the same unknowns (the cells of a row of the grid, in the same local
+ * order), so the union of the lines' patterns is one pattern, which KLU orders and factors
+ * once (a representative line, partial pivoting); every line is then refactored on that
+ * pattern with that pivot order and solved with it, the lines of a group in the lanes of
+ * one vector: an entry of L or U costs one vector operation for RS_LANES lines. The lines'
+ * own KLU triangular solves spent about ten scalar instructions per entry and were bound by
+ * that count: in the 44 x 44 plastic creep curve of bench/cases their share (27 % with
+ * one thread) did not move with the factors in single precision and 16-bit indices, with
+ * four lines interleaved by hand, or with KLU's forward instead of its transposed solve.
+ * KLU's own choice of pivots there is its ordering's diagonal (the pivot sequence of each
+ * line followed from its pattern alone), so one order serves the lines; the union adds
+ * 22 % entries at 44 x 44 (L + U 3,657 per line against KLU's 2,997 on average). A line
+ * whose pivots the common order does not suit (the smallest |u_kk| below 1e-8 of the
+ * largest, KLU's own test for reusing an order) is marked and left to the caller (KLU with
+ * partial pivoting on its own pattern). The entries the union adds to a line are zeros:
+ * the factors are those of the line's own matrix up to roundoff. Measured (the curve
+ * above, one thread, perf): the triangular solves 27.7 % -> 15.9 % of the run, the
+ * refactorisations 7.0 % -> 6.3 %; eight lanes (AVX-512) or the factors in single
+ * precision: within the noise (paired runs 0.97 / 1.005). */
+#ifndef ROLLSIM_LINSYS_LANES_H
+#define ROLLSIM_LINSYS_LANES_H
+
+#include <stdint.h>
+
+enum { RS_LANES = 4 };
+typedef double rs_lane_vec __attribute__((vector_size(RS_LANES * sizeof(double))));
+
+/* One line's matrix as the caller holds it: local CSR (n unknowns), and the global index
+ * of each local unknown. */
+typedef struct rs_lane_line {
+  const int64_t *rowptr, *col, *idx;
+} rs_lane_line;
+
+typedef struct rs_lane_group {
+  int line[RS_LANES];         /* the caller's line of each lane, -1: unused */
+  unsigned char ok[RS_LANES]; /* the lane's factors hold (else the caller solves that line) */
+  rs_lane_vec *ax;            /* A on the common pattern (CSC), lane by lane */
+  rs_lane_vec *lx, *ux, *ud;  /* L below, U above the diagonal; ud: 1 / u_kk */
+  rs_lane_vec *w;             /* work of the refactorisation and the solve */
+  int *gin, *gout;            /* n x RS_LANES: global index of pivot row / column k */
+} rs_lane_group;
+
+typedef struct rs_lanes {
+  int n, nlines;
+  int64_t *ap, *ai;       /* common pattern, CSC */
+  int **amap;             /* per line: the CSC position of each of its CSR entries */
+  int64_t *amap_len;      /* entries of each line */
+  int *q, *prow, *pinv;   /* column and row of pivot step k; pivot step of row i */
+  int *lp, *li, *up, *ui; /* L, U without the diagonal, by columns in pivot order */
+  int ngroups;
+  rs_lane_group *group;
+} rs_lanes;
+
+/* The common pattern of nlines lines of n unknowns, its ordering and pivot order (KLU, the
+ * line rep's values), and the groups: lines listed in order[0..norder-1], cut into groups
+ * of RS_LANES where first_of_group marks a forced start. RS_OK, or an error (then the
+ * caller keeps its own factorisations). */
+int rs_lanes_create(rs_lanes *s, int n, int nlines, const rs_lane_line *lines,
+                    const double *const *values, int rep, const int *order, int norder,
+                    const unsigned char *first_of_group);
+void rs_lanes_free(rs_lanes *s);
+/* Group g's lanes refactored from their lines' CSR values (values[line]); refresh[line]
+ * says which lines' values changed (the others' stay as last scattered). Sets ok[]. */
+void rs_lanes_refactor(rs_lanes *s, int g, const double *const *values,
+                       const unsigned char *refresh);
+/* v <- the solves of group g's lines whose factors hold (global indices). */
+void rs_lanes_solve(const rs_lanes *s, int g, double *v);
+
+#endif
