@@ -6,8 +6,10 @@
  * Preconditioner: the Jacobian's near field (rs_model_jacobian with a band: tractions
  * of cells at most `band` cells away, on a pattern that does not depend on the contact
  * regimes, so that KLU's symbolic analysis is done once), factored by KLU; in 3D its
- * lines along x, coupled by a red-black Gauss-Seidel sweep across y (below). The far field
- * is never assembled: O(n band) entries. */
+ * lines along x, factored and solved four at a time in the lanes of a vector on one pattern
+ * and pivot order (linsys_lanes.h; KLU alone for a line whose pivots that order does not
+ * suit), coupled by a red-black Gauss-Seidel sweep across y (below). The far field is never
+ * assembled: O(n band) entries. */
 #ifndef ROLLSIM_LINSYS_KRYLOV_H
 #define ROLLSIM_LINSYS_KRYLOV_H
 
