@@ -36,10 +36,9 @@ static int union_pattern(rs_lanes *s, const rs_lane_line *lines)
 {
   const int n = s->n;
   int *mark = malloc((size_t)n * sizeof *mark);
-  int64_t *count = calloc((size_t)n + 1, sizeof *count), cap = 0, nnz = 0;
-  int64_t *urp = malloc(((size_t)n + 1) * sizeof *urp);
+  int64_t cap = 0, nnz = 0, *urp = malloc(((size_t)n + 1) * sizeof *urp);
   int *ucol = NULL;
-  int status = mark && count && urp ? RS_OK : RS_ERR_INTERNAL;
+  int status = mark && urp ? RS_OK : RS_ERR_INTERNAL;
   for (int c = 0; status == RS_OK && c < n; c++) mark[c] = -1;
   if (status == RS_OK) urp[0] = 0;
   for (int r = 0; status == RS_OK && r < n; r++) {
@@ -76,7 +75,6 @@ static int union_pattern(rs_lanes *s, const rs_lane_line *lines)
       for (int64_t e = urp[r]; e < urp[r + 1]; e++) s->ai[s->ap[ucol[e] + 1]++] = r;
   }
   free(mark);
-  free(count);
   free(urp);
   free(ucol);
   return status;
@@ -152,7 +150,6 @@ static int pivot_order(rs_lanes *s, const double *rep_values, int rep)
       s->up[n] = nu;
     }
   }
-  (void)rep;
   free(ia);
   free(xa);
   free(ax);
@@ -272,7 +269,8 @@ RS_LANES_CLONES void rs_lanes_refactor(rs_lanes *s, int gi, const double *const 
     const double *v = values[q];
     for (int64_t e = 0; e < s->amap_len[q]; e++) g->ax[map[e]][l] = v[e];
   }
-  for (int l = 1; l < RS_LANES; l++) /* unused lanes: lane 0's matrix, never written back */
+  /* unused lanes: lane 0's matrix (when it changed), never written back */
+  for (int l = 1; l < RS_LANES && refresh[g->line[0]]; l++)
     if (g->line[l] < 0)
       for (int64_t e = 0; e < nnz; e++) g->ax[e][l] = g->ax[e][0];
   /* left-looking LU on the fixed pattern: column k of P A Q */
