@@ -1,5 +1,5 @@
 /* The lines of the 3D near field factored and solved side by side (solve/linsys_lanes.h),
- * on seven lines of 30 unknowns whose patterns differ (a band of half width 3, and in some
+ * on fifteen lines of 30 unknowns whose patterns differ (a band of half width 3, and in some
  * lines entries two bands farther out), so that the common pattern is larger than each
  * line's and one group of lanes is not full:
  *
@@ -11,7 +11,10 @@
  *    coupled only to each other off the diagonal: a zero pivot) is reported (ok 0) and
  *    its entries of v are left as they were; the others still solve (1.).
  * 3. A refactorisation with one line's values changed (refresh of that line only) solves the
- *    new system of that line, and the other lines' solutions stay bit for bit. */
+ *    new system of that line, and the other lines' solutions stay bit for bit.
+ * 4. Groups solved side by side (two, three or four at once) give bit for bit the solutions
+ *    of the groups solved one at a time (each line's operations are the same), and so do
+ *    groups refactored side by side. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -20,7 +23,7 @@
 #include "rollsim/status.h"
 #include "solve/linsys_lanes.h"
 
-enum { N = 30, LINES = 7, BAD = 5 };
+enum { N = 30, LINES = 15, BAD = 5 };
 
 static int failures;
 static void check(int ok, const char *what)
@@ -79,10 +82,17 @@ static double residual(const line_mat *a, const double *x, const double *b)
   return worst;
 }
 
-static void solve_all(const rs_lanes *s, double *v)
+/* every group, batch groups at a time */
+static void solve_batched(const rs_lanes *s, double *v, int batch)
 {
-  for (int g = 0; g < s->ngroups; g++) rs_lanes_solve(s, g, v);
+  for (int g = 0; g < s->ngroups; g += batch) {
+    int groups[RS_LANES_BATCH], m = 0;
+    while (m < batch && g + m < s->ngroups) groups[m] = g + m, m++;
+    rs_lanes_solve(s, groups, m, v);
+  }
 }
+
+static void solve_all(const rs_lanes *s, double *v) { solve_batched(s, v, 1); }
 
 int main(void)
 {
@@ -103,7 +113,7 @@ int main(void)
   check(rs_lanes_create(&s, N, LINES, lines, values, 1, order, LINES, first) == RS_OK,
         "lanes created");
   check(s.ngroups == (LINES + RS_LANES - 1) / RS_LANES, "groups of RS_LANES lines");
-  for (int g = 0; g < s.ngroups; g++) rs_lanes_refactor(&s, g, values, refresh);
+  for (int g = 0; g < s.ngroups; g++) rs_lanes_refactor(&s, &g, 1, values, refresh);
   int ok_lines = 0, bad_ok = -1;
   for (int g = 0; g < s.ngroups; g++)
     for (int l = 0; l < RS_LANES; l++) {
@@ -127,7 +137,7 @@ int main(void)
   /* 3. line 2 changed, only it refreshed */
   for (int64_t e = 0; e < a[2].rowptr[N]; e++) a[2].val[e] *= 1.0 + 0.3 * rnd(&seed);
   for (int q = 0; q < LINES; q++) refresh[q] = q == 2;
-  for (int g = 0; g < s.ngroups; g++) rs_lanes_refactor(&s, g, values, refresh);
+  for (int g = 0; g < s.ngroups; g++) rs_lanes_refactor(&s, &g, 1, values, refresh);
   memcpy(v1, b, sizeof v1);
   solve_all(&s, v1);
   const double r2 = residual(&a[2], v1 + 2 * N, b + 2 * N);
@@ -138,6 +148,25 @@ int main(void)
   for (int q = 0; q < LINES; q++)
     if (q != 2) same &= !memcmp(v1 + q * N, v + q * N, N * sizeof *v);
   check(same, "the other lines' solutions bit for bit the same");
+
+  /* 4. side by side */
+  check(s.ngroups == 4, "four groups");
+  for (int batch = 2; batch <= RS_LANES_BATCH; batch++) {
+    double vb[LINES * N];
+    memcpy(vb, b, sizeof vb);
+    solve_batched(&s, vb, batch);
+    char what[80];
+    snprintf(what, sizeof what, "%d groups at once: bit for bit the solutions one at a time",
+             batch);
+    check(!memcmp(vb, v1, sizeof vb), what);
+  }
+  for (int q = 0; q < LINES; q++) refresh[q] = 1;
+  int all[4] = {0, 1, 2, 3};
+  rs_lanes_refactor(&s, all, 4, values, refresh);
+  double vr[LINES * N];
+  memcpy(vr, b, sizeof vr);
+  solve_all(&s, vr);
+  check(!memcmp(vr, v1, sizeof vr), "4 groups refactored at once: bit for bit the same solutions");
   rs_lanes_free(&s);
   return failures ? 1 : 0;
 }

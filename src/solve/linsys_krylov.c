@@ -56,7 +56,9 @@ static void parts_free(rs_krylov *k)
   free(k->refresh);
   free(k->ready);
   free(k->lane_values);
+  free(k->lane_todo);
   k->lane_values = NULL;
+  k->lane_todo = NULL;
   if (k->lanes_on) rs_lanes_free(&k->lanes);
   k->lanes_on = 0;
   k->part = NULL;
@@ -226,6 +228,13 @@ static void lanes_create(rs_krylov *k)
       }
     k->lanes_on =
         rs_lanes_create(&k->lanes, n, ny, lines, values, ny / 2, order, m, first) == RS_OK;
+    if (k->lanes_on) {
+      k->lane_todo = malloc((size_t)k->lanes.ngroups * sizeof *k->lane_todo);
+      if (!k->lane_todo) {
+        rs_lanes_free(&k->lanes);
+        k->lanes_on = 0;
+      }
+    }
   }
   if (k->lanes_on)
     k->lane_values = values;
@@ -421,25 +430,40 @@ static int setup_linearised(rs_krylov *k, const rs_inputs *in, double cj)
   if (lines && k->lanes_on) {
     const rs_lanes *ln = &k->lanes;
     const double *const *values = k->lane_values;
-#pragma omp parallel for num_threads(k->nsplit) schedule(static) reduction(+ : failed)
+    /* the groups with a line to refresh, refactored side by side in batches of at most
+     * RS_LANES_BATCH, as many batches for each thread, of sizes as equal as they go */
+    int ntodo = 0;
     for (int g = 0; g < ln->ngroups; g++) {
-      const rs_lane_group *gr = &ln->group[g];
       int any = 0;
       for (int l = 0; l < RS_LANES; l++) {
-        const int q = gr->line[l];
-        if (q >= 0 && k->refresh[q]) {
-          part_values(k, &k->part[q]);
-          any = 1;
-        }
+        const int q = ln->group[g].line[l];
+        any |= q >= 0 && k->refresh[q];
       }
-      if (!any) continue;
-      rs_lanes_refactor(&k->lanes, g, values, k->refresh);
-      for (int l = 0; l < RS_LANES; l++) { /* lanes whose pivots did not hold: KLU */
-        const int q = gr->line[l];
-        if (q < 0 || !k->refresh[q]) continue;
-        rs_klu_part *p = &k->part[q];
-        k->ready[q] = gr->ok[l] || factor_part(p, same && p->num) == RS_OK;
-        failed += !k->ready[q];
+      if (any) k->lane_todo[ntodo++] = g;
+    }
+    const int T = k->nsplit;
+    int nbatch = (ntodo + RS_LANES_BATCH - 1) / RS_LANES_BATCH;
+    if (nbatch % T && ntodo >= T) nbatch += T - nbatch % T;
+#pragma omp parallel for num_threads(T) schedule(static) reduction(+ : failed)
+    for (int b = 0; b < nbatch; b++) {
+      const int t0 = (int)((int64_t)b * ntodo / nbatch),
+                t1 = (int)((int64_t)(b + 1) * ntodo / nbatch);
+      const int *batch = k->lane_todo + t0;
+      for (int j = 0; j < t1 - t0; j++)
+        for (int l = 0; l < RS_LANES; l++) {
+          const int q = ln->group[batch[j]].line[l];
+          if (q >= 0 && k->refresh[q]) part_values(k, &k->part[q]);
+        }
+      if (t1 > t0) rs_lanes_refactor(&k->lanes, batch, t1 - t0, values, k->refresh);
+      for (int j = 0; j < t1 - t0; j++) {
+        const rs_lane_group *gr = &ln->group[batch[j]];
+        for (int l = 0; l < RS_LANES; l++) { /* lanes whose pivots did not hold: KLU */
+          const int q = gr->line[l];
+          if (q < 0 || !k->refresh[q]) continue;
+          rs_klu_part *p = &k->part[q];
+          k->ready[q] = gr->ok[l] || factor_part(p, same && p->num) == RS_OK;
+          failed += !k->ready[q];
+        }
       }
     }
   } else if (lines) {
@@ -504,12 +528,20 @@ int rs_krylov_psolve(rs_krylov *k, double *v)
       for (int h = tid; h < T; h += nth) {
         const int iy0 = h == 0 ? 0 : ny / 2, iy1 = h == T - 1 ? ny : ny / 2;
         if (k->lanes_on) {
-          for (int g = k->gfirst[h][c]; g < k->gfirst[h][c + 1]; g++) {
-            const rs_lane_group *gr = &k->lanes.group[g];
-            rs_lanes_solve(&k->lanes, g, v);
-            for (int l = 0; l < RS_LANES; l++)
-              if (gr->line[l] >= 0 && !gr->ok[l])
-                failed += solve_part(&k->part[gr->line[l]], v) != RS_OK;
+          /* side by side in batches of sizes as equal as they go */
+          const int g0 = k->gfirst[h][c], count = k->gfirst[h][c + 1] - g0;
+          const int nbatch = (count + RS_LANES_BATCH - 1) / RS_LANES_BATCH;
+          for (int b = 0; b < nbatch; b++) {
+            int batch[RS_LANES_BATCH], m = 0;
+            for (int g = g0 + b * count / nbatch; g < g0 + (b + 1) * count / nbatch; g++)
+              batch[m++] = g;
+            rs_lanes_solve(&k->lanes, batch, m, v);
+            for (int j = 0; j < m; j++) {
+              const rs_lane_group *gr = &k->lanes.group[batch[j]];
+              for (int l = 0; l < RS_LANES; l++)
+                if (gr->line[l] >= 0 && !gr->ok[l])
+                  failed += solve_part(&k->part[gr->line[l]], v) != RS_OK;
+            }
           }
         } else {
           for (int iy = iy0 + ((iy0 & 1) != c); iy < iy1; iy += 2)

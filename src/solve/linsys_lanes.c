@@ -158,6 +158,34 @@ static int pivot_order(rs_lanes *s, const double *rep_values, int rep)
   return status;
 }
 
+/* A triangle's pattern (cp, ci: by columns) by rows: rp, rc, and perm[e], the row-ordered
+ * position of column-ordered entry e; each row's columns ascending, or descending. */
+static int by_rows(int n, const int *cp, const int *ci, int ascending, int **rp, int **rc,
+                   int **perm)
+{
+  const int nz = cp[n];
+  *rp = calloc((size_t)n + 1, sizeof **rp);
+  *rc = malloc((size_t)(nz > 0 ? nz : 1) * sizeof **rc);
+  *perm = malloc((size_t)(nz > 0 ? nz : 1) * sizeof **perm);
+  int *next = malloc(((size_t)n + 1) * sizeof *next);
+  const int ok = *rp && *rc && *perm && next;
+  if (ok) {
+    for (int e = 0; e < nz; e++) (*rp)[ci[e] + 1]++;
+    for (int r = 0; r < n; r++) (*rp)[r + 1] += (*rp)[r];
+    for (int r = 0; r < n; r++) next[r] = (*rp)[r];
+    for (int j = 0; j < n; j++) { /* columns in the row order wanted */
+      const int k = ascending ? j : n - 1 - j;
+      for (int e = cp[k]; e < cp[k + 1]; e++) {
+        const int pos = next[ci[e]]++;
+        (*rc)[pos] = k;
+        (*perm)[e] = pos;
+      }
+    }
+  }
+  free(next);
+  return ok ? RS_OK : RS_ERR_INTERNAL;
+}
+
 int rs_lanes_create(rs_lanes *s, int n, int nlines, const rs_lane_line *lines,
                     const double *const *values, int rep, const int *order, int norder,
                     const unsigned char *first_of_group)
@@ -184,6 +212,8 @@ int rs_lanes_create(rs_lanes *s, int n, int nlines, const rs_lane_line *lines,
         s->amap[q][e] = position(s, r, lines[q].col[e]);
   }
   if (status == RS_OK) status = pivot_order(s, values[rep], rep);
+  if (status == RS_OK) status = by_rows(n, s->lp, s->li, 1, &s->lrp, &s->lrc, &s->lperm);
+  if (status == RS_OK) status = by_rows(n, s->up, s->ui, 0, &s->urp, &s->urc, &s->uperm);
   /* the groups */
   if (status == RS_OK) {
     s->group = calloc((size_t)(norder > 0 ? norder : 1), sizeof *s->group);
@@ -200,12 +230,13 @@ int rs_lanes_create(rs_lanes *s, int n, int nlines, const rs_lane_line *lines,
       for (int l = 0; l < RS_LANES; l++) g->line[l] = -1;
       g->ax = lane_alloc(nnz);
       g->lx = lane_alloc(s->lp[n]);
+      g->lr = lane_alloc(s->lp[n]);
       g->ux = lane_alloc(s->up[n]);
       g->ud = lane_alloc(n);
       g->w = lane_alloc(n);
       g->gin = malloc((size_t)n * RS_LANES * sizeof *g->gin);
       g->gout = malloc((size_t)n * RS_LANES * sizeof *g->gout);
-      if (!g->ax || !g->lx || !g->ux || !g->ud || !g->w || !g->gin || !g->gout) {
+      if (!g->ax || !g->lx || !g->lr || !g->ux || !g->ud || !g->w || !g->gin || !g->gout) {
         status = RS_ERR_INTERNAL;
         break;
       }
@@ -234,6 +265,7 @@ void rs_lanes_free(rs_lanes *s)
     rs_lane_group *g = &s->group[j];
     free(g->ax);
     free(g->lx);
+    free(g->lr);
     free(g->ux);
     free(g->ud);
     free(g->w);
@@ -253,15 +285,20 @@ void rs_lanes_free(rs_lanes *s)
   free(s->li);
   free(s->up);
   free(s->ui);
+  free(s->lrp);
+  free(s->lrc);
+  free(s->lperm);
+  free(s->urp);
+  free(s->urc);
+  free(s->uperm);
   memset(s, 0, sizeof *s);
 }
 
-RS_LANES_CLONES void rs_lanes_refactor(rs_lanes *s, int gi, const double *const *values,
-                                       const unsigned char *refresh)
+/* Group gi's lanes: the values of its refreshed lines scattered onto the common pattern. */
+static void scatter_values(rs_lanes *s, rs_lane_group *g, const double *const *values,
+                           const unsigned char *refresh)
 {
-  rs_lane_group *g = &s->group[gi];
-  const int n = s->n;
-  const int64_t nnz = s->ap[n];
+  const int64_t nnz = s->ap[s->n];
   for (int l = 0; l < RS_LANES; l++) {
     const int q = g->line[l];
     if (q < 0 || !refresh[q]) continue;
@@ -273,59 +310,146 @@ RS_LANES_CLONES void rs_lanes_refactor(rs_lanes *s, int gi, const double *const 
   for (int l = 1; l < RS_LANES && refresh[g->line[0]]; l++)
     if (g->line[l] < 0)
       for (int64_t e = 0; e < nnz; e++) g->ax[e][l] = g->ax[e][0];
-  /* left-looking LU on the fixed pattern: column k of P A Q */
-  rs_lane_vec *W = g->w, *lx = g->lx, *ux = g->ux;
-  const int *lp = s->lp, *li = s->li, *up = s->up, *ui = s->ui;
-  double umin[RS_LANES], umax[RS_LANES];
-  for (int l = 0; l < RS_LANES; l++) {
-    umin[l] = INFINITY;
-    umax[l] = 0.0;
-  }
-  const rs_lane_vec zero = {0.0};
-  for (int k = 0; k < n; k++) {
-    for (int e = up[k]; e < up[k + 1]; e++) W[ui[e]] = zero;
-    W[k] = zero;
-    for (int e = lp[k]; e < lp[k + 1]; e++) W[li[e]] = zero;
-    const int c = s->q[k];
-    for (int64_t e = s->ap[c]; e < s->ap[c + 1]; e++) W[s->pinv[s->ai[e]]] = g->ax[e];
-    for (int e = up[k]; e < up[k + 1]; e++) {
-      const int j = ui[e];
-      const rs_lane_vec ujk = W[j];
-      ux[e] = ujk;
-      for (int f = lp[j]; f < lp[j + 1]; f++) W[li[f]] -= lx[f] * ujk;
-    }
-    const rs_lane_vec ukk = W[k], inv = 1.0 / ukk;
-    g->ud[k] = inv;
-    for (int e = lp[k]; e < lp[k + 1]; e++) lx[e] = W[li[e]] * inv;
-    for (int l = 0; l < RS_LANES; l++) {
-      const double a = fabs(ukk[l]);
-      umin[l] = a < umin[l] || a != a ? a : umin[l];
-      umax[l] = a > umax[l] ? a : umax[l];
-    }
-  }
-  for (int l = 0; l < RS_LANES; l++)
-    g->ok[l] = g->line[l] >= 0 && umin[l] > 1e-8 * umax[l] && isfinite(umax[l]);
 }
 
-RS_LANES_CLONES void rs_lanes_solve(const rs_lanes *s, int gi, double *v)
+/* Left-looking LU of m groups side by side on the fixed pattern (column k of P A Q): the
+ * groups' updates are independent, so the processor overlaps them (one group's chain of
+ * updates through its work column bound its refactorisation); each lane's operations are
+ * those of a group alone. */
+static inline __attribute__((always_inline)) void refactor_groups(rs_lanes *s, const int *gi, int m)
 {
-  const rs_lane_group *g = &s->group[gi];
   const int n = s->n;
-  rs_lane_vec *X = g->w;
-  const rs_lane_vec *lx = g->lx, *ux = g->ux, *ud = g->ud;
+  rs_lane_vec *W[RS_LANES_BATCH], *lx[RS_LANES_BATCH], *lr[RS_LANES_BATCH], *ux[RS_LANES_BATCH],
+      *ud[RS_LANES_BATCH];
+  const rs_lane_vec *ax[RS_LANES_BATCH];
+  for (int j = 0; j < m; j++) {
+    rs_lane_group *g = &s->group[gi[j]];
+    W[j] = g->w;
+    lx[j] = g->lx;
+    lr[j] = g->lr;
+    ux[j] = g->ux;
+    ud[j] = g->ud;
+    ax[j] = g->ax;
+  }
   const int *lp = s->lp, *li = s->li, *up = s->up, *ui = s->ui;
-  for (int k = 0; k < n; k++)
-    for (int l = 0; l < RS_LANES; l++) X[k][l] = v[g->gin[k * RS_LANES + l]];
+  const int *lperm = s->lperm, *uperm = s->uperm;
+  double umin[RS_LANES_BATCH][RS_LANES], umax[RS_LANES_BATCH][RS_LANES];
+  for (int j = 0; j < m; j++)
+    for (int l = 0; l < RS_LANES; l++) {
+      umin[j][l] = INFINITY;
+      umax[j][l] = 0.0;
+    }
+  const rs_lane_vec zero = {0.0};
+  for (int k = 0; k < n; k++) {
+    for (int e = up[k]; e < up[k + 1]; e++)
+      for (int j = 0; j < m; j++) W[j][ui[e]] = zero;
+    for (int j = 0; j < m; j++) W[j][k] = zero;
+    for (int e = lp[k]; e < lp[k + 1]; e++)
+      for (int j = 0; j < m; j++) W[j][li[e]] = zero;
+    const int c = s->q[k];
+    for (int64_t e = s->ap[c]; e < s->ap[c + 1]; e++) {
+      const int r = s->pinv[s->ai[e]];
+      for (int j = 0; j < m; j++) W[j][r] = ax[j][e];
+    }
+    for (int e = up[k]; e < up[k + 1]; e++) {
+      const int r = ui[e], pos = uperm[e];
+      rs_lane_vec ujk[RS_LANES_BATCH];
+      for (int j = 0; j < m; j++) {
+        ujk[j] = W[j][r];
+        ux[j][pos] = ujk[j];
+      }
+      for (int f = lp[r]; f < lp[r + 1]; f++) {
+        const int i = li[f];
+        for (int j = 0; j < m; j++) W[j][i] -= lx[j][f] * ujk[j];
+      }
+    }
+    for (int j = 0; j < m; j++) {
+      const rs_lane_vec ukk = W[j][k], inv = 1.0 / ukk;
+      ud[j][k] = inv;
+      for (int e = lp[k]; e < lp[k + 1]; e++) {
+        const rs_lane_vec lik = W[j][li[e]] * inv;
+        lx[j][e] = lik;
+        lr[j][lperm[e]] = lik;
+      }
+      for (int l = 0; l < RS_LANES; l++) {
+        const double a = fabs(ukk[l]);
+        umin[j][l] = a < umin[j][l] || a != a ? a : umin[j][l];
+        umax[j][l] = a > umax[j][l] ? a : umax[j][l];
+      }
+    }
+  }
+  for (int j = 0; j < m; j++) {
+    rs_lane_group *g = &s->group[gi[j]];
+    for (int l = 0; l < RS_LANES; l++)
+      g->ok[l] = g->line[l] >= 0 && umin[j][l] > 1e-8 * umax[j][l] && isfinite(umax[j][l]);
+  }
+}
+
+RS_LANES_CLONES void rs_lanes_refactor(rs_lanes *s, const int *groups, int m,
+                                       const double *const *values, const unsigned char *refresh)
+{
+  for (int j = 0; j < m; j++) scatter_values(s, &s->group[groups[j]], values, refresh);
+  switch (m) { /* m a constant in each: the loops over the groups unrolled */
+  case 4: refactor_groups(s, groups, 4); break;
+  case 3: refactor_groups(s, groups, 3); break;
+  case 2: refactor_groups(s, groups, 2); break;
+  default: refactor_groups(s, groups, 1); break;
+  }
+}
+
+/* The solves of m groups (m <= RS_LANES_BATCH) side by side. By rows: each unknown's updates
+ * in the order a solve by columns makes them (the same results bit for bit), summed in a
+ * register instead of read and written back to memory once per column; the groups' sums are
+ * independent chains, which the processor overlaps (one group's chain of subtractions bound
+ * its solve). */
+static inline __attribute__((always_inline)) void solve_groups(const rs_lanes *s, const int *gi,
+                                                               int m, double *v)
+{
+  const int n = s->n;
+  rs_lane_vec *X[RS_LANES_BATCH];
+  const rs_lane_vec *lr[RS_LANES_BATCH], *ux[RS_LANES_BATCH], *ud[RS_LANES_BATCH];
+  const int *lrp = s->lrp, *lrc = s->lrc, *urp = s->urp, *urc = s->urc;
+  for (int j = 0; j < m; j++) {
+    const rs_lane_group *g = &s->group[gi[j]];
+    X[j] = g->w;
+    lr[j] = g->lr;
+    ux[j] = g->ux;
+    ud[j] = g->ud;
+    for (int k = 0; k < n; k++)
+      for (int l = 0; l < RS_LANES; l++) X[j][k][l] = v[g->gin[k * RS_LANES + l]];
+  }
   for (int k = 0; k < n; k++) { /* L: unit lower triangular */
-    const rs_lane_vec xk = X[k];
-    for (int e = lp[k]; e < lp[k + 1]; e++) X[li[e]] -= lx[e] * xk;
+    rs_lane_vec x[RS_LANES_BATCH];
+    for (int j = 0; j < m; j++) x[j] = X[j][k];
+    for (int e = lrp[k]; e < lrp[k + 1]; e++) {
+      const int c = lrc[e];
+      for (int j = 0; j < m; j++) x[j] -= lr[j][e] * X[j][c];
+    }
+    for (int j = 0; j < m; j++) X[j][k] = x[j];
   }
   for (int k = n - 1; k >= 0; k--) { /* U */
-    const rs_lane_vec xk = X[k] * ud[k];
-    X[k] = xk;
-    for (int e = up[k]; e < up[k + 1]; e++) X[ui[e]] -= ux[e] * xk;
+    rs_lane_vec x[RS_LANES_BATCH];
+    for (int j = 0; j < m; j++) x[j] = X[j][k];
+    for (int e = urp[k]; e < urp[k + 1]; e++) {
+      const int c = urc[e];
+      for (int j = 0; j < m; j++) x[j] -= ux[j][e] * X[j][c];
+    }
+    for (int j = 0; j < m; j++) X[j][k] = x[j] * ud[j][k];
   }
-  for (int l = 0; l < RS_LANES; l++)
-    if (g->ok[l])
-      for (int k = 0; k < n; k++) v[g->gout[k * RS_LANES + l]] = X[k][l];
+  for (int j = 0; j < m; j++) {
+    const rs_lane_group *g = &s->group[gi[j]];
+    for (int l = 0; l < RS_LANES; l++)
+      if (g->ok[l])
+        for (int k = 0; k < n; k++) v[g->gout[k * RS_LANES + l]] = X[j][k][l];
+  }
+}
+
+RS_LANES_CLONES void rs_lanes_solve(const rs_lanes *s, const int *groups, int m, double *v)
+{
+  switch (m) { /* m a constant in each: the loops over the groups unrolled */
+  case 4: solve_groups(s, groups, 4, v); break;
+  case 3: solve_groups(s, groups, 3, v); break;
+  case 2: solve_groups(s, groups, 2, v); break;
+  default: solve_groups(s, groups, 1, v); break;
+  }
 }

@@ -25,7 +25,7 @@
 
 #include <stdint.h>
 
-enum { RS_LANES = 4 };
+enum { RS_LANES = 4, RS_LANES_BATCH = 4 };
 typedef double rs_lane_vec __attribute__((vector_size(RS_LANES * sizeof(double))));
 
 /* One line's matrix as the caller holds it: local CSR (n unknowns), and the global index
@@ -38,7 +38,9 @@ typedef struct rs_lane_group {
   int line[RS_LANES];         /* the caller's line of each lane, -1: unused */
   unsigned char ok[RS_LANES]; /* the lane's factors hold (else the caller solves that line) */
   rs_lane_vec *ax;            /* A on the common pattern (CSC), lane by lane */
-  rs_lane_vec *lx, *ux, *ud;  /* L below, U above the diagonal; ud: 1 / u_kk */
+  rs_lane_vec *lx, *ux, *ud;  /* L below the diagonal by columns, U above it by rows (urp);
+                               * ud: 1 / u_kk */
+  rs_lane_vec *lr;            /* L by rows (lrp) */
   rs_lane_vec *w;             /* work of the refactorisation and the solve */
   int *gin, *gout;            /* n x RS_LANES: global index of pivot row / column k */
 } rs_lane_group;
@@ -50,6 +52,10 @@ typedef struct rs_lanes {
   int64_t *amap_len;      /* entries of each line */
   int *q, *prow, *pinv;   /* column and row of pivot step k; pivot step of row i */
   int *lp, *li, *up, *ui; /* L, U without the diagonal, by columns in pivot order */
+  /* The same by rows, for the solves: row k of L its columns ascending, row k of U its
+   * columns descending (the order in which the column-oriented solves update an unknown);
+   * lperm / uperm: the row-ordered position of each column-ordered entry */
+  int *lrp, *lrc, *lperm, *urp, *urc, *uperm;
   int ngroups;
   rs_lane_group *group;
 } rs_lanes;
@@ -62,11 +68,13 @@ int rs_lanes_create(rs_lanes *s, int n, int nlines, const rs_lane_line *lines,
                     const double *const *values, int rep, const int *order, int norder,
                     const unsigned char *first_of_group);
 void rs_lanes_free(rs_lanes *s);
-/* Group g's lanes refactored from their lines' CSR values (values[line]); refresh[line]
- * says which lines' values changed (the others' stay as last scattered). Sets ok[]. */
-void rs_lanes_refactor(rs_lanes *s, int g, const double *const *values,
+/* The lanes of the m groups groups[0..m-1] (1 <= m <= RS_LANES_BATCH) refactored side by side
+ * from their lines' CSR values (values[line]); refresh[line] says which lines' values changed
+ * (the others' stay as last scattered). Sets ok[]. */
+void rs_lanes_refactor(rs_lanes *s, const int *groups, int m, const double *const *values,
                        const unsigned char *refresh);
-/* v <- the solves of group g's lines whose factors hold (global indices). */
-void rs_lanes_solve(const rs_lanes *s, int g, double *v);
+/* v <- the solves of the lines whose factors hold (global indices) of the m groups
+ * groups[0..m-1], 1 <= m <= RS_LANES_BATCH, solved side by side. */
+void rs_lanes_solve(const rs_lanes *s, const int *groups, int m, double *v);
 
 #endif
