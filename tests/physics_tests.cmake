@@ -29,6 +29,10 @@ target_include_directories(test_near_ylink PRIVATE ${PROJECT_SOURCE_DIR}/src)
 # a line that needs other pivots reported, a refactorisation of one line only.
 rs_unit_test(test_lanes)
 target_include_directories(test_lanes PRIVATE ${PROJECT_SOURCE_DIR}/src)
+# The 3D Newton-Krylov GMRES: converged, restarted, from a guess and not converged, its
+# residuals measured from J v; its iterations against SUNDIALS' SPGMR.
+rs_unit_test(test_gmres)
+target_include_directories(test_gmres PRIVATE ${PROJECT_SOURCE_DIR}/src)
 # Velocity-dependent friction: the Coulomb limit and full sliding (verification.md 14).
 rs_unit_test(test_falling_friction)
 # grid.x_range gives the same discrete problem as grid.extent with the same edges.

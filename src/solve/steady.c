@@ -12,6 +12,7 @@
 #include <string.h>
 
 #include "solve/linsys.h"
+#include "solve/gmres.h"
 #include "solve/linsys_krylov.h"
 #include "solve/nvector_fast.h"
 #include "rollsim/steady.h"
@@ -274,10 +275,16 @@ int rs_steady_create_with(rs_steady **out, const rs_model *m, SUNContext ctx, rs
   if (linear == RS_LINEAR_DENSE)
     RS_SUN_CHECK(rs_linsys_use_reduced(&s->ls, m, &s->work, ctx), msg, what);
   if (linear == RS_LINEAR_KRYLOV) {
-    s->gmres = SUNLinSol_SPGMR(s->u, SUN_PREC_RIGHT, KRYLOV_MAXL, ctx);
-    RS_SUN_CHECK(s->gmres == NULL, msg, what);
-    RS_SUN_CHECK(SUNLinSol_SPGMRSetMaxRestarts(s->gmres, 4), msg, what);
-    RS_SUN_CHECK(SUNLinSol_SPGMRSetGSType(s->gmres, SUN_CLASSICAL_GS), msg, what);
+    /* 3D: our GMRES with its vector work fused (gmres.h); 2D keeps SPGMR */
+    if (three) {
+      s->gmres = rs_gmres_create(&s->kry, s->u, KRYLOV_MAXL, 4, ctx);
+      RS_SUN_CHECK(s->gmres == NULL, msg, what);
+    } else {
+      s->gmres = SUNLinSol_SPGMR(s->u, SUN_PREC_RIGHT, KRYLOV_MAXL, ctx);
+      RS_SUN_CHECK(s->gmres == NULL, msg, what);
+      RS_SUN_CHECK(SUNLinSol_SPGMRSetMaxRestarts(s->gmres, 4), msg, what);
+      RS_SUN_CHECK(SUNLinSol_SPGMRSetGSType(s->gmres, SUN_CLASSICAL_GS), msg, what);
+    }
     RS_SUN_CHECK(rs_krylov_create(&s->kry, m, three ? RS_KRYLOV_BAND_3D : KRYLOV_BAND,
                                   three ? RS_KRYLOV_BAND_3D_Y : 0),
                  msg, what);
