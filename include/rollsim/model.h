@@ -208,6 +208,22 @@ int rs_model_jacobian_assemble(const rs_model *m, const rs_work *w, const rs_inp
 enum { RS_YLINK_MAX_BAND = 8 };
 void rs_model_near_ylink(const rs_model *m, const rs_work *w, const rs_inputs *in, double cj,
                          int band, int parity, int iy0, int iy1, const double *x, double *r);
+/* The same in two steps: the couplings' coefficients of a linearisation gathered once
+ * (rs_model_near_ylink_prepare: the kernel's entries at iy +- 1 and each cell's local
+ * Jacobian entries, in a table that the first call allocates; RS_OK or RS_ERR_INTERNAL),
+ * then applied as often as needed (rs_model_near_ylink_apply: the same sums in the same
+ * order as rs_model_near_ylink, bit for bit). */
+typedef struct rs_ylink {
+  int band, nrow, ncell, on;
+  double st[2][2][2][2 * RS_YLINK_MAX_BAND + 1]; /* [c][b][side][band + offset] */
+  double *coef;                                  /* [cell][row][c], 0 where not present */
+  unsigned char *rows; /* [cell]: bit k when row k has a coupling; 0: none (or exterior) */
+} rs_ylink;
+int rs_model_near_ylink_prepare(const rs_model *m, const rs_work *w, const rs_inputs *in, double cj,
+                                int band, rs_ylink *t);
+void rs_model_near_ylink_apply(const rs_model *m, const rs_ylink *t, int parity, int iy0, int iy1,
+                               const double *x, double *r);
+void rs_ylink_free(rs_ylink *t);
 /* rs_model_jacobian_assemble for the rows of the cells of the lines iy with lines[iy] set,
  * into J as it was assembled last with the same band, band_y and pattern (no extras):
  * those rows rewritten in place, the others kept. RS_ERR_SOLVER if a row's length is not

@@ -22,7 +22,9 @@ struct rs_elastic3d_fft {
    * ny rows, so the transforms along x run on those rows only (r2c / c2r of mx), the ones
    * along y (c2c of my, in place) on every column. */
   fftw_plan rows_fwd, cols_fwd, cols_bwd, rows_bwd;
-  fftw_complex *kxx, *kxy, *kyy, *kzz; /* transformed kernels [my ncx] */
+  /* transformed kernels [my ncx]: real parts, and A_xy's imaginary parts where they are not
+   * roundoff (NULL else; see rs_elastic3d_fft_create) */
+  double *kxx, *kxy, *kyy, *kzz, *kxy_im;
 };
 
 int rs_elastic3d_fft_size(int m)
@@ -67,6 +69,7 @@ void rs_elastic3d_fft_free(struct rs_elastic3d_fft *f)
   fftw_free(f->kxy);
   fftw_free(f->kyy);
   fftw_free(f->kzz);
+  fftw_free(f->kxy_im);
   free(f);
 }
 
@@ -81,10 +84,10 @@ struct rs_elastic3d_fft *rs_elastic3d_fft_create(const rs_elastic3d *el)
   const size_t nreal = (size_t)f->mx * (size_t)f->my, ncomplex = (size_t)f->my * (size_t)f->ncx;
   double *grid = fftw_alloc_real(nreal);
   fftw_complex *spec = fftw_alloc_complex(ncomplex);
-  f->kxx = fftw_alloc_complex(ncomplex);
-  f->kxy = fftw_alloc_complex(ncomplex);
-  f->kyy = fftw_alloc_complex(ncomplex);
-  f->kzz = fftw_alloc_complex(ncomplex);
+  f->kxx = fftw_alloc_real(ncomplex);
+  f->kxy = fftw_alloc_real(ncomplex);
+  f->kyy = fftw_alloc_real(ncomplex);
+  f->kzz = fftw_alloc_real(ncomplex);
   /* The offsets beyond the tables: the four coefficients of each |kx|, |ky| at once, by
    * one evaluation of the rectangle's integrals, which are even in kx and ky but for the
    * xy coefficient, odd in each (mirrored rectangles give mirrored values bit for bit:
@@ -112,24 +115,41 @@ struct rs_elastic3d_fft *rs_elastic3d_fft_create(const rs_elastic3d *el)
   }
   for (int comp = 0; ok && comp < 4; comp++) {
     static const int ci[4] = {0, 0, 1, 2}, cj[4] = {0, 1, 1, 2};
-    fftw_complex *kernel = comp == 0 ? f->kxx : comp == 1 ? f->kxy : comp == 2 ? f->kyy : f->kzz;
+    double *kernel = comp == 0 ? f->kxx : comp == 1 ? f->kxy : comp == 2 ? f->kyy : f->kzz;
     /* Index (qx, qy) holds the offset of minimal image kx in (-mx/2, mx/2], ky likewise.
      * The products read only the offsets of the tables, which are their own minimal
      * images (|kx| <= nx <= mx/2, |ky| <= ny-1 < my/2); the rest of the periodic grid is
      * never read by a product, and filling it with the kernel itself (not zeros) keeps
      * the circulant close to the half-space operator, positive definite for A_zz (see
-     * rs_elastic3d_norm_lower_eigenvalue). */
+     * rs_elastic3d_norm_lower_eigenvalue).
+     * Every kernel is symmetric under (kx, ky) -> (-kx, -ky) (A_xx, A_yy, A_zz even in each,
+     * A_xy odd in each), so its transform is real, and the products take two real
+     * multiplications per frequency instead of a complex one. On a grid of even length the
+     * Nyquist offset mx/2 (my/2) is its own mirror, where the odd A_xy must be 0 for the
+     * symmetry: it is set so where no product reads it (my/2 > ny - 1 always; mx/2 > nx
+     * unless mx = 2 nx, where the offset nx is read and A_xy keeps its imaginary parts). */
     for (int qy = 0; qy < f->my; qy++)
       for (int qx = 0; qx < f->mx; qx++) {
         const int kx = 2 * qx <= f->mx ? qx : qx - f->mx, ky = 2 * qy <= f->my ? qy : qy - f->my;
         const int ax = kx < 0 ? -kx : kx, ay = ky < 0 ? -ky : ky;
         const double sign = comp == 1 && (kx < 0) != (ky < 0) ? -1.0 : 1.0;
+        const int nyquist = 2 * ax == f->mx || 2 * ay == f->my, table = ax <= nx && ay <= ny - 1;
         grid[(size_t)qy * (size_t)f->mx + (size_t)qx] =
-            ax <= nx && ay <= ny - 1 ? rs_elastic3d_coef(el, ci[comp], cj[comp], kx, ky)
-                                     : sign * outside[(size_t)ay * (size_t)hx + (size_t)ax][comp];
+            table                  ? rs_elastic3d_coef(el, ci[comp], cj[comp], kx, ky)
+            : comp == 1 && nyquist ? 0.0
+                                   : sign * outside[(size_t)ay * (size_t)hx + (size_t)ax][comp];
       }
     fftw_execute_dft_r2c(f->forward, grid, spec);
-    for (size_t q = 0; q < ncomplex; q++) kernel[q] = spec[q] / (double)nreal;
+    double re = 0.0, im = 0.0;
+    for (size_t q = 0; q < ncomplex; q++) {
+      kernel[q] = creal(spec[q]) / (double)nreal;
+      re = fmax(re, fabs(creal(spec[q])));
+      im = fmax(im, fabs(cimag(spec[q])));
+    }
+    if (im > 1e-12 * re) { /* A_xy read at the Nyquist offset (above) */
+      ok = comp == 1 && (f->kxy_im = fftw_alloc_real(ncomplex)) != NULL;
+      for (size_t q = 0; ok && q < ncomplex; q++) f->kxy_im[q] = cimag(spec[q]) / (double)nreal;
+    }
   }
   fftw_free(grid);
   fftw_free(spec);
@@ -215,18 +235,24 @@ void rs_elastic3d_apply_tang(const rs_elastic3d *el, rs_elastic3d_work *work, co
 #pragma omp section
       transform_in(f, el, work->grid2, py, sy);
     }
-    /* (u_x, u_y)^ = [A_xx A_xy; A_xy A_yy]^ (p_x, p_y)^ per frequency, in real arithmetic:
-     * the products (x + iy)(u + iv) = (xu - yv) + i(xv + yu) that C's complex product
-     * computes, without its checks for infinities and NaNs (a tenth of a 3D J v) */
+    /* (u_x, u_y)^ = [A_xx A_xy; A_xy A_yy]^ (p_x, p_y)^ per frequency: real kernels times
+     * the spectra's real and imaginary parts */
+    if (!f->kxy_im) {
 #pragma omp for schedule(static)
-    for (size_t q = 0; q < ncomplex; q++) {
-      const double ar = creal(sx[q]), ai = cimag(sx[q]), br = creal(sy[q]), bi = cimag(sy[q]);
-      const double xxr = creal(f->kxx[q]), xxi = cimag(f->kxx[q]), xyr = creal(f->kxy[q]),
-                   xyi = cimag(f->kxy[q]), yyr = creal(f->kyy[q]), yyi = cimag(f->kyy[q]);
-      sx[q] = ((xxr * ar - xxi * ai) + (xyr * br - xyi * bi)) +
-              I * ((xxr * ai + xxi * ar) + (xyr * bi + xyi * br));
-      sy[q] = ((xyr * ar - xyi * ai) + (yyr * br - yyi * bi)) +
-              I * ((xyr * ai + xyi * ar) + (yyr * bi + yyi * br));
+      for (size_t q = 0; q < ncomplex; q++) {
+        const double ar = creal(sx[q]), ai = cimag(sx[q]), br = creal(sy[q]), bi = cimag(sy[q]);
+        const double xx = f->kxx[q], xy = f->kxy[q], yy = f->kyy[q];
+        sx[q] = (xx * ar + xy * br) + I * (xx * ai + xy * bi);
+        sy[q] = (xy * ar + yy * br) + I * (xy * ai + yy * bi);
+      }
+    } else { /* A_xy complex: (x + iy)(u + iv) = (xu - yv) + i(xv + yu) for its terms */
+#pragma omp for schedule(static)
+      for (size_t q = 0; q < ncomplex; q++) {
+        const double ar = creal(sx[q]), ai = cimag(sx[q]), br = creal(sy[q]), bi = cimag(sy[q]);
+        const double xx = f->kxx[q], xy = f->kxy[q], xyi = f->kxy_im[q], yy = f->kyy[q];
+        sx[q] = (xx * ar + (xy * br - xyi * bi)) + I * (xx * ai + (xy * bi + xyi * br));
+        sy[q] = ((xy * ar - xyi * ai) + yy * br) + I * ((xy * ai + xyi * ar) + yy * bi);
+      }
     }
 #pragma omp sections
     {
@@ -245,17 +271,18 @@ void rs_elastic3d_apply_norm(const rs_elastic3d *el, rs_elastic3d_work *work, co
   fftw_complex *s = work->spectrum[0];
   transform_in(f, el, work->grid, pn, s);
   const size_t ncomplex = (size_t)f->my * (size_t)f->ncx;
-  for (size_t q = 0; q < ncomplex; q++) s[q] *= f->kzz[q];
+  for (size_t q = 0; q < ncomplex; q++)
+    s[q] = f->kzz[q] * creal(s[q]) + I * (f->kzz[q] * cimag(s[q]));
   transform_out(f, el, work->grid, s, uz, nxout);
 }
 
 double rs_elastic3d_norm_lower_eigenvalue(const rs_elastic3d *el)
 {
-  /* The real parts of the transform are the eigenvalues of the symmetric part of the
-   * circulant; the half-spectrum of a real kernel holds all of them. */
+  /* The transform (real: the kernel is symmetric) gives the circulant's eigenvalues; the
+   * half-spectrum of a real kernel holds all of them. */
   const struct rs_elastic3d_fft *f = el->fft;
   const size_t ncomplex = (size_t)f->my * (size_t)f->ncx;
   double low = INFINITY;
-  for (size_t q = 0; q < ncomplex; q++) low = fmin(low, creal(f->kzz[q]));
+  for (size_t q = 0; q < ncomplex; q++) low = fmin(low, f->kzz[q]);
   return low * (double)f->mx * (double)f->my;
 }

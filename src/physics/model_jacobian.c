@@ -381,57 +381,172 @@ int rs_model_jacobian_assemble(const rs_model *m, const rs_work *w, const rs_inp
   return RS_OK;
 }
 
-void rs_model_near_ylink(const rs_model *m, const rs_work *w, const rs_inputs *in, double cj,
-                         int band, int parity, int iy0, int iy1, const double *x, double *r)
+int rs_model_near_ylink_prepare(const rs_model *m, const rs_work *w, const rs_inputs *in, double cj,
+                                int band, rs_ylink *t)
 {
   const rs_layout *L = &m->lay;
-  const int nc = L->ncomp, nx = m->grid.nx, ny = m->grid.ny, nb = 2 * band + 1;
+  const int nc = L->ncomp, n = L->n, nb = 2 * band + 1;
   const double a = in->velocity / m->grid.dx;
-  if (nc != 2 || band > RS_YLINK_MAX_BAND) return;
+  t->on = nc == 2 && band <= RS_YLINK_MAX_BAND;
+  if (!t->on) return RS_OK;
+  if (!t->coef || t->ncell != n) {
+    free(t->coef);
+    free(t->rows);
+    t->coef = malloc((size_t)n * 6 * sizeof *t->coef);
+    t->rows = malloc((size_t)n);
+    t->ncell = n;
+    if (!t->coef || !t->rows) {
+      free(t->coef);
+      free(t->rows);
+      t->coef = NULL;
+      t->rows = NULL;
+      t->on = 0;
+      return RS_ERR_INTERNAL;
+    }
+  }
+  t->band = band;
+  t->nrow = L->memory ? 3 : 2;
   /* kin_coef at ky = +-1, as put_traction_columns; no layer term there (the layer acts on
    * the cell and its upstream neighbour only) */
-  double st[2][2][2][2 * RS_YLINK_MAX_BAND + 1];
   for (int c = 0; c < 2; c++)
     for (int b = 0; b < 2; b++)
       for (int s = 0; s < 2; s++)
-        for (int q = 0; q < nb; q++) {
-          st[c][b][s][q] = kin_coef(m, c, b, q - band, s == 0 ? 1 : -1, cj, a);
-        }
-  const int nrow = L->memory ? 3 : 2;
-  for (int iy = iy0 + ((iy0 & 1) != parity); iy < iy1; iy += 2)
-    for (int ix = 0; ix < nx; ix++) {
-      const int I = iy * nx + ix;
-      const rs_law_out *o = &w->law[I];
-      /* rows as put_row: a steady assembly keeps the exterior's own entries only */
-      if (cj == 0.0 && (o->branch & RS_BRANCH_EXTERIOR)) continue;
-      int any = 0;
-      for (int k = 0; k < nrow; k++) {
-        const int lr = k < 2 ? rs_law_row_f(k) : rs_law_row_mu(nc);
-        for (int c = 0; c < 2; c++) any |= o->present[lr][rs_law_var_vs(nc, c)];
+        for (int q = 0; q < nb; q++)
+          t->st[c][b][s][q] = kin_coef(m, c, b, q - band, s == 0 ? 1 : -1, cj, a);
+  for (int I = 0; I < n; I++) {
+    const rs_law_out *o = &w->law[I];
+    double *cf = t->coef + (size_t)I * 6;
+    unsigned char rows = 0;
+    /* rows as put_row: a steady assembly keeps the exterior's own entries only */
+    const int skip = cj == 0.0 && (o->branch & RS_BRANCH_EXTERIOR);
+    for (int k = 0; k < t->nrow; k++) {
+      const int lr = k < 2 ? rs_law_row_f(k) : rs_law_row_mu(nc);
+      for (int c = 0; c < 2; c++) {
+        const int on = !skip && o->present[lr][rs_law_var_vs(nc, c)];
+        cf[2 * k + c] = on ? o->jac[lr][rs_law_var_vs(nc, c)] : 0.0;
+        if (on) rows |= (unsigned char)(1u << (2 * k + c));
       }
-      if (!any) continue;
-      double sum[2] = {0.0, 0.0};
-      const int jx0 = ix > band ? ix - band : 0, jx1 = ix + band < nx ? ix + band + 1 : nx;
+    }
+    t->rows[I] = rows;
+  }
+  return RS_OK;
+}
+
+/* The sums of cell ix of line iy (rs_model_near_ylink_apply), one cell alone: (s, b, jx
+ * ascending). */
+static void ylink_cell_sums(const rs_model *m, const rs_ylink *t, int iy, int ix, const double *x,
+                            double sum[2])
+{
+  const int nx = m->grid.nx, ny = m->grid.ny, band = t->band;
+  const int jx0 = ix > band ? ix - band : 0, jx1 = ix + band < nx ? ix + band + 1 : nx;
+  sum[0] = sum[1] = 0.0;
+  for (int s = 0; s < 2; s++) {
+    const int jy = s == 0 ? iy - 1 : iy + 1;
+    if (jy < 0 || jy >= ny) continue;
+    for (int b = 0; b < 2; b++) {
+      const double *xb = x + rs_at_p(&m->lay, b, jy * nx);
+      for (int jx = jx0; jx < jx1; jx++) {
+        const int q = ix - jx + band;
+        sum[0] += t->st[0][b][s][q] * xb[jx];
+        sum[1] += t->st[1][b][s][q] * xb[jx];
+      }
+    }
+  }
+}
+
+/* r of cell I's rows less its couplings' coefficients times the sums. */
+static inline void ylink_cell_apply(const rs_model *m, const rs_ylink *t, int I, double sum0,
+                                    double sum1, double *r)
+{
+  const unsigned rows = t->rows[I];
+  if (!rows) return;
+  const double *cf = t->coef + (size_t)I * 6, sum[2] = {sum0, sum1};
+  for (int k = 0; k < t->nrow; k++) {
+    double v = 0.0;
+    for (int c = 0; c < 2; c++)
+      if (rows & (1u << (2 * k + c))) v += cf[2 * k + c] * sum[c];
+    r[k < 2 ? rs_at_p(&m->lay, k, I) : rs_at_mu(&m->lay, I)] -= v;
+  }
+}
+
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+#define RS_YLINK_CLONES __attribute__((target_clones("avx2", "default")))
+#else
+#define RS_YLINK_CLONES
+#endif
+
+/* Four partial results side by side; loads from any double's address. */
+typedef double ylink_v4 __attribute__((vector_size(4 * sizeof(double)), aligned(sizeof(double))));
+
+RS_YLINK_CLONES void rs_model_near_ylink_apply(const rs_model *m, const rs_ylink *t, int parity,
+                                               int iy0, int iy1, const double *x, double *r)
+{
+  if (!t->on) return;
+  const rs_layout *L = &m->lay;
+  const int nx = m->grid.nx, ny = m->grid.ny, band = t->band, len = nx + 2 * band + 4;
+  /* The neighbouring lines' tractions with zeros beyond the line's ends: four cells at once,
+   * their sums in the lanes of two vectors, each lane's terms in the order of one cell alone
+   * (s, b, jx ascending; a term beyond the ends adds a zero product to a sum that is never
+   * -0, which leaves it as it is), so bit for bit the same sums. One cell at a time, the
+   * chains of additions of each cell's two sums bound this product. */
+  double *pad = malloc((size_t)4 * (size_t)len * sizeof *pad);
+  if (!pad) { /* one cell at a time */
+    for (int iy = iy0 + ((iy0 & 1) != parity); iy < iy1; iy += 2)
+      for (int ix = 0; ix < nx; ix++) {
+        double one[2];
+        ylink_cell_sums(m, t, iy, ix, x, one);
+        ylink_cell_apply(m, t, iy * nx + ix, one[0], one[1], r);
+      }
+    return;
+  }
+  for (int i = 0; i < 4 * len; i++) pad[i] = 0.0;
+  for (int iy = iy0 + ((iy0 & 1) != parity); iy < iy1; iy += 2) {
+    int have[2];
+    for (int s = 0; s < 2; s++) {
+      const int jy = s == 0 ? iy - 1 : iy + 1;
+      have[s] = jy >= 0 && jy < ny;
+      for (int b = 0; b < 2 && have[s]; b++)
+        memcpy(pad + (size_t)(2 * s + b) * (size_t)len + band, x + rs_at_p(L, b, jy * nx),
+               (size_t)nx * sizeof *x);
+    }
+    for (int ix = 0; ix < nx; ix += 4) {
+      ylink_v4 s0 = {0.0, 0.0, 0.0, 0.0}, s1 = s0;
       for (int s = 0; s < 2; s++) {
-        const int jy = s == 0 ? iy - 1 : iy + 1;
-        if (jy < 0 || jy >= ny) continue;
+        if (!have[s]) continue;
         for (int b = 0; b < 2; b++) {
-          const double *xb = x + rs_at_p(L, b, jy * nx);
-          for (int jx = jx0; jx < jx1; jx++) {
-            const int q = ix - jx + band;
-            sum[0] += st[0][b][s][q] * xb[jx];
-            sum[1] += st[1][b][s][q] * xb[jx];
+          const double *xb = pad + (size_t)(2 * s + b) * (size_t)len + band + ix;
+          for (int d = -band; d <= band; d++) { /* jx = ix + d, ascending */
+            ylink_v4 xv;
+            memcpy(&xv, xb + d, sizeof xv);
+            s0 += t->st[0][b][s][band - d] * xv;
+            s1 += t->st[1][b][s][band - d] * xv;
           }
         }
       }
-      for (int k = 0; k < nrow; k++) {
-        const int lr = k < 2 ? rs_law_row_f(k) : rs_law_row_mu(nc);
-        double v = 0.0;
-        for (int c = 0; c < 2; c++)
-          if (o->present[lr][rs_law_var_vs(nc, c)]) v += o->jac[lr][rs_law_var_vs(nc, c)] * sum[c];
-        r[k < 2 ? rs_at_p(L, k, I) : rs_at_mu(L, I)] -= v;
-      }
+      for (int l = 0; l < 4 && ix + l < nx; l++)
+        ylink_cell_apply(m, t, iy * nx + ix + l, s0[l], s1[l], r);
     }
+  }
+  free(pad);
+}
+
+void rs_ylink_free(rs_ylink *t)
+{
+  free(t->coef);
+  free(t->rows);
+  t->coef = NULL;
+  t->rows = NULL;
+  t->ncell = 0;
+  t->on = 0;
+}
+
+void rs_model_near_ylink(const rs_model *m, const rs_work *w, const rs_inputs *in, double cj,
+                         int band, int parity, int iy0, int iy1, const double *x, double *r)
+{
+  rs_ylink t = {0};
+  if (rs_model_near_ylink_prepare(m, w, in, cj, band, &t) == RS_OK)
+    rs_model_near_ylink_apply(m, &t, parity, iy0, iy1, x, r);
+  rs_ylink_free(&t);
 }
 
 /* put_row for row r of a matrix assembled before with the same pattern: the row rewritten

@@ -70,6 +70,7 @@ static void parts_free(rs_krylov *k)
 void rs_krylov_free(rs_krylov *k)
 {
   parts_free(k);
+  rs_ylink_free(&k->yl);
   rs_work_free(&k->w);
   rs_work_free(&k->wlin);
   free(k->near.rowptr);
@@ -345,8 +346,13 @@ int rs_krylov_setup(rs_krylov *k, const rs_inputs *in, const double *y, const do
   const int evaluated = k->ev_valid && at_evaluated_point(k, in, y, yp, cj);
   k->ev_valid = 0;
   if (!evaluated) k->w_at_ev = 0;
-  const int status = evaluated ? RS_OK : rs_model_linearise(k->m, &k->w, in, y, yp, cj);
-  return status != RS_OK ? status : setup_linearised(k, in, cj);
+  int status = evaluated ? RS_OK : rs_model_linearise(k->m, &k->w, in, y, yp, cj);
+  if (status == RS_OK) status = setup_linearised(k, in, cj);
+  /* the line Gauss-Seidel's couplings of this linearisation, gathered once for the solves
+   * (each read the cells' local laws and the kernel's entries before) */
+  if (status == RS_OK && k->ylink && k->nparts > 1)
+    status = rs_model_near_ylink_prepare(k->m, &k->w, in, cj, k->band, &k->yl);
+  return status;
 }
 
 /* refresh[q]: whether part q is to be refactored: all of them, or those not factored yet or
@@ -522,7 +528,7 @@ int rs_krylov_psolve(rs_krylov *k, double *v)
 #pragma omp barrier
         for (int h = tid; h < T; h += nth) {
           const int iy0 = h == 0 ? 0 : ny / 2, iy1 = h == T - 1 ? ny : ny / 2;
-          rs_model_near_ylink(k->m, &k->w, &k->in, k->cj, k->band, 1, iy0, iy1, v, v);
+          rs_model_near_ylink_apply(k->m, &k->yl, 1, iy0, iy1, v, v);
         }
       }
       for (int h = tid; h < T; h += nth) {

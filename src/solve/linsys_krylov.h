@@ -49,6 +49,7 @@ typedef struct rs_krylov {
   /* line Gauss-Seidel (3D, a band along x only, no extras; see below), the lines' parts
    * taken by nsplit threads (halves of the grid) */
   int ylink, nsplit;
+  rs_ylink yl; /* its couplings at the last set-up */
   /* the lines factored and solved side by side (linsys_lanes.h) when lanes_on: groups
    * gfirst[h][c] .. gfirst[h][c + 1] - 1 hold the lines of parity c in half h; ready[q]:
    * part q factored (by the lanes, or by KLU where its lane's pivots did not hold) */
