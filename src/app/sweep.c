@@ -660,8 +660,15 @@ static size_t far_first_point(const rs_sweep_line *line, size_t k)
  *   plastic 44^2 forward 0.35 / 0.4 / 0.45 / 0.5: 0.65 / 0.68 / 0.74 / 0.78 s, back 0.64 /
  *   0.67 / 0.73 / 0.79 s; elastic 44^2 forward 0.59 / 0.57 / 0.52 / 0.56 s, back 0.58 /
  *   0.54 / 0.56 / 0.61 s; plastic 128^2 forward 0.3 / 0.35 / 0.4: 20.3 / 21.5 / 23.7 s, back
- *   0.35 / 0.4: 20.0 / 21.6 s. */
-#define IN_TWO_SMALL 0.35
+ *   0.35 / 0.4: 20.0 / 21.6 s.
+ * Measured again after the solver's speed-ups of 2026-11-27 (each worker's CPU time summed
+ * over its points, so that the machine's changes of speed cancel in the ratio): split at
+ * 0.35 worker 1 took 1.04-1.17 times worker 0's time on the plastic 44^2 curve and
+ * 1.27-1.39 on the elastic one, at 0.4 0.95-1.02 and 0.95-1.10, at 0.45 0.77-0.84
+ * (plastic); the same Newton and GMRES totals. Paired wall times 0.4 against 0.35: plastic
+ * 44^2 0.999 (median of 15, noise), plastic 128^2 0.932 (median of 5; 346 against 364 Newton
+ * iterations). */
+#define IN_TWO_SMALL 0.40
 static size_t in_two_split(size_t n)
 {
   const size_t k = (size_t)floor(IN_TWO_SMALL * (double)n + 0.5);
