@@ -4,9 +4,11 @@
  * line's and one group of lanes is not full:
  *
  * 1. The solutions of the lines whose factors hold satisfy their own sparse systems: the
- *    residual |A x - b| at most 1e-13 of |A| |x| + |b| in every row (the lines are
- *    diagonally dominant, the LU is backward stable: the residual is roundoff), checked
- *    against the CSR matrices directly (an independent product).
+ *    residual |A x - b| at most 1.8e-6 of |A| |x| + |b| in every row, checked against the
+ *    CSR matrices directly (an independent product). The lines are diagonally dominant and
+ *    the LU is backward stable; the solves read the factors rounded to single precision
+ *    (unit roundoff 6e-8), so the residual is that rounding's: at most n u = 30 x 6e-8
+ *    per row.
  * 2. A line that needs other pivots than the common order (a pair of rows and columns
  *    coupled only to each other off the diagonal: a zero pivot) is reported (ok 0) and
  *    its entries of v are left as they were; the others still solve (1.).
@@ -131,7 +133,7 @@ int main(void)
   for (int q = 0; q < LINES; q++)
     if (q != BAD) worst = fmax(worst, residual(&a[q], v + q * N, b + q * N));
   printf("  largest relative residual %.3g\n", worst);
-  check(worst <= 1e-13, "solutions satisfy their lines' systems to roundoff");
+  check(worst <= 1.8e-6, "solutions satisfy their lines' systems to the factors' rounding");
   check(!memcmp(v + BAD * N, b + BAD * N, N * sizeof *v), "the reported line's entries left");
 
   /* 3. line 2 changed, only it refreshed */
@@ -142,7 +144,7 @@ int main(void)
   solve_all(&s, v1);
   const double r2 = residual(&a[2], v1 + 2 * N, b + 2 * N);
   printf("  line 2 after its refactorisation: relative residual %.3g\n", r2);
-  check(r2 <= 1e-13, "the refreshed line solves its new system");
+  check(r2 <= 1.8e-6, "the refreshed line solves its new system");
   check(memcmp(v1 + 2 * N, v + 2 * N, N * sizeof *v) != 0, "and its solution moved");
   int same = 1;
   for (int q = 0; q < LINES; q++)

@@ -10,9 +10,11 @@
  * 2. P^-1 r of a set-up is the solution of the block lower-triangular system
  *    (J_0 + Y) x = r, where J_0 is the assembled near field along x and Y holds the
  *    couplings of the odd lines' rows to the even lines' tractions (band_y = 1 entries):
- *    the residual of x in that system is at the LU solve's roundoff (1e-10 of |J| |x|,
- *    KLU's partial pivoting), while J_0 x - r alone is not (checked, so that the first
- *    test of 2. can fail), with one thread and two.
+ *    the residual of x in that system is the LU solve's rounding: the solves read the
+ *    factors in single precision (unit roundoff u = 6e-8), and a line's backward error is
+ *    at most about n u, n = 150 unknowns per line (30 cells, 5 unknowns each): 9e-6 of
+ *    |J| |x|; while J_0 x - r alone is not (checked, so that the first test of 2. can
+ *    fail), with one thread and two.
  * 3. rs_model_jacobian_assemble_lines at a second state into the matrix of the first: the
  *    rows of the chosen lines equal the whole assembly's at the second state, bit for bit,
  *    and the other rows the first state's (the two states differ in those rows, checked). */
@@ -154,7 +156,7 @@ int main(void)
       }
       printf("%s, %d thread(s): |(J_0 + Y) x - r| %.3e, |J_0 x - r| %.3e, |J| |x| %.3e\n", tag,
              threads, res, res0, scale);
-      TS_CHECK(res <= 1e-10 * scale, "%s: the line Gauss-Seidel solve's residual %.3e", tag, res);
+      TS_CHECK(res <= 9e-6 * scale, "%s: the line Gauss-Seidel solve's residual %.3e", tag, res);
       TS_CHECK(res0 > 1e-4 * scale, "%s: the couplings did not enter the solve", tag);
       rs_krylov_free(&k);
     }

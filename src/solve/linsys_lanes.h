@@ -18,8 +18,9 @@
  * partial pivoting on its own pattern). The entries the union adds to a line are zeros:
  * the factors are those of the line's own matrix up to roundoff. Measured (the curve
  * above, one thread, perf): the triangular solves 27.7 % -> 15.9 % of the run, the
- * refactorisations 7.0 % -> 6.3 %; eight lanes (AVX-512) or the factors in single
- * precision: within the noise (paired runs 0.97 / 1.005). */
+ * refactorisations 7.0 % -> 6.3 %; eight lanes (AVX-512): within the noise (paired runs
+ * 0.97). The solves read the factors in single precision (rs_lanes_solve); the factorisation
+ * itself is in double. */
 #ifndef ROLLSIM_LINSYS_LANES_H
 #define ROLLSIM_LINSYS_LANES_H
 
@@ -27,6 +28,8 @@
 
 enum { RS_LANES = 4, RS_LANES_BATCH = 4 };
 typedef double rs_lane_vec __attribute__((vector_size(RS_LANES * sizeof(double))));
+/* the solves' factors: single precision (see rs_lanes_solve) */
+typedef float rs_lane_vecf __attribute__((vector_size(RS_LANES * sizeof(float))));
 
 /* One line's matrix as the caller holds it: local CSR (n unknowns), and the global index
  * of each local unknown. */
@@ -38,9 +41,8 @@ typedef struct rs_lane_group {
   int line[RS_LANES];         /* the caller's line of each lane, -1: unused */
   unsigned char ok[RS_LANES]; /* the lane's factors hold (else the caller solves that line) */
   rs_lane_vec *ax;            /* A on the common pattern (CSC), lane by lane */
-  rs_lane_vec *lx, *ux, *ud;  /* L below the diagonal by columns, U above it by rows (urp);
-                               * ud: 1 / u_kk */
-  rs_lane_vec *lr;            /* L by rows (lrp) */
+  rs_lane_vec *lx, *ud;       /* L below the diagonal by columns; ud: 1 / u_kk */
+  rs_lane_vecf *lr, *ux;      /* for the solves: L by rows (lrp), U above it by rows (urp) */
   rs_lane_vec *w;             /* work of the refactorisation and the solve */
   int *gin, *gout;            /* n x RS_LANES: global index of pivot row / column k */
 } rs_lane_group;
