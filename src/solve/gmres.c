@@ -101,14 +101,16 @@ RS_GMRES_CLONES static double subtract(int n, double *w, double *const *V, int m
   return sum4(&acc);
 }
 
-/* v <- c v, and z <- v / s1 (s1 NULL: z <- v). */
+/* v <- c v, and z <- v / s1 (s1 NULL: z <- v), in one pass. */
 RS_GMRES_CLONES static void normalise_into(int n, double c, double *v, const double *s1, double *z)
 {
-  for (int i = 0; i < n; i++) v[i] *= c;
   if (s1)
-    for (int i = 0; i < n; i++) z[i] = v[i] / s1[i];
+    for (int i = 0; i < n; i++) {
+      v[i] *= c;
+      z[i] = v[i] / s1[i];
+    }
   else
-    memcpy(z, v, (size_t)n * sizeof *z);
+    for (int i = 0; i < n; i++) z[i] = v[i] *= c;
 }
 
 /* z <- (sum_j c[j] V[j], j < m) / s1 */
