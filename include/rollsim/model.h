@@ -212,17 +212,20 @@ void rs_model_near_ylink(const rs_model *m, const rs_work *w, const rs_inputs *i
  * (rs_model_near_ylink_prepare: the kernel's entries at iy +- 1 and each cell's local
  * Jacobian entries, in a table that the first call allocates; RS_OK or RS_ERR_INTERNAL),
  * then applied as often as needed (rs_model_near_ylink_apply: the same sums in the same
- * order as rs_model_near_ylink, bit for bit). */
+ * order as rs_model_near_ylink, bit for bit). Up to RS_YLINK_SLOTS calls of apply may run
+ * at once on one table, each with its own slot (its scratch rows). */
+enum { RS_YLINK_SLOTS = 2 };
 typedef struct rs_ylink {
-  int band, nrow, ncell, on;
+  int band, nrow, ncell, nx, on;
   double st[2][2][2][2 * RS_YLINK_MAX_BAND + 1]; /* [c][b][side][band + offset] */
   double *coef;                                  /* [cell][row][c], 0 where not present */
   unsigned char *rows; /* [cell]: bit k when row k has a coupling; 0: none (or exterior) */
+  double *pad;         /* per slot: four rows of nx + 2 band + 4, zero beyond the lines */
 } rs_ylink;
 int rs_model_near_ylink_prepare(const rs_model *m, const rs_work *w, const rs_inputs *in, double cj,
                                 int band, rs_ylink *t);
-void rs_model_near_ylink_apply(const rs_model *m, const rs_ylink *t, int parity, int iy0, int iy1,
-                               const double *x, double *r);
+void rs_model_near_ylink_apply(const rs_model *m, const rs_ylink *t, int slot, int parity, int iy0,
+                               int iy1, const double *x, double *r);
 void rs_ylink_free(rs_ylink *t);
 /* rs_model_jacobian_assemble for the rows of the cells of the lines iy with lines[iy] set,
  * into J as it was assembled last with the same band, band_y and pattern (no extras):

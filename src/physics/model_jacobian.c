@@ -381,6 +381,10 @@ int rs_model_jacobian_assemble(const rs_model *m, const rs_work *w, const rs_inp
   return RS_OK;
 }
 
+/* The length of one scratch row of rs_model_near_ylink_apply: the line, band zeros each
+ * side, and room for the last vector of four cells. */
+static int ylink_pad_len(int nx, int band) { return nx + 2 * band + 4; }
+
 int rs_model_near_ylink_prepare(const rs_model *m, const rs_work *w, const rs_inputs *in, double cj,
                                 int band, rs_ylink *t)
 {
@@ -389,22 +393,21 @@ int rs_model_near_ylink_prepare(const rs_model *m, const rs_work *w, const rs_in
   const double a = in->velocity / m->grid.dx;
   t->on = nc == 2 && band <= RS_YLINK_MAX_BAND;
   if (!t->on) return RS_OK;
-  if (!t->coef || t->ncell != n) {
-    free(t->coef);
-    free(t->rows);
+  if (!t->coef || t->ncell != n || t->nx != m->grid.nx || t->band != band) {
+    rs_ylink_free(t);
+    const size_t len = (size_t)ylink_pad_len(m->grid.nx, band);
     t->coef = malloc((size_t)n * 6 * sizeof *t->coef);
     t->rows = malloc((size_t)n);
+    t->pad = calloc(RS_YLINK_SLOTS * 4 * len, sizeof *t->pad);
     t->ncell = n;
-    if (!t->coef || !t->rows) {
-      free(t->coef);
-      free(t->rows);
-      t->coef = NULL;
-      t->rows = NULL;
-      t->on = 0;
+    t->nx = m->grid.nx;
+    t->band = band;
+    if (!t->coef || !t->rows || !t->pad) {
+      rs_ylink_free(t);
       return RS_ERR_INTERNAL;
     }
+    t->on = 1;
   }
-  t->band = band;
   t->nrow = L->memory ? 3 : 2;
   /* kin_coef at ky = +-1, as put_traction_columns; no layer term there (the layer acts on
    * the cell and its upstream neighbour only) */
@@ -432,28 +435,6 @@ int rs_model_near_ylink_prepare(const rs_model *m, const rs_work *w, const rs_in
   return RS_OK;
 }
 
-/* The sums of cell ix of line iy (rs_model_near_ylink_apply), one cell alone: (s, b, jx
- * ascending). */
-static void ylink_cell_sums(const rs_model *m, const rs_ylink *t, int iy, int ix, const double *x,
-                            double sum[2])
-{
-  const int nx = m->grid.nx, ny = m->grid.ny, band = t->band;
-  const int jx0 = ix > band ? ix - band : 0, jx1 = ix + band < nx ? ix + band + 1 : nx;
-  sum[0] = sum[1] = 0.0;
-  for (int s = 0; s < 2; s++) {
-    const int jy = s == 0 ? iy - 1 : iy + 1;
-    if (jy < 0 || jy >= ny) continue;
-    for (int b = 0; b < 2; b++) {
-      const double *xb = x + rs_at_p(&m->lay, b, jy * nx);
-      for (int jx = jx0; jx < jx1; jx++) {
-        const int q = ix - jx + band;
-        sum[0] += t->st[0][b][s][q] * xb[jx];
-        sum[1] += t->st[1][b][s][q] * xb[jx];
-      }
-    }
-  }
-}
-
 /* r of cell I's rows less its couplings' coefficients times the sums. */
 static inline void ylink_cell_apply(const rs_model *m, const rs_ylink *t, int I, double sum0,
                                     double sum1, double *r)
@@ -478,28 +459,20 @@ static inline void ylink_cell_apply(const rs_model *m, const rs_ylink *t, int I,
 /* Four partial results side by side; loads from any double's address. */
 typedef double ylink_v4 __attribute__((vector_size(4 * sizeof(double)), aligned(sizeof(double))));
 
-RS_YLINK_CLONES void rs_model_near_ylink_apply(const rs_model *m, const rs_ylink *t, int parity,
-                                               int iy0, int iy1, const double *x, double *r)
+RS_YLINK_CLONES void rs_model_near_ylink_apply(const rs_model *m, const rs_ylink *t, int slot,
+                                               int parity, int iy0, int iy1, const double *x,
+                                               double *r)
 {
   if (!t->on) return;
   const rs_layout *L = &m->lay;
-  const int nx = m->grid.nx, ny = m->grid.ny, band = t->band, len = nx + 2 * band + 4;
-  /* The neighbouring lines' tractions with zeros beyond the line's ends: four cells at once,
-   * their sums in the lanes of two vectors, each lane's terms in the order of one cell alone
-   * (s, b, jx ascending; a term beyond the ends adds a zero product to a sum that is never
-   * -0, which leaves it as it is), so bit for bit the same sums. One cell at a time, the
-   * chains of additions of each cell's two sums bound this product. */
-  double *pad = malloc((size_t)4 * (size_t)len * sizeof *pad);
-  if (!pad) { /* one cell at a time */
-    for (int iy = iy0 + ((iy0 & 1) != parity); iy < iy1; iy += 2)
-      for (int ix = 0; ix < nx; ix++) {
-        double one[2];
-        ylink_cell_sums(m, t, iy, ix, x, one);
-        ylink_cell_apply(m, t, iy * nx + ix, one[0], one[1], r);
-      }
-    return;
-  }
-  for (int i = 0; i < 4 * len; i++) pad[i] = 0.0;
+  const int nx = m->grid.nx, ny = m->grid.ny, band = t->band, len = ylink_pad_len(nx, band);
+  /* The neighbouring lines' tractions with zeros beyond the line's ends (the slot's rows,
+   * zero from their allocation but where a line is copied): four cells at once, their sums
+   * in the lanes of two vectors, each lane's terms in the order of one cell alone (s, b, jx
+   * ascending; a term beyond the ends adds a zero product to a sum that is never -0, which
+   * leaves it as it is), so bit for bit the same sums. One cell at a time, the chains of
+   * additions of each cell's two sums bound this product. */
+  double *pad = t->pad + (size_t)slot * 4 * (size_t)len;
   for (int iy = iy0 + ((iy0 & 1) != parity); iy < iy1; iy += 2) {
     int have[2];
     for (int s = 0; s < 2; s++) {
@@ -527,16 +500,17 @@ RS_YLINK_CLONES void rs_model_near_ylink_apply(const rs_model *m, const rs_ylink
         ylink_cell_apply(m, t, iy * nx + ix + l, s0[l], s1[l], r);
     }
   }
-  free(pad);
 }
 
 void rs_ylink_free(rs_ylink *t)
 {
   free(t->coef);
   free(t->rows);
+  free(t->pad);
   t->coef = NULL;
   t->rows = NULL;
-  t->ncell = 0;
+  t->pad = NULL;
+  t->ncell = t->nx = t->band = 0;
   t->on = 0;
 }
 
@@ -545,7 +519,7 @@ void rs_model_near_ylink(const rs_model *m, const rs_work *w, const rs_inputs *i
 {
   rs_ylink t = {0};
   if (rs_model_near_ylink_prepare(m, w, in, cj, band, &t) == RS_OK)
-    rs_model_near_ylink_apply(m, &t, parity, iy0, iy1, x, r);
+    rs_model_near_ylink_apply(m, &t, 0, parity, iy0, iy1, x, r);
   rs_ylink_free(&t);
 }
 

@@ -187,6 +187,13 @@ static int line_parts(rs_krylov *k)
   return ny;
 }
 
+/* The lines iy0 <= iy < iy1 of half h of the grid when T threads take its halves. */
+static void half_lines(int ny, int T, int h, int *iy0, int *iy1)
+{
+  *iy0 = h == 0 ? 0 : ny / 2;
+  *iy1 = h == T - 1 ? ny : ny / 2;
+}
+
 /* A line's values from the assembled near field. */
 static void part_values(const rs_krylov *k, rs_klu_part *p)
 {
@@ -217,7 +224,8 @@ static void lanes_create(rs_krylov *k)
     int m = 0, groups = 0;
     for (int h = 0; h < T; h++)
       for (int c = 0; c < 2; c++) {
-        const int iy0 = h == 0 ? 0 : ny / 2, iy1 = h == T - 1 ? ny : ny / 2;
+        int iy0, iy1;
+        half_lines(ny, T, h, &iy0, &iy1);
         k->gfirst[h][c] = groups;
         int in_run = 0;
         for (int iy = iy0 + ((iy0 & 1) != c); iy < iy1; iy += 2, in_run++) {
@@ -527,12 +535,12 @@ int rs_krylov_psolve(rs_krylov *k, double *v)
       if (c > 0) { /* the odd lines' right-hand side: their couplings to the even lines */
 #pragma omp barrier
         for (int h = tid; h < T; h += nth) {
-          const int iy0 = h == 0 ? 0 : ny / 2, iy1 = h == T - 1 ? ny : ny / 2;
-          rs_model_near_ylink_apply(k->m, &k->yl, 1, iy0, iy1, v, v);
+          int iy0, iy1;
+          half_lines(ny, T, h, &iy0, &iy1);
+          rs_model_near_ylink_apply(k->m, &k->yl, h, 1, iy0, iy1, v, v);
         }
       }
       for (int h = tid; h < T; h += nth) {
-        const int iy0 = h == 0 ? 0 : ny / 2, iy1 = h == T - 1 ? ny : ny / 2;
         if (k->lanes_on) {
           /* side by side in batches of sizes as equal as they go */
           const int g0 = k->gfirst[h][c], count = k->gfirst[h][c + 1] - g0;
@@ -550,6 +558,8 @@ int rs_krylov_psolve(rs_krylov *k, double *v)
             }
           }
         } else {
+          int iy0, iy1;
+          half_lines(ny, T, h, &iy0, &iy1);
           for (int iy = iy0 + ((iy0 & 1) != c); iy < iy1; iy += 2)
             failed += solve_part(&k->part[iy], v) != RS_OK;
         }
