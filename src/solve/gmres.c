@@ -66,6 +66,38 @@ static inline __attribute__((always_inline)) void dot_piece(v4 *acc, const doubl
   for (; i < len; i++) (*acc)[0] += x[i] * y[i];
 }
 
+/* dot_piece for two vectors x0, x1 against the same y (acc[0], acc[1]): each sum's additions
+ * in dot_piece's order, y read once for both. */
+static inline __attribute__((always_inline)) void
+dot_piece2(v4 *acc, const double *x0, const double *x1, const double *y, int len)
+{
+  v4 p[4] = {{0.0}}, q[4] = {{0.0}};
+  int i = 0;
+  for (; i + 16 <= len; i += 16)
+    for (int k = 0; k < 4; k++) {
+      v4 a, b, c;
+      memcpy(&a, x0 + i + 4 * k, sizeof a);
+      memcpy(&b, x1 + i + 4 * k, sizeof b);
+      memcpy(&c, y + i + 4 * k, sizeof c);
+      p[k] += a * c;
+      q[k] += b * c;
+    }
+  for (; i + 4 <= len; i += 4) {
+    v4 a, b, c;
+    memcpy(&a, x0 + i, sizeof a);
+    memcpy(&b, x1 + i, sizeof b);
+    memcpy(&c, y + i, sizeof c);
+    p[0] += a * c;
+    q[0] += b * c;
+  }
+  acc[0] += (p[0] + p[1]) + (p[2] + p[3]);
+  acc[1] += (q[0] + q[1]) + (q[2] + q[3]);
+  for (; i < len; i++) {
+    acc[0][0] += x0[i] * y[i];
+    acc[1][0] += x1[i] * y[i];
+  }
+}
+
 /* w <- s2 w (s2 NULL: w), and the dot products of w with V[0..m-1] into d, |w|^2 into *ww. */
 RS_GMRES_CLONES static void scale_and_dots(int n, const double *s2, double *w, double *const *V,
                                            int m, double *d, double *ww)
@@ -79,7 +111,9 @@ RS_GMRES_CLONES static void scale_and_dots(int n, const double *s2, double *w, d
     if (s2)
       for (int i = 0; i < len; i++) wp[i] *= s2[i0 + i];
     dot_piece(&acc[m], wp, wp, len);
-    for (int j = 0; j < m; j++) dot_piece(&acc[j], V[j] + i0, wp, len);
+    int j = 0;
+    for (; j + 2 <= m; j += 2) dot_piece2(&acc[j], V[j] + i0, V[j + 1] + i0, wp, len);
+    if (j < m) dot_piece(&acc[j], V[j] + i0, wp, len);
   }
   for (int j = 0; j < m; j++) d[j] = sum4(&acc[j]);
   *ww = sum4(&acc[m]);
@@ -92,7 +126,20 @@ RS_GMRES_CLONES static double subtract(int n, double *w, double *const *V, int m
   for (int i0 = 0; i0 < n; i0 += PIECE) {
     const int len = n - i0 < PIECE ? n - i0 : PIECE;
     double *wp = w + i0;
-    for (int j = 0; j < m; j++) {
+    int j = 0;
+    for (; j + 4 <= m; j += 4) { /* four at a time, each element's subtractions in order */
+      const double d0 = d[j], d1 = d[j + 1], d2 = d[j + 2], d3 = d[j + 3];
+      const double *v0 = V[j] + i0, *v1 = V[j + 1] + i0, *v2 = V[j + 2] + i0, *v3 = V[j + 3] + i0;
+      for (int i = 0; i < len; i++) {
+        double t = wp[i];
+        t -= d0 * v0[i];
+        t -= d1 * v1[i];
+        t -= d2 * v2[i];
+        t -= d3 * v3[i];
+        wp[i] = t;
+      }
+    }
+    for (; j < m; j++) {
       const double dj = d[j], *vp = V[j] + i0;
       for (int i = 0; i < len; i++) wp[i] -= dj * vp[i];
     }
