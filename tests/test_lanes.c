@@ -16,7 +16,10 @@
  *    new system of that line, and the other lines' solutions stay bit for bit.
  * 4. Groups solved side by side (two, three or four at once) give bit for bit the solutions
  *    of the groups solved one at a time (each line's operations are the same), and so do
- *    groups refactored side by side. */
+ *    groups refactored side by side.
+ * 5. The values read from the rows of a matrix that holds the lines' rows (each followed by
+ *    entries of other lines, NaN, which must not be read) give bit for bit the solutions of
+ *    the lines' own values. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -169,6 +172,26 @@ int main(void)
   memcpy(vr, b, sizeof vr);
   solve_all(&s, vr);
   check(!memcmp(vr, v1, sizeof vr), "4 groups refactored at once: bit for bit the same solutions");
+
+  /* 5. from the rows of the whole matrix: row q N + i is line q's row i and two NaNs */
+  static double gval[LINES * N * 14];
+  static int64_t grp[LINES * N + 1];
+  grp[0] = 0;
+  for (int q = 0; q < LINES; q++)
+    for (int i = 0; i < N; i++) {
+      const int r = q * N + i;
+      int64_t e = grp[r];
+      for (int64_t k = a[q].rowptr[i]; k < a[q].rowptr[i + 1]; k++) gval[e++] = a[q].val[k];
+      gval[e++] = NAN;
+      gval[e++] = NAN;
+      grp[r + 1] = e;
+    }
+  rs_lanes_refactor_rows(&s, all, 4, gval, grp, refresh);
+  double vg[LINES * N];
+  memcpy(vg, b, sizeof vg);
+  solve_all(&s, vg);
+  check(!memcmp(vg, v1, sizeof vg),
+        "values from the whole matrix's rows: bit for bit the solutions of the lines' own");
   rs_lanes_free(&s);
   return failures ? 1 : 0;
 }

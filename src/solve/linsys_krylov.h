@@ -55,8 +55,7 @@ typedef struct rs_krylov {
    * part q factored (by the lanes, or by KLU where its lane's pivots did not hold) */
   rs_lanes lanes;
   int lanes_on, gfirst[2][3];
-  const double **lane_values; /* each part's values (its val) */
-  int *lane_todo;             /* the groups a set-up refactors */
+  int *lane_todo; /* the groups a set-up refactors */
   unsigned char *ready;
   long setups, analyses, products;
   long factorizations; /* KLU numeric factorisations and refactorisations */

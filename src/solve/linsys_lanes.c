@@ -205,7 +205,11 @@ int rs_lanes_create(rs_lanes *s, int n, int nlines, const rs_lane_line *lines,
   if (status == RS_OK) {
     s->amap = calloc((size_t)nlines, sizeof *s->amap);
     s->amap_len = calloc((size_t)nlines, sizeof *s->amap_len);
-    if (!s->amap || !s->amap_len) status = RS_ERR_INTERNAL;
+    s->lines = malloc((size_t)nlines * sizeof *s->lines);
+    if (!s->amap || !s->amap_len || !s->lines)
+      status = RS_ERR_INTERNAL;
+    else
+      memcpy(s->lines, lines, (size_t)nlines * sizeof *lines);
   }
   for (int q = 0; status == RS_OK && q < nlines; q++) {
     const int64_t nz = lines[q].rowptr[n];
@@ -284,6 +288,7 @@ void rs_lanes_free(rs_lanes *s)
   for (int q = 0; s->amap && q < s->nlines; q++) free(s->amap[q]);
   free(s->amap);
   free(s->amap_len);
+  free(s->lines);
   free(s->ap);
   free(s->ai);
   free(s->q);
@@ -302,17 +307,27 @@ void rs_lanes_free(rs_lanes *s)
   memset(s, 0, sizeof *s);
 }
 
-/* Group gi's lanes: the values of its refreshed lines scattered onto the common pattern. */
+/* Group gi's lanes: the values of its refreshed lines scattered onto the common pattern,
+ * from the lines' own values (values[line]) or from the rows of the matrix they come from
+ * (gval, grp: no copy of each line's values first). */
 static void scatter_values(rs_lanes *s, rs_lane_group *g, const double *const *values,
-                           const unsigned char *refresh)
+                           const double *gval, const int64_t *grp, const unsigned char *refresh)
 {
   const int64_t nnz = s->ap[s->n];
   for (int l = 0; l < RS_LANES; l++) {
     const int q = g->line[l];
     if (q < 0 || !refresh[q]) continue;
     const int *map = s->amap[q];
-    const double *v = values[q];
-    for (int64_t e = 0; e < s->amap_len[q]; e++) g->ax[map[e]][l] = v[e];
+    if (values) {
+      const double *v = values[q];
+      for (int64_t e = 0; e < s->amap_len[q]; e++) g->ax[map[e]][l] = v[e];
+    } else {
+      const int64_t *rp = s->lines[q].rowptr, *idx = s->lines[q].idx;
+      for (int i = 0; i < s->n; i++) {
+        const double *v = gval + grp[idx[i]] - rp[i];
+        for (int64_t e = rp[i]; e < rp[i + 1]; e++) g->ax[map[e]][l] = v[e];
+      }
+    }
   }
   /* unused lanes: lane 0's matrix (when it changed), never written back */
   for (int l = 1; l < RS_LANES && refresh[g->line[0]]; l++)
@@ -393,16 +408,30 @@ static inline __attribute__((always_inline)) void refactor_groups(rs_lanes *s, c
   }
 }
 
-RS_LANES_CLONES void rs_lanes_refactor(rs_lanes *s, const int *groups, int m,
-                                       const double *const *values, const unsigned char *refresh)
+static inline __attribute__((always_inline)) void
+refactor_batch(rs_lanes *s, const int *groups, int m, const double *const *values,
+               const double *gval, const int64_t *grp, const unsigned char *refresh)
 {
-  for (int j = 0; j < m; j++) scatter_values(s, &s->group[groups[j]], values, refresh);
+  for (int j = 0; j < m; j++) scatter_values(s, &s->group[groups[j]], values, gval, grp, refresh);
   switch (m) { /* m a constant in each: the loops over the groups unrolled */
   case 4: refactor_groups(s, groups, 4); break;
   case 3: refactor_groups(s, groups, 3); break;
   case 2: refactor_groups(s, groups, 2); break;
   default: refactor_groups(s, groups, 1); break;
   }
+}
+
+RS_LANES_CLONES void rs_lanes_refactor(rs_lanes *s, const int *groups, int m,
+                                       const double *const *values, const unsigned char *refresh)
+{
+  refactor_batch(s, groups, m, values, NULL, NULL, refresh);
+}
+
+RS_LANES_CLONES void rs_lanes_refactor_rows(rs_lanes *s, const int *groups, int m,
+                                            const double *gval, const int64_t *grp,
+                                            const unsigned char *refresh)
+{
+  refactor_batch(s, groups, m, NULL, gval, grp, refresh);
 }
 
 /* The solves of m groups (m <= RS_LANES_BATCH) side by side. By rows: each unknown's updates

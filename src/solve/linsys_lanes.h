@@ -52,6 +52,7 @@ typedef struct rs_lanes {
   int64_t *ap, *ai;       /* common pattern, CSC */
   int **amap;             /* per line: the CSC position of each of its CSR entries */
   int64_t *amap_len;      /* entries of each line */
+  rs_lane_line *lines;    /* the caller's lines (their arrays stay the caller's) */
   int *q, *prow, *pinv;   /* column and row of pivot step k; pivot step of row i */
   int *lp, *li, *up, *ui; /* L, U without the diagonal, by columns in pivot order */
   /* The same by rows, for the solves: row k of L its columns ascending, row k of U its
@@ -75,6 +76,10 @@ void rs_lanes_free(rs_lanes *s);
  * (the others' stay as last scattered). Sets ok[]. */
 void rs_lanes_refactor(rs_lanes *s, const int *groups, int m, const double *const *values,
                        const unsigned char *refresh);
+/* The same with each line's values read from the matrix its rows come from (CSR values
+ * gval, row pointers grp): the line's row i is the first entries of row idx[i] there. */
+void rs_lanes_refactor_rows(rs_lanes *s, const int *groups, int m, const double *gval,
+                            const int64_t *grp, const unsigned char *refresh);
 /* v <- the solves of the lines whose factors hold (global indices) of the m groups
  * groups[0..m-1], 1 <= m <= RS_LANES_BATCH, solved side by side. */
 void rs_lanes_solve(const rs_lanes *s, const int *groups, int m, double *v);
