@@ -437,12 +437,15 @@ int rs_model_evaluate(const rs_model *m, rs_work *w, const rs_inputs *in, const 
    * cases/wheel_rail_3d.yaml took 9920 Newton iterations (86 failed solves) instead of 8932
    * (2), 13 % more time. 2D keeps r (the interval law). */
   w->r_yield = cj == 0.0 ? 0.2 * w->r : w->r;
-  const int status = rs_model_normal_at(m, w, in, &w->msg);
+  int status = rs_model_normal_at(m, w, in, &w->msg);
   if (status != RS_OK) return status;
+  if (jac && (status = rs_model_flags_alloc(m, w)) != RS_OK) return status;
   rs_model_kinematics(m, w, in, y, yp);
+  int e = 0;
   for (int i = 0; i < n; i++) {
     rs_law_out *o = &w->law[i];
     rs_model_cell_law(m, w, y, i, jac, o);
+    if (jac) rs_model_cell_flags(m, w, i, &e);
     w->branch[i] = o->branch;
     if (!F) continue;
     for (int c = 0; c < L->ncomp; c++) {
@@ -452,6 +455,7 @@ int rs_model_evaluate(const rs_model *m, rs_work *w, const rs_inputs *in, const 
     F[rs_at_ustar(L, i)] = o->R[rs_law_row_star(L->ncomp)];
     if (L->memory) F[rs_at_mu(L, i)] = o->R[rs_law_row_mu(L->ncomp)];
   }
+  if (jac) w->jv_start[n] = e;
   /* Force rows, scaled to a mean traction over the contact (2a in 2D, pi a b in 3D). */
   for (int k = 0; F && k < L->nextra; k++) {
     double sum = 0.0;

@@ -33,10 +33,16 @@ void rs_model_inflow(const rs_model *m, const rs_inputs *in, double *state);
 int rs_model_pressure(const rs_model *m, rs_elastic_work *ew, double load, double *pn,
                       double *approach, rs_msg *msg);
 
-/* Kinematics and the local laws of every cell into w (jac: with their local Jacobians),
- * and the residual into F when F is not NULL. */
+/* Kinematics and the local laws of every cell into w (jac: with their local Jacobians and
+ * the lists of rs_model_cell_flags), and the residual into F when F is not NULL. */
 int rs_model_evaluate(const rs_model *m, rs_work *w, const rs_inputs *in, const double *y,
                       const double *yp, double cj, double *F, int jac);
+
+/* The compact lists of the local Jacobians' present entries in w, allocated once. */
+int rs_model_flags_alloc(const rs_model *m, rs_work *w);
+/* Cell i's present entries from position *e of the lists on (advanced past them), and its
+ * rows' dense flags and pivots (after its law with the Jacobian). */
+void rs_model_cell_flags(const rs_model *m, rs_work *w, int i, int *e);
 
 /* The local law of cell I from the kinematics in w (jac: also its local Jacobian). */
 void rs_model_cell_law(const rs_model *m, const rs_work *w, const double *y, int I, int jac,
