@@ -58,6 +58,12 @@ static int solve5(double A[5][5], double b[5])
 
 /* One implicit Euler step of length dt to the total displacement u[2]. Unknowns z = (p_x,
  * p_y, f_x, f_y, d): f = Du_pl/Dt, d = Du* /Dt, u_pl = u_pl_old + dt f, u* = u*_old + dt d. */
+/* The local Jacobian's entry, 0 where not present (rs_law_out) */
+static double entry(const rs_law_out *o, int row, int var)
+{
+  return o->present[row][var] ? o->jac[row][var] : 0.0;
+}
+
 static int step(element *e, const rs_plasticity *pl, const double u[2], double dt)
 {
   double z[5] = {e->p[0], e->p[1], 0.0, 0.0, 0.0};
@@ -86,10 +92,11 @@ static int step(element *e, const rs_plasticity *pl, const double u[2], double d
       const int row = rows[k];
       F[2 + k] = out.R[row];
       for (int c = 0; c < 2; c++) {
-        A[2 + k][c] = out.jac[row][rs_law_var_p(c)];
-        A[2 + k][2 + c] = out.jac[row][rs_law_var_flow(nc, c)];
+        A[2 + k][c] = entry(&out, row, rs_law_var_p(c));
+        A[2 + k][2 + c] = entry(&out, row, rs_law_var_flow(nc, c));
       }
-      A[2 + k][4] = out.jac[row][rs_law_var_dustar(nc)] + dt * out.jac[row][rs_law_var_ustar(nc)];
+      A[2 + k][4] =
+          entry(&out, row, rs_law_var_dustar(nc)) + dt * entry(&out, row, rs_law_var_ustar(nc));
     }
     double norm = 0.0;
     for (int k = 0; k < 5; k++) norm = fmax(norm, fabs(F[k]));

@@ -88,7 +88,7 @@ typedef struct rs_law_in {
  * Jacobian: jac[row][var] with present[row][var] marking the structurally present
  * entries (explicit zeros included, e.g. the hardening term of a yield row on the
  * floor: the Jacobian's pattern depends on the branches only); entries not present are
- * 0. */
+ * not set (read jac only where present). */
 typedef struct rs_law_out {
   double R[RS_LAW_NROW];
   unsigned char branch;

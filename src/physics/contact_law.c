@@ -116,8 +116,7 @@ void rs_contact_law(const rs_plasticity *pl, const rs_law_in *in, int jac, rs_la
   out->pins_p = 0;
   if (!jac) return;
 
-  memset(out->present, 0, sizeof out->present);
-  memset(out->jac, 0, sizeof out->jac); /* J v sums over every entry */
+  memset(out->present, 0, sizeof out->present); /* jac is set where present only */
   /* Friction row: 1 on p at the bound or outside the contact, r on v_s otherwise. At a
    * velocity-dependent bound, R_f = p - s g(eta) with eta = -s v_s also has
    * d R_f / d v_s = s^2 g'(eta) = g'(eta) (model.md §11: dense through Du_el/Dt). */
@@ -255,8 +254,7 @@ static void disk_law(const rs_plasticity *pl, const rs_law_in *in, int jac, rs_l
   out->pins_p = 0;
   if (!jac) return;
 
-  memset(out->present, 0, sizeof out->present);
-  memset(out->jac, 0, sizeof out->jac); /* J v sums over every entry */
+  memset(out->present, 0, sizeof out->present); /* jac is set where present only */
   for (int c = 0; c < NC; c++) {
     const int Rf = rs_law_row_f(c), Rpl = rs_law_row_pl(NC, c);
     /* friction rows */

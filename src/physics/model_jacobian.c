@@ -113,8 +113,8 @@ static void put_traction_columns(const rs_model *m, const rs_law_out *o, int lr,
   const int ix = I % nx, iy = I / nx, up = rs_grid_upstream(&m->grid, I);
   const double c3 = m->layer_flex;
   for (int b = 0; b < nc; b++) {
-    const double cp = o->jac[lr][rs_law_var_p(b)];
     const int has_p = o->present[lr][rs_law_var_p(b)];
+    const double cp = has_p ? o->jac[lr][rs_law_var_p(b)] : 0.0;
     if (!any_vs && band == 0) { /* sparse: the traction of the cell itself */
       if (has_p || keep_own) csr_put(J, rs_at_p(L, b, I), has_p ? cp : 0.0);
       continue;
