@@ -104,6 +104,7 @@ typedef struct rs_inputs {
   double force, force_y;   /* prescribed F_x, F_y (force control) */
   double load_rate, force_rate, force_y_rate; /* d/dt of load and forces */
   int linear; /* 1: the linear part only: no rigid slip, no inflow (J v) */
+  int newton; /* 1: an evaluation of steady Newton's (its weights, rs_model_evaluate) */
 } rs_inputs;
 void rs_model_inputs_at(const rs_model *m, double t, rs_inputs *in);
 /* Inputs held at their values: rates zero. */

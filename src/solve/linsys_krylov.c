@@ -302,7 +302,7 @@ static int same_inputs(const rs_inputs *a, const rs_inputs *b)
          a->shift_velocity == b->shift_velocity && a->load == b->load && a->force == b->force &&
          a->force_y == b->force_y && a->load_rate == b->load_rate &&
          a->force_rate == b->force_rate && a->force_y_rate == b->force_y_rate &&
-         a->linear == b->linear;
+         a->linear == b->linear && a->newton == b->newton;
 }
 
 int rs_krylov_residual(rs_krylov *k, const rs_inputs *in, const double *y, const double *yp,

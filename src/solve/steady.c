@@ -746,6 +746,7 @@ int rs_steady_solve(rs_steady *s, double t, double *y, rs_stats *stats, rs_msg *
 {
   const rs_model *m = s->m;
   rs_model_inputs_at(m, t, &s->in);
+  s->in.newton = 1; /* the weights of Newton's evaluations (rs_model_evaluate) */
   if (!(s->in.velocity > 0.0))
     return rs_msg_set(msg, RS_ERR_INPUT,
                       "steady rolling needs a rolling velocity > 0 (got %g mm/s at t = %g s)",
@@ -768,6 +769,7 @@ int rs_steady_approximate(rs_steady *s, double t, double *y, double tol, int max
 {
   const rs_model *m = s->m;
   rs_model_inputs_at(m, t, &s->in);
+  s->in.newton = 1; /* the weights of Newton's evaluations (rs_model_evaluate) */
   if (!(s->in.velocity > 0.0) || !(tol >= FNORM_TOL) || max_iters < 1) return RS_ERR_SOLVER;
   s->failed = 0;
   s->cj = 0.0;
