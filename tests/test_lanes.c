@@ -17,9 +17,11 @@
  * 4. Groups solved side by side (two, three or four at once) give bit for bit the solutions
  *    of the groups solved one at a time (each line's operations are the same), and so do
  *    groups refactored side by side.
- * 5. The values read from the rows of a matrix that holds the lines' rows (each followed by
- *    entries of other lines, NaN, which must not be read) give bit for bit the solutions of
- *    the lines' own values. */
+ * 5. The values read from the rows of a matrix in which each line's row is followed by
+ *    entries of other lines (NaN here, which must not be read) give bit for bit the
+ *    solutions of the matrix without them.
+ * The lanes read the lines' values from the rows of the matrix they come from (row q N + i
+ * holds line q's row i first): built by whole_matrix. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -87,6 +89,22 @@ static double residual(const line_mat *a, const double *x, const double *b)
   return worst;
 }
 
+/* The matrix of all lines: row q N + i is line q's row i, then pad NaNs. */
+static double gval[LINES * N * 14];
+static int64_t grp[LINES * N + 1];
+static void whole_matrix(const line_mat *a, int pad)
+{
+  grp[0] = 0;
+  for (int q = 0; q < LINES; q++)
+    for (int i = 0; i < N; i++) {
+      const int r = q * N + i;
+      int64_t e = grp[r];
+      for (int64_t k = a[q].rowptr[i]; k < a[q].rowptr[i + 1]; k++) gval[e++] = a[q].val[k];
+      for (int k = 0; k < pad; k++) gval[e++] = NAN;
+      grp[r + 1] = e;
+    }
+}
+
 /* every group, batch groups at a time */
 static void solve_batched(const rs_lanes *s, double *v, int batch)
 {
@@ -118,7 +136,8 @@ int main(void)
   check(rs_lanes_create(&s, N, LINES, lines, values, 1, order, LINES, first) == RS_OK,
         "lanes created");
   check(s.ngroups == (LINES + RS_LANES - 1) / RS_LANES, "groups of RS_LANES lines");
-  for (int g = 0; g < s.ngroups; g++) rs_lanes_refactor(&s, &g, 1, values, refresh);
+  whole_matrix(a, 0);
+  for (int g = 0; g < s.ngroups; g++) rs_lanes_refactor(&s, &g, 1, gval, grp, refresh);
   int ok_lines = 0, bad_ok = -1;
   for (int g = 0; g < s.ngroups; g++)
     for (int l = 0; l < RS_LANES; l++) {
@@ -142,7 +161,8 @@ int main(void)
   /* 3. line 2 changed, only it refreshed */
   for (int64_t e = 0; e < a[2].rowptr[N]; e++) a[2].val[e] *= 1.0 + 0.3 * rnd(&seed);
   for (int q = 0; q < LINES; q++) refresh[q] = q == 2;
-  for (int g = 0; g < s.ngroups; g++) rs_lanes_refactor(&s, &g, 1, values, refresh);
+  whole_matrix(a, 0);
+  for (int g = 0; g < s.ngroups; g++) rs_lanes_refactor(&s, &g, 1, gval, grp, refresh);
   memcpy(v1, b, sizeof v1);
   solve_all(&s, v1);
   const double r2 = residual(&a[2], v1 + 2 * N, b + 2 * N);
@@ -167,31 +187,20 @@ int main(void)
   }
   for (int q = 0; q < LINES; q++) refresh[q] = 1;
   int all[4] = {0, 1, 2, 3};
-  rs_lanes_refactor(&s, all, 4, values, refresh);
+  rs_lanes_refactor(&s, all, 4, gval, grp, refresh);
   double vr[LINES * N];
   memcpy(vr, b, sizeof vr);
   solve_all(&s, vr);
   check(!memcmp(vr, v1, sizeof vr), "4 groups refactored at once: bit for bit the same solutions");
 
-  /* 5. from the rows of the whole matrix: row q N + i is line q's row i and two NaNs */
-  static double gval[LINES * N * 14];
-  static int64_t grp[LINES * N + 1];
-  grp[0] = 0;
-  for (int q = 0; q < LINES; q++)
-    for (int i = 0; i < N; i++) {
-      const int r = q * N + i;
-      int64_t e = grp[r];
-      for (int64_t k = a[q].rowptr[i]; k < a[q].rowptr[i + 1]; k++) gval[e++] = a[q].val[k];
-      gval[e++] = NAN;
-      gval[e++] = NAN;
-      grp[r + 1] = e;
-    }
-  rs_lanes_refactor_rows(&s, all, 4, gval, grp, refresh);
+  /* 5. each row followed by two NaNs */
+  whole_matrix(a, 2);
+  rs_lanes_refactor(&s, all, 4, gval, grp, refresh);
   double vg[LINES * N];
   memcpy(vg, b, sizeof vg);
   solve_all(&s, vg);
   check(!memcmp(vg, v1, sizeof vg),
-        "values from the whole matrix's rows: bit for bit the solutions of the lines' own");
+        "rows followed by other entries: bit for bit the solutions without them");
   rs_lanes_free(&s);
   return failures ? 1 : 0;
 }

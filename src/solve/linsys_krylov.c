@@ -454,7 +454,7 @@ static int setup_linearised(rs_krylov *k, const rs_inputs *in, double cj)
       const int t0 = (int)((int64_t)b * ntodo / nbatch),
                 t1 = (int)((int64_t)(b + 1) * ntodo / nbatch);
       const int *batch = k->lane_todo + t0;
-      if (t1 > t0) rs_lanes_refactor_rows(&k->lanes, batch, t1 - t0, k->near.val, rp, k->refresh);
+      if (t1 > t0) rs_lanes_refactor(&k->lanes, batch, t1 - t0, k->near.val, rp, k->refresh);
       for (int j = 0; j < t1 - t0; j++) {
         const rs_lane_group *gr = &ln->group[batch[j]];
         for (int l = 0; l < RS_LANES; l++) {

@@ -308,25 +308,20 @@ void rs_lanes_free(rs_lanes *s)
 }
 
 /* Group gi's lanes: the values of its refreshed lines scattered onto the common pattern,
- * from the lines' own values (values[line]) or from the rows of the matrix they come from
- * (gval, grp: no copy of each line's values first). */
-static void scatter_values(rs_lanes *s, rs_lane_group *g, const double *const *values,
-                           const double *gval, const int64_t *grp, const unsigned char *refresh)
+ * read from the rows of the matrix they come from (gval, grp: no copy of each line's values
+ * first). */
+static void scatter_values(rs_lanes *s, rs_lane_group *g, const double *gval, const int64_t *grp,
+                           const unsigned char *refresh)
 {
   const int64_t nnz = s->ap[s->n];
   for (int l = 0; l < RS_LANES; l++) {
     const int q = g->line[l];
     if (q < 0 || !refresh[q]) continue;
     const int *map = s->amap[q];
-    if (values) {
-      const double *v = values[q];
-      for (int64_t e = 0; e < s->amap_len[q]; e++) g->ax[map[e]][l] = v[e];
-    } else {
-      const int64_t *rp = s->lines[q].rowptr, *idx = s->lines[q].idx;
-      for (int i = 0; i < s->n; i++) {
-        const double *v = gval + grp[idx[i]] - rp[i];
-        for (int64_t e = rp[i]; e < rp[i + 1]; e++) g->ax[map[e]][l] = v[e];
-      }
+    const int64_t *rp = s->lines[q].rowptr, *idx = s->lines[q].idx;
+    for (int i = 0; i < s->n; i++) {
+      const double *v = gval + grp[idx[i]] - rp[i];
+      for (int64_t e = rp[i]; e < rp[i + 1]; e++) g->ax[map[e]][l] = v[e];
     }
   }
   /* unused lanes: lane 0's matrix (when it changed), never written back */
@@ -408,30 +403,16 @@ static inline __attribute__((always_inline)) void refactor_groups(rs_lanes *s, c
   }
 }
 
-static inline __attribute__((always_inline)) void
-refactor_batch(rs_lanes *s, const int *groups, int m, const double *const *values,
-               const double *gval, const int64_t *grp, const unsigned char *refresh)
+RS_LANES_CLONES void rs_lanes_refactor(rs_lanes *s, const int *groups, int m, const double *gval,
+                                       const int64_t *grp, const unsigned char *refresh)
 {
-  for (int j = 0; j < m; j++) scatter_values(s, &s->group[groups[j]], values, gval, grp, refresh);
+  for (int j = 0; j < m; j++) scatter_values(s, &s->group[groups[j]], gval, grp, refresh);
   switch (m) { /* m a constant in each: the loops over the groups unrolled */
   case 4: refactor_groups(s, groups, 4); break;
   case 3: refactor_groups(s, groups, 3); break;
   case 2: refactor_groups(s, groups, 2); break;
   default: refactor_groups(s, groups, 1); break;
   }
-}
-
-RS_LANES_CLONES void rs_lanes_refactor(rs_lanes *s, const int *groups, int m,
-                                       const double *const *values, const unsigned char *refresh)
-{
-  refactor_batch(s, groups, m, values, NULL, NULL, refresh);
-}
-
-RS_LANES_CLONES void rs_lanes_refactor_rows(rs_lanes *s, const int *groups, int m,
-                                            const double *gval, const int64_t *grp,
-                                            const unsigned char *refresh)
-{
-  refactor_batch(s, groups, m, NULL, gval, grp, refresh);
 }
 
 /* The solves of m groups (m <= RS_LANES_BATCH) side by side. By rows: each unknown's updates

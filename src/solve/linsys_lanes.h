@@ -72,14 +72,11 @@ int rs_lanes_create(rs_lanes *s, int n, int nlines, const rs_lane_line *lines,
                     const unsigned char *first_of_group);
 void rs_lanes_free(rs_lanes *s);
 /* The lanes of the m groups groups[0..m-1] (1 <= m <= RS_LANES_BATCH) refactored side by side
- * from their lines' CSR values (values[line]); refresh[line] says which lines' values changed
- * (the others' stay as last scattered). Sets ok[]. */
-void rs_lanes_refactor(rs_lanes *s, const int *groups, int m, const double *const *values,
-                       const unsigned char *refresh);
-/* The same with each line's values read from the matrix its rows come from (CSR values
- * gval, row pointers grp): the line's row i is the first entries of row idx[i] there. */
-void rs_lanes_refactor_rows(rs_lanes *s, const int *groups, int m, const double *gval,
-                            const int64_t *grp, const unsigned char *refresh);
+ * from the matrix the lines' rows come from (CSR values gval, row pointers grp: line q's
+ * row i is the first entries of row idx[i] there); refresh[line] says which lines' values
+ * changed (the others' stay as last scattered). Sets ok[]. */
+void rs_lanes_refactor(rs_lanes *s, const int *groups, int m, const double *gval,
+                       const int64_t *grp, const unsigned char *refresh);
 /* v <- the solves of the lines whose factors hold (global indices) of the m groups
  * groups[0..m-1], 1 <= m <= RS_LANES_BATCH, solved side by side. */
 void rs_lanes_solve(const rs_lanes *s, const int *groups, int m, double *v);
