@@ -322,6 +322,8 @@ static int solve(SUNLinearSolver S, SUNMatrix A, N_Vector xv, N_Vector bv, doubl
     for (int l = 0; l < maxl; l++) {
       /* V[l] normalised and z = V[l] / s1 in one pass; z <- P^-1 z; V[l+1] <- s2 A z */
       normalise_into(n, 1.0 / c->raw[l], V[l], c->s1, c->z);
+      if (!V[l + 1] && !(V[l + 1] = malloc((size_t)n * sizeof **V)))
+        return c->last_flag = SUNLS_MEM_FAIL;
       if (rs_krylov_psolve(c->kry, c->z) != RS_OK) return c->last_flag = SUNLS_PSOLVE_FAIL_REC;
       if (rs_krylov_times(c->kry, c->z, V[l + 1]) != RS_OK)
         return c->last_flag = SUNLS_ATIMES_FAIL_UNREC;
@@ -448,7 +450,9 @@ SUNLinearSolver rs_gmres_create(rs_krylov *kry, N_Vector tmpl, int maxl, int max
   c->y = calloc(m1, sizeof *c->y);
   c->dots = calloc(m1, sizeof *c->dots);
   int ok = c->V && c->z && c->H && c->raw && c->cs && c->sn && c->g && c->y && c->dots;
-  for (size_t j = 0; ok && j < m1; j++) ok = (c->V[j] = malloc(nv * sizeof **c->V)) != NULL;
+  /* the first basis vector; the others when an iteration first reaches them (most solves
+   * take a few of the maxl + 1, and memory in huge pages would count in full) */
+  ok = ok && (c->V[0] = malloc(nv * sizeof **c->V)) != NULL;
   if (!ok) {
     gmres_free(S);
     return NULL;
