@@ -19,6 +19,15 @@ int rs_cli_is_command(const char *cmd);
 /* `check` of a case with a sweep: block: the swept keys, their values and units. */
 void rs_cli_print_sweep(FILE *out, const rs_sweep *s);
 
+/* ---- heap.c: the process's memory ---- */
+
+/* The heap in transparent huge pages where the C library and the kernel allow it (glibc on
+ * Linux; nothing under AddressSanitizer or with ROLLSIM_SMALL_PAGES set in the
+ * environment): first touches of memory, 4 KiB page faults otherwise, were a large part of
+ * a 3D steady chain's start (heap.c). Called first thing by the command line's main, never
+ * by the library. */
+void rs_cli_heap_setup(void);
+
 /* ---- warnings.c: plausible but suspicious inputs (stderr; never an error) ---- */
 
 /* Creepages that look like percentages (|xi| >= 0.05) or lie far beyond full sliding

@@ -335,6 +335,7 @@ static int cmd_help(int argc, char **argv)
 
 int main(int argc, char **argv)
 {
+  rs_cli_heap_setup();
   if (argc < 2) {
     usage(stderr);
     return 2;
