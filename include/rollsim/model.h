@@ -155,6 +155,9 @@ typedef struct rs_work {
 } rs_work;
 
 int rs_work_create(rs_work *w, const rs_model *m);
+/* A work for the kinematics only (rs_model_kinematics_scaled, the vectors of J v): no
+ * local laws (law, dense, pivot stay NULL), about 770 bytes a cell less. */
+int rs_work_create_kinematics(rs_work *w, const rs_model *m);
 void rs_work_free(rs_work *w);
 
 /* Pressure and traction bound for the inputs into w->pn, w->bound: the model's arrays at

@@ -220,7 +220,7 @@ double rs_model_next_breakpoint(const rs_model *m, double t)
   return next;
 }
 
-int rs_work_create(rs_work *w, const rs_model *m)
+static int work_create(rs_work *w, const rs_model *m, int laws)
 {
   memset(w, 0, sizeof *w);
   const size_t n = (size_t)m->grid.n, nc = (size_t)m->lay.ncomp;
@@ -231,10 +231,12 @@ int rs_work_create(rs_work *w, const rs_model *m)
   w->dupl = calloc(nc * n, sizeof *w->dupl);
   w->dustar = calloc(n, sizeof *w->dustar);
   w->branch = calloc(n, sizeof *w->branch);
-  w->law = calloc(n, sizeof *w->law);
   const size_t neq = (size_t)m->lay.neq;
-  w->dense = calloc(neq, sizeof *w->dense);
-  w->pivot = calloc(neq, sizeof *w->pivot);
+  if (laws) {
+    w->law = calloc(n, sizeof *w->law);
+    w->dense = calloc(neq, sizeof *w->dense);
+    w->pivot = calloc(neq, sizeof *w->pivot);
+  }
   if (m->lay.memory && !(w->dmu = calloc(n, sizeof *w->dmu))) {
     rs_work_free(w);
     return RS_ERR_INTERNAL;
@@ -243,8 +245,8 @@ int rs_work_create(rs_work *w, const rs_model *m)
   w->bound_buf = calloc(n, sizeof *w->bound_buf);
   w->inflow = calloc((nc + 1) * (size_t)m->grid.ny, sizeof *w->inflow);
   w->load_cached = NAN;
-  if (!w->uel || !w->ueldot || !w->vslip || !w->dupl || !w->dustar || !w->branch || !w->law ||
-      !w->dense || !w->pivot || !w->pn_buf || !w->bound_buf || !w->inflow ||
+  if (!w->uel || !w->ueldot || !w->vslip || !w->dupl || !w->dustar || !w->branch ||
+      (laws && (!w->law || !w->dense || !w->pivot)) || !w->pn_buf || !w->bound_buf || !w->inflow ||
       rs_elastic_work_create(&w->ew, &m->el) != RS_OK) {
     rs_work_free(w);
     return RS_ERR_INTERNAL;
@@ -252,6 +254,10 @@ int rs_work_create(rs_work *w, const rs_model *m)
   if (m->el.dim == 3) w->ew.surf.threads = m->par.threads;
   return RS_OK;
 }
+
+int rs_work_create(rs_work *w, const rs_model *m) { return work_create(w, m, 1); }
+
+int rs_work_create_kinematics(rs_work *w, const rs_model *m) { return work_create(w, m, 0); }
 
 void rs_work_free(rs_work *w)
 {

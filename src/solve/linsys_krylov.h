@@ -42,7 +42,8 @@ typedef struct rs_krylov {
   double cj;
   /* near-field matrix, CSR (KLU factors it as the CSC of its transpose) */
   rs_csr near;
-  int64_t *rp_old, *ci_old, cap, nnz_old;
+  int64_t *rp_old, cap, nnz_old;
+  uint64_t ci_hash;       /* of the columns of the last analysed pattern (with rp_old, nnz_old) */
   rs_klu_part *part;      /* nparts: one per line along x (3D), or the whole matrix */
   unsigned char *refresh; /* per part: refactored at the last set-up */
   int nparts;             /* 0 before the first analysis */
