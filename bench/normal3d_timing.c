@@ -1,10 +1,10 @@
-/* Timings of the 3D elastic products and of the 3D normal solve (rollsim/elastic3d.h,
- * rollsim/normal3d.h) on the wheel-rail Hertz case of test_normal3d (F = 10 kN, Rx = 460,
+/* Timings of the 3D elastic products and of the 3D normal solve (physics/elastic3d.h,
+ * physics/normal3d.h) on the wheel-rail Hertz case of test_normal3d (F = 10 kN, Rx = 460,
  * Ry = 300 mm, G = 82000, nu = 0.28; grid n x n over +-1.1a x +-1.1b). Medians of repeated
  * runs; also the discrete solution's a, b (second moments) and p_max against Hertz.
  * Usage: rollsim_bench_3d [CELLS...] (default 32 64 128). Never run by ctest. */
-#include "rollsim/elastic3d.h"
-#include "rollsim/normal3d.h"
+#include "physics/elastic3d.h"
+#include "physics/normal3d.h"
 
 #include <math.h>
 #include <stdio.h>

@@ -11,9 +11,9 @@
 #include <stdio.h>
 #include <stdlib.h>
 
-#include "rollsim/model.h"
-#include "rollsim/run.h"
-#include "rollsim/normal.h"
+#include "physics/model.h"
+#include "study/run.h"
+#include "physics/normal.h"
 #include "bench_util.h"
 #include "base/util.h" /* rs_wall_clock */
 

@@ -11,9 +11,9 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "rollsim/model.h"
-#include "rollsim/run.h"
-#include "rollsim/steady.h"
+#include "physics/model.h"
+#include "study/run.h"
+#include "solve/steady.h"
 #include "bench_util.h"
 #include "base/util.h" /* rs_wall_clock */
 

@@ -433,7 +433,7 @@ def part_threads(binary, work):
     with open(path, "w") as f:
         f.write(text)
     res = {}
-    # "2 again" in small pages: the heap's layout (src/app/heap.c) must not enter the numbers
+    # "2 again" in small pages: the heap's layout (src/cli/heap.c) must not enter the numbers
     for t in (1, 2, "2 again"):
         nc = os.path.join(work, f"sweep{t}.nc".replace(" ", "_"))
         out = run(binary, ["sweep", path, "-o", nc, "--set", f"solver.threads={str(t)[0]}"],

@@ -24,7 +24,7 @@
  *    parameters whose mu(335 mm/s) lies between mu_k and mu(0) (the check sees the law). */
 #include <stdlib.h>
 
-#include "rollsim/steady.h"
+#include "solve/steady.h"
 #include "test_support.h"
 
 /* mu(0) = 0.3 for every law; the excess halves at about v_h (exponential, rational's first

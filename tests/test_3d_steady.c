@@ -7,7 +7,7 @@
  *    asks: every error at most 2 % on the finest grid (target 10), the errors of F_x and of
  *    F_y(eta) falling on every refinement, those of the C23 terms (F_y(phi), M_z(eta)) not
  *    larger on the finest grid than on the coarsest. The spin moment's coefficient C33 is
- *    not in the table available here (rollsim/kalker.h), so M_z(phi) is not checked.
+ *    not in the table available here (physics/kalker.h), so M_z(phi) is not checked.
  *  - the 2D limit: a patch with b/a = 18 (Ry = 100 Rx) at pure xi carries on its centre
  *    line the 2D line-contact traction of the same a and p0 (Hertz pressure in both, so
  *    that only the tangential kernels differ): the finite length changes the kernel by
@@ -20,8 +20,8 @@
  * slip opposite to p, plastic flow along p). */
 #include <stdlib.h>
 
-#include "rollsim/kalker.h"
-#include "rollsim/steady.h"
+#include "physics/kalker.h"
+#include "solve/steady.h"
 #include "test_support.h"
 
 /* Steady solution and its quantities; y (allocated) if ys is not NULL. */

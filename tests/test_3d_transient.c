@@ -8,7 +8,7 @@
  * of the rigid-slip power's scale), and the transient ends inside the friction limit. */
 #include <stdlib.h>
 
-#include "rollsim/steady.h"
+#include "solve/steady.h"
 #include "test_support.h"
 
 static void run(int plastic)

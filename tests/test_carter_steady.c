@@ -5,8 +5,8 @@
  * zone is within 2 cells of 2a'. Also: xi -> -xi flips F_x, and in full adhesion
  * F_x is linear in xi (verification.md §7). Grids: potential contact area +-1.04a
  * so that dx = a/25, a/50, a/100 give 52, 104, 208 cells. */
-#include "rollsim/model.h"
-#include "rollsim/steady.h"
+#include "physics/model.h"
+#include "solve/steady.h"
 #include "test_support.h"
 
 #include <stdlib.h>

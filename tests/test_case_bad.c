@@ -6,7 +6,7 @@
  *   # expect: TEXT   (one or more; each TEXT must appear in the message, normally the dotted key)
  *   # line: N        (optional; the message must contain "FILE:N:")
  * Without "# line:", the message must still contain "FILE:<digits>:". */
-#include "rollsim/case.h"
+#include "io/case.h"
 
 #include <stdio.h>
 #include <stdlib.h>

@@ -4,7 +4,7 @@
  *
  * Usage: test_case_good GOOD_INPUTS_DIR WORK_DIR   (WORK_DIR: scratch files) */
 #define _POSIX_C_SOURCE 200809L
-#include "rollsim/case.h"
+#include "io/case.h"
 
 #include <math.h>
 #include <stdio.h>

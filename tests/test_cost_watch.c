@@ -1,4 +1,4 @@
-/* The long-transient warning (src/app/cli.h, rs_cost_watch) on synthetic records with a
+/* The long-transient warning (study/warnings.h, rs_cost_watch) on synthetic records with a
  * given wall clock: the projections of both windows against the rule computed here by hand
  * (steps left = window steps x (t_busy - t) / window's simulated time, ETA = steps left x
  * window's wall time per step), with the constant inputs of cases/default.yaml (Hertz
@@ -9,8 +9,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "app/cli.h"
-#include "rollsim/case.h"
+#include "study/warnings.h"
+#include "io/case.h"
 
 static int failures = 0;
 

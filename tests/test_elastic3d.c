@@ -1,4 +1,4 @@
-/* The 3D influence coefficients (rollsim/elastic3d.h) against independent paths:
+/* The 3D influence coefficients (physics/elastic3d.h) against independent paths:
  *
  * 1. Every closed-form rectangle integral against numerical quadrature of the point-load
  *    formulas: composite Gauss-Legendre over the loaded cell when the field point lies
@@ -22,8 +22,8 @@
  *    up to O((x/Y)^4): asserted to 1 % of that prediction.
  * 6. The eigenvalue bound used by the normal solver: below the smallest eigenvalue of
  *    the dense A_zz (LAPACK dsyev) on a small grid. */
-#include "rollsim/elastic2d.h"
-#include "rollsim/elastic3d.h"
+#include "physics/elastic2d.h"
+#include "physics/elastic3d.h"
 #include "test_quadrature.h"
 #include "test_support.h"
 

@@ -22,7 +22,7 @@
  *    mu_k (p = mu_k p_n) - reaches the same tractions to 1e-8 p0 (the Newton tolerance). */
 #include <stdlib.h>
 
-#include "rollsim/steady.h"
+#include "solve/steady.h"
 #include "test_support.h"
 
 static int solve(rs_case *c, rs_model *m, double **y)

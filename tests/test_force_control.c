@@ -13,8 +13,8 @@
  *    measured: equal to ~1e-8 after 8 contact lengths). */
 #include <stdlib.h>
 
-#include "rollsim/model.h"
-#include "rollsim/steady.h"
+#include "physics/model.h"
+#include "solve/steady.h"
 #include "test_support.h"
 
 static double force_of(const rs_model *m, const double *y)

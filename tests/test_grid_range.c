@@ -6,7 +6,7 @@
  * shifted range [x_lo - dx, x_hi - dx] with the same cells moves the centres by dx. */
 #include <stdlib.h>
 
-#include "rollsim/steady.h"
+#include "solve/steady.h"
 #include "test_support.h"
 
 static int solve(rs_case *c, rs_model *m, double **y, rs_msg *msg)

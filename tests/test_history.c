@@ -1,8 +1,8 @@
-/* Histories (rollsim/history.h): each form evaluated at chosen times against
+/* Histories (physics/history.h): each form evaluated at chosen times against
  * hand-computed values, its rate (right derivative at kinks), breakpoints, and
  * the range helpers used for validation. */
-#include "rollsim/history.h"
-#include "rollsim/status.h"
+#include "physics/history.h"
+#include "base/status.h"
 
 #include <math.h>
 #include <stdio.h>

@@ -14,7 +14,7 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "rollsim/contact_law.h"
+#include "physics/contact_law.h"
 #include "test_support.h"
 
 #define KE   1.0e5 /* N/mm^3: element stiffness */

@@ -10,8 +10,8 @@
  * solution must match it to 10 rtol (relative to tau_c0) at every probe time. */
 #include <stdlib.h>
 
-#include "rollsim/model.h"
-#include "rollsim/steady.h"
+#include "physics/model.h"
+#include "solve/steady.h"
 #include "test_support.h"
 
 typedef struct hou_state {

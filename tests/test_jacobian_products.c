@@ -25,7 +25,7 @@
  * across the direction s the steady differences missed by 1.2-1.9 % relative). */
 #include <stdlib.h>
 
-#include "rollsim/steady.h"
+#include "solve/steady.h"
 #include "test_support.h"
 
 static double norm_inf(const double *v, int n)

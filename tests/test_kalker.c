@@ -1,4 +1,4 @@
-/* Kalker's creepage coefficients (rollsim/kalker.h): sanity of the typed table and the
+/* Kalker's creepage coefficients (physics/kalker.h): sanity of the typed table and the
  * properties of the interpolation.
  * - Table: C11 = C22 at nu = 0 in every row (at nu = 0 the half-space kernel is
  *   isotropic in x-y, so longitudinal and lateral creepage are equivalent); every
@@ -13,7 +13,7 @@
  *   table an input error.
  * - Signs of the linear forces (model.md §1): xi < 0 gives F_x > 0; eta > 0 and phi > 0
  *   give F_y < 0. */
-#include "rollsim/kalker.h"
+#include "physics/kalker.h"
 #include "test_support.h"
 
 static double coefficient(const rs_kalker *c, int which)

@@ -4,7 +4,7 @@
 
 #include <stdlib.h>
 
-#include "rollsim/steady.h"
+#include "solve/steady.h"
 #include "test_support.h"
 
 /* The plastic 3D ellipse (a/b = 1.6, xi = -1e-3, eta = 5e-4, phi = 1e-4 1/mm, tau_c0 = 150

@@ -27,7 +27,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "rollsim/status.h"
+#include "base/status.h"
 #include "solve/linsys_lanes.h"
 
 enum { N = 30, LINES = 15, BAD = 5 };

@@ -20,8 +20,8 @@
  * cannot make room for a broken path. Cases: Carter elastic start-up, and the
  * Figure 7 plastic case (k_rel = 0.6), 100 cells, 6 contact lengths rolled. Both parts
  * also with friction memory (the memory rows dense in the contact). */
-#include "rollsim/model.h"
-#include "rollsim/steady.h"
+#include "physics/model.h"
+#include "solve/steady.h"
 #include "test_support.h"
 
 #include <stdlib.h>

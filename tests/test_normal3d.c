@@ -1,4 +1,4 @@
-/* 3D normal contact (rollsim/normal3d.h, rollsim/normal_cg.h), verification.md target 9.
+/* 3D normal contact (physics/normal3d.h, physics/normal_cg.h), verification.md target 9.
  *
  * Elliptic integrals: Legendre's relation E K' + E' K - K K' = pi/2 (exact), Gauss-
  * Legendre quadrature of the defining integrals, and the series as k -> 0 and kc -> 0
@@ -20,10 +20,10 @@
  * (the solver's 1e-12 (max h + |delta|)). The CG solution against an independent dense
  * active-set solution (LAPACK dgesv) on a smaller grid with a non-Hertzian gap, and from
  * two different starts: 1e-9 p_max (CG stops at 1e-11 p_max, LU is accurate to ~1e-12). */
-#include "rollsim/elastic2d.h"
-#include "rollsim/normal.h"
-#include "rollsim/normal3d.h"
-#include "rollsim/normal_cg.h"
+#include "physics/elastic2d.h"
+#include "physics/normal.h"
+#include "physics/normal3d.h"
+#include "physics/normal_cg.h"
 #include "test_quadrature.h"
 #include "test_support.h"
 

@@ -15,8 +15,8 @@
  * 1e-12 (h_max + |delta|) (the solvers' penetration tolerance) of 0 on the contact
  * and above -that outside. The load: dx sum p = load, 1e-12 relative. The CG pressure
  * on 1000 cells matches Hertz (a, p0 within 1 %, as test_normal_hertz on 100 cells). */
-#include "rollsim/model.h"
-#include "rollsim/normal.h"
+#include "physics/model.h"
+#include "physics/normal.h"
 #include "test_support.h"
 
 #include <stdlib.h>

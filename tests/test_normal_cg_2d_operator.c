@@ -1,4 +1,4 @@
-/* The dimension-independent constrained CG (rollsim/normal_cg.h) on the 2D line kernel:
+/* The dimension-independent constrained CG (physics/normal_cg.h) on the 2D line kernel:
  * the same solver the 3D problem uses, given "u = A p" from rs_elastic2d, the gap
  * x^2/(2R) and the cell width, against the existing 2D direct active-set method on
  * Carter's case (verification.md 2: q = 178.9 N/mm, R = 500 mm, G = 82000, nu = 0.28,
@@ -7,9 +7,9 @@
  * with lambda = (A(0) - A(1))/2 below the smallest eigenvalue on zero-sum pressures
  * (0.708 (A(0) - A(1)), measured for the 2D kernel), LU accurate to 4e-11 p_max: the
  * pressures agree to 1e-10 p_max, the approach to 2e-10; the load to 1e-12. */
-#include "rollsim/elastic2d.h"
-#include "rollsim/normal.h"
-#include "rollsim/normal_cg.h"
+#include "physics/elastic2d.h"
+#include "physics/normal.h"
+#include "physics/normal_cg.h"
 #include "test_support.h"
 
 #include <stdlib.h>

@@ -2,8 +2,8 @@
  * gives a and p0 within 1 % and carries exactly the load.
  * a is estimated from the second moment of the pressure, which for the Hertz
  * ellipse is Int x^2 p dx / Int p dx = a^2/4; p0 from the largest pressure. */
-#include "rollsim/model.h"
-#include "rollsim/normal.h"
+#include "physics/model.h"
+#include "physics/normal.h"
 #include "test_support.h"
 
 int main(void)

@@ -9,7 +9,7 @@
 #include <nvector/nvector_serial.h>
 
 #include "solve/nvector_fast.h"
-#include "rollsim/status.h"
+#include "base/status.h"
 #include "test_support.h"
 
 static int fails = 0;

@@ -16,8 +16,8 @@
 #include <stdlib.h>
 #include <time.h>
 
-#include "rollsim/case.h"
-#include "rollsim/output.h"
+#include "io/case.h"
+#include "io/output.h"
 
 #define MAX_NX            1000
 #define CASE_FILLER_LINES 100

@@ -11,8 +11,8 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "rollsim/case.h"
-#include "rollsim/output.h"
+#include "io/case.h"
+#include "io/output.h"
 #include "test_support.h"
 
 #ifndef RS_VERSION

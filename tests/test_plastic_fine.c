@@ -13,8 +13,8 @@
  * between grids is exact for linear fields between the outer cell centres. */
 #include <stdlib.h>
 
-#include "rollsim/model.h"
-#include "rollsim/steady.h"
+#include "physics/model.h"
+#include "solve/steady.h"
 #include "test_support.h"
 
 static void check_solution(double k_rel, int cells)

@@ -8,8 +8,8 @@
  *    (ratio 2 +- 0.5) when dx halves (dx = a/25, a/50, a/100). */
 #include <stdlib.h>
 
-#include "rollsim/model.h"
-#include "rollsim/steady.h"
+#include "physics/model.h"
+#include "solve/steady.h"
 #include "test_support.h"
 
 typedef struct result {

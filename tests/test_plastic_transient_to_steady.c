@@ -5,8 +5,8 @@
  * +-1.04a (dx = a/25), tau_c0 = 35 N/mm^2, mu = 0.5, xi = -4e-4, L = 200 mm. */
 #include <stdlib.h>
 
-#include "rollsim/model.h"
-#include "rollsim/steady.h"
+#include "physics/model.h"
+#include "solve/steady.h"
 #include "test_support.h"
 
 int main(void)

@@ -9,8 +9,8 @@
  * what is left after the fit, relative to the amplitude, measures the harmonics. */
 #include <stdlib.h>
 
-#include "rollsim/model.h"
-#include "rollsim/steady.h"
+#include "physics/model.h"
+#include "solve/steady.h"
 #include "test_support.h"
 
 static double total_force(const rs_model *m, const double *y)

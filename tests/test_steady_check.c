@@ -11,8 +11,8 @@
  * Usage: test_steady_check tests/data/meierhofer_spurious_state.csv */
 #include <stdlib.h>
 
-#include "rollsim/model.h"
-#include "rollsim/steady.h"
+#include "physics/model.h"
+#include "solve/steady.h"
 #include "test_support.h"
 
 static int read_state(const char *path, const rs_model *m, double *y)

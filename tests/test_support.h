@@ -7,9 +7,9 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "rollsim/case.h"
-#include "rollsim/model.h"
-#include "rollsim/run.h"
+#include "io/case.h"
+#include "physics/model.h"
+#include "study/run.h"
 
 /* The verification.md Carter case: q = 178.9 N/mm, R = 500 mm, G = 82000, nu = 0.28,
  * mu = 0.3, xi = -2.4e-4, V = 30000 mm/s; elastic, steady. */

@@ -6,8 +6,8 @@
  * Grid: the Carter case, dx = a/25 (52 cells over +-1.04a). */
 #include <stdlib.h>
 
-#include "rollsim/model.h"
-#include "rollsim/steady.h"
+#include "physics/model.h"
+#include "solve/steady.h"
 #include "test_support.h"
 
 /* Returns the rolled distance (mm) after which the force stays within tol of the

@@ -70,7 +70,7 @@ foreach(c default carter2d carter_plast meierhofer creep_curves sine_creepage st
          wheel_rail_3d twin_disc_crowned)
   us_expect(warn_none_${c} --quiet-stderr -- ${RS_BIN} check ${RS_CASES}/${c}.yaml)
 endforeach()
-# A long transient: ETA and a hint, consistent with the rule in src/app/cli.h. Constant inputs
+# A long transient: ETA and a hint, consistent with the rule in src/study/warnings.h. Constant inputs
 # (the default case on 800 cells, records every 1e-6 s): the hint is steady mode.
 add_test(NAME us_warn_cost_constant COMMAND ${RS_US_CHECK} warn-cost constant 800 --
   ${RS_BIN} run ${RS_CASES}/default.yaml --set grid.cells=800

@@ -7,7 +7,7 @@
 
 #include <stddef.h>
 
-/* rollsim run CASE [--set ...] -o OUT. Returns the status (rollsim/status.h: 0 ok, 2 invalid
+/* rollsim run CASE [--set ...] -o OUT. Returns the status (base/status.h: 0 ok, 2 invalid
  * input, 3 solver failure, 4 interrupted, 1 internal, 5 output); on failure msg holds the
  * command line's message. */
 int rs_api_run(const char *case_path, const char *const *sets, int nsets, const char *out_path,

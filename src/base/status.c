@@ -1,5 +1,5 @@
-/* rs_msg: the error-message buffer (rollsim/status.h). */
-#include "rollsim/status.h"
+/* rs_msg: the error-message buffer (base/status.h). */
+#include "base/status.h"
 
 #include <stdarg.h>
 #include <stdio.h>

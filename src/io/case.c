@@ -4,9 +4,9 @@
  *   end_time = rolled_distance/V when the rolled distance is given. */
 #define _POSIX_C_SOURCE 200809L
 #include "io/case_internal.h"
-#include "rollsim/elastic2d.h" /* RS_PI */
-#include "rollsim/normal.h"    /* rs_hertz2d */
-#include "rollsim/normal3d.h"  /* rs_hertz3d */
+#include "physics/elastic2d.h" /* RS_PI */
+#include "physics/normal.h"    /* rs_hertz2d */
+#include "physics/normal3d.h"  /* rs_hertz3d */
 
 #include <math.h>
 #include <stdlib.h>

@@ -11,7 +11,7 @@
 #include <stddef.h>
 #include <yaml.h>
 
-#include "rollsim/case.h"
+#include "io/case.h"
 
 /* ---- case_yaml.c: the document ---- */
 

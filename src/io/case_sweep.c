@@ -1,5 +1,5 @@
 #define _POSIX_C_SOURCE 200809L
-/* The sweep: block of a case file (rollsim/sweep.h): dotted keys mapped to value
+/* The sweep: block of a case file (study/sweep.h): dotted keys mapped to value
  * lists or {linspace: [from, to, n]}, checked against the key table and by loading
  * the case with each value. */
 #include <math.h>
@@ -8,7 +8,7 @@
 #include <string.h>
 
 #include "io/case_internal.h"
-#include "rollsim/case_sweep.h"
+#include "io/case_sweep.h"
 
 void rs_sweep_free(rs_sweep *s)
 {

@@ -1,4 +1,4 @@
-/* netCDF output (rollsim/output.h, interfaces.md "Output file (netCDF, CF-1.10)").
+/* netCDF output (io/output.h, interfaces.md "Output file (netCDF, CF-1.10)").
  *
  * Crash safety: the file must stay readable, holding every record written so far, if the
  * process is killed (SIGKILL) at any moment. Nothing here can make a kill wait, so the file
@@ -30,7 +30,7 @@
  * process (not a power failure). */
 #define _POSIX_C_SOURCE 200809L
 
-#include "rollsim/output.h"
+#include "io/output.h"
 #include "io/output_internal.h"
 
 #include <errno.h>
@@ -42,7 +42,7 @@
 #include <sys/stat.h>
 #include <sys/types.h>
 
-#include "rollsim/case.h"
+#include "io/case.h"
 
 #ifndef RS_VERSION
 #define RS_VERSION "unknown"

@@ -1,4 +1,4 @@
-/* Continuing a time-history file in place (rollsim/output.h, rs_output_open_append):
+/* Continuing a time-history file in place (io/output.h, rs_output_open_append):
  * `rollsim run CASE --restart OLD.nc --append`. The file keeps its layout and every
  * record; new records go after the last one, written and synced as in output.c (record
  * data before numrecs), so the crash-safety argument there holds for the appended part.

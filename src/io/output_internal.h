@@ -6,7 +6,7 @@
 #include <netcdf.h>
 #include <stddef.h>
 
-#include "rollsim/output.h"
+#include "io/output.h"
 
 /* I/O block size passed to netCDF; its buffer holds at most two blocks (output.c). */
 #define RS_IO_BLOCK ((size_t)4096)

@@ -17,8 +17,8 @@
 #include <string.h>
 
 #include "io/output_internal.h"
-#include "rollsim/case.h"
-#include "rollsim/output.h"
+#include "io/case.h"
+#include "io/output.h"
 
 enum { SW_DOUBLE, SW_INT };
 typedef struct sweep_var {

@@ -1,8 +1,8 @@
-/* rs_restart_read (rollsim/restart.h): the state at the last record of an output file.
+/* rs_restart_read (io/restart.h): the state at the last record of an output file.
  * A killed run's file is readable with every record written so far (see output.c), so
  * the last record is always complete. */
 #define _POSIX_C_SOURCE 200809L
-#include "rollsim/restart.h"
+#include "io/restart.h"
 #include "io/output_internal.h"
 
 #include <math.h>

@@ -1,4 +1,4 @@
-/* rollsim merge (rollsim/sweep_merge.h): the parts of a sweep written by rollsim sweep
+/* rollsim merge (io/sweep_merge.h): the parts of a sweep written by rollsim sweep
  * --part K/N joined into one sweep file. Each part has the full sweep's shape, with the
  * points of its lines written (`converged` 0 or 1) and the others unwritten (netCDF's
  * default fill). The merged file is made by the sweep writer itself (same layout as a
@@ -11,9 +11,9 @@
 #include <string.h>
 
 #include "io/output_internal.h"
-#include "rollsim/case.h"
-#include "rollsim/output.h"
-#include "rollsim/sweep_merge.h"
+#include "io/case.h"
+#include "io/output.h"
+#include "io/sweep_merge.h"
 
 typedef struct part_file {
   const char *path;

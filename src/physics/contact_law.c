@@ -1,6 +1,6 @@
-/* The contact law of one cell (rollsim/contact_law.h): the interval projections of
+/* The contact law of one cell (physics/contact_law.h): the interval projections of
  * model.md §4 for one tangential component, the disk projections of §10 for two. */
-#include "rollsim/contact_law.h"
+#include "physics/contact_law.h"
 
 #include <math.h>
 #include <string.h>

@@ -1,6 +1,6 @@
 /* 2D plane-strain influence coefficients, piecewise-constant tractions (model.md §2;
  * Johnson 1985, ch. 2; Kalker 1990, ch. 1). */
-#include "rollsim/elastic2d.h"
+#include "physics/elastic2d.h"
 
 #include <complex.h>
 #include <fftw3.h>

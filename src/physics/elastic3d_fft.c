@@ -1,10 +1,10 @@
-/* 3D elastic products by FFT convolution (model.md §10). The linear convolution
- * u(I) = sum_J A(I - J) p(J) on the grid equals a circular one on the padded grid
- * mx x my (mx >= 2 nx, my >= 2 ny - 1): the kernel's offsets kx in [-(nx-1), nx] and
- * ky in [-(ny-1), ny-1] wrap to distinct indices, and p is zero beyond the grid.
- * Kernels are transformed once at creation (scaled by 1/(mx my), FFTW's transforms are
- * unnormalised); the products use FFTW's new-array execute functions on the caller's
- * work buffers, so the plans are shared and never written. */
+/* The 3D elastic operator: coefficient tables and products by FFT convolution (model.md §10). The
+ * linear convolution u(I) = sum_J A(I - J) p(J) on the grid equals a circular one on the padded
+ * grid mx x my (mx >= 2 nx, my >= 2 ny - 1): the kernel's offsets kx in [-(nx-1), nx] and ky in
+ * [-(ny-1), ny-1] wrap to distinct indices, and p is zero beyond the grid. Kernels are transformed
+ * once at creation (scaled by 1/(mx my), FFTW's transforms are unnormalised); the products use
+ * FFTW's new-array execute functions on the caller's work buffers, so the plans are shared and
+ * never written. */
 #include "physics/elastic3d_internal.h"
 
 #include "base/util.h"
@@ -159,6 +159,68 @@ struct rs_elastic3d_fft *rs_elastic3d_fft_create(const rs_elastic3d *el)
     return NULL;
   }
   return f;
+}
+
+int rs_elastic3d_create(rs_elastic3d *el, int nx, int ny, double dx, double dy,
+                        double shear_modulus, double poisson_ratio, rs_msg *msg)
+{
+  el->xx = el->xy = el->yy = el->zz = NULL;
+  el->fft = NULL;
+  if (nx < 1 || ny < 1 || nx > 16384 || ny > 16384)
+    return rs_msg_set(msg, RS_ERR_INPUT,
+                      "3D elastic grid: %d x %d cells (each side needs 1 to 16384 cells)", nx, ny);
+  if (!(dx > 0.0) || !(dy > 0.0) || !isfinite(dx) || !isfinite(dy))
+    return rs_msg_set(msg, RS_ERR_INPUT, "3D elastic grid: cell size %g x %g mm (must be > 0)", dx,
+                      dy);
+  if (!(shear_modulus > 0.0) || !isfinite(shear_modulus))
+    return rs_msg_set(msg, RS_ERR_INPUT, "shear modulus %g N/mm^2 (must be > 0)", shear_modulus);
+  if (!(poisson_ratio > -1.0 && poisson_ratio <= 0.5))
+    return rs_msg_set(msg, RS_ERR_INPUT, "Poisson ratio %g (must be in (-1, 0.5])", poisson_ratio);
+  el->nx = nx;
+  el->ny = ny;
+  el->dx = dx;
+  el->dy = dy;
+  el->shear_modulus = shear_modulus;
+  el->poisson_ratio = poisson_ratio;
+  const size_t count = (size_t)(nx + 1) * (size_t)ny;
+  el->xx = malloc(count * sizeof *el->xx);
+  el->xy = malloc(count * sizeof *el->xy);
+  el->yy = malloc(count * sizeof *el->yy);
+  el->zz = malloc(count * sizeof *el->zz);
+  if (!el->xx || !el->xy || !el->yy || !el->zz) {
+    rs_elastic3d_free(el);
+    return rs_msg_set(msg, RS_ERR_INTERNAL,
+                      "out of memory for the 3D influence coefficients "
+                      "(%d x %d cells)",
+                      nx, ny);
+  }
+  for (int ky = 0; ky < ny; ky++)
+    for (int kx = 0; kx <= nx; kx++) {
+      double c[4];
+      rs_elastic3d_rect(dx, dy, kx * dx, ky * dy, shear_modulus, poisson_ratio, c);
+      const size_t at = (size_t)ky * (size_t)(nx + 1) + (size_t)kx;
+      el->xx[at] = c[0];
+      el->xy[at] = c[1];
+      el->yy[at] = c[2];
+      el->zz[at] = c[3];
+    }
+  if (!(el->fft = rs_elastic3d_fft_create(el))) {
+    rs_elastic3d_free(el);
+    return rs_msg_set(msg, RS_ERR_INTERNAL, "could not set up the 3D FFT products (%d x %d cells)",
+                      nx, ny);
+  }
+  return RS_OK;
+}
+
+void rs_elastic3d_free(rs_elastic3d *el)
+{
+  free(el->xx);
+  free(el->xy);
+  free(el->yy);
+  free(el->zz);
+  rs_elastic3d_fft_free(el->fft);
+  el->xx = el->xy = el->yy = el->zz = NULL;
+  el->fft = NULL;
 }
 
 int rs_elastic3d_work_create(rs_elastic3d_work *work, const rs_elastic3d *el, rs_msg *msg)

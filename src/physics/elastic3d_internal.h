@@ -1,10 +1,11 @@
-/* Internal to the 3D elastic module (rollsim/elastic3d.h):
- *   elastic3d.c      closed-form rectangle coefficients, tables, direct sums
- *   elastic3d_fft.c  FFT convolution: plans, transformed kernels, work, products */
+/* Internal to the 3D elastic module (physics/elastic3d.h):
+ *   elastic3d.c      closed-form rectangle coefficients and direct sums
+ *   elastic3d_fft.c  the operator: coefficient tables, FFT plans and transformed kernels,
+ *                    work, products */
 #ifndef ROLLSIM_ELASTIC3D_INTERNAL_H
 #define ROLLSIM_ELASTIC3D_INTERNAL_H
 
-#include "rollsim/elastic3d.h"
+#include "physics/elastic3d.h"
 
 /* Plans and transformed kernels for the products on the padded mx x my grid. */
 struct rs_elastic3d_fft;

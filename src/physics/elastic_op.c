@@ -1,5 +1,5 @@
-/* The elastic operator of the contact grid (rollsim/elastic_op.h). */
-#include "rollsim/elastic_op.h"
+/* The elastic operator of the contact grid (physics/elastic_op.h). */
+#include "physics/elastic_op.h"
 
 #include <string.h>
 

@@ -1,5 +1,5 @@
-/* Friction laws mu(|v_s|) and their slopes (rollsim/friction.h). */
-#include "rollsim/friction.h"
+/* Friction laws mu(|v_s|) and their slopes (physics/friction.h). */
+#include "physics/friction.h"
 
 #include <math.h>
 

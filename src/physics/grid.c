@@ -1,5 +1,5 @@
-/* The contact grid (rollsim/grid.h). */
-#include "rollsim/grid.h"
+/* The contact grid (physics/grid.h). */
+#include "physics/grid.h"
 
 #include <math.h>
 #include <stdlib.h>

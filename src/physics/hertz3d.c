@@ -1,10 +1,10 @@
 /* Hertz solution of an elliptic contact and the complete elliptic integrals
- * (rollsim/normal3d.h; Johnson 1985 §4.2; Abramowitz & Stegun 17.6). */
-#include "rollsim/normal3d.h"
+ * (physics/normal3d.h; Johnson 1985 §4.2; Abramowitz & Stegun 17.6). */
+#include "physics/normal3d.h"
 
 #include <math.h>
 
-#include "rollsim/elastic2d.h"
+#include "physics/elastic2d.h"
 
 /* K, E and D = (K - E)/k^2 for the complementary modulus kc in (0, 1] by the AGM:
  *   a_0 = 1, b_0 = kc, c_0 = k;  a_(n+1) = (a_n + b_n)/2, b_(n+1) = sqrt(a_n b_n),

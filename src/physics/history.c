@@ -1,8 +1,8 @@
-/* Time histories of inputs (rollsim/history.h, interfaces.md "Histories").
+/* Time histories of inputs (physics/history.h, interfaces.md "Histories").
  * Piecewise-linear forms (ramp, steps, table) are evaluated exactly at their
  * breakpoints; the sine is mean + amplitude*sin(2 pi f t + phase). */
-#include "rollsim/history.h"
-#include "rollsim/status.h"
+#include "physics/history.h"
+#include "base/status.h"
 
 #include <math.h>
 #include <stdlib.h>

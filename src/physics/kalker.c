@@ -1,6 +1,6 @@
 /* Kalker's creepage coefficients by monotone interpolation in his table
- * (rollsim/kalker.h: sources, conventions, the cross-check of the typed values). */
-#include "rollsim/kalker.h"
+ * (physics/kalker.h: sources, conventions, the cross-check of the typed values). */
+#include "physics/kalker.h"
 
 #include <math.h>
 

@@ -2,16 +2,16 @@
  * from plain parameters, the inputs at a time, the normal pressure, the kinematics and
  * the residual. Per contact cell I, with D f/Dt = f' - V (f_up - f_I)/dx (first-order
  * upwind, material enters at the high-x edge) and v_s = V xi + v_shift + Du_el/Dt +
- * Du_pl/Dt, the rows are those of the contact law (rollsim/contact_law.h). With force
+ * Du_pl/Dt, the rows are those of the contact law (physics/contact_law.h). With force
  * control the last row is (dA sum p - F_x(t)) / (2 a) (a mean traction). */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "physics/model_internal.h"
-#include "rollsim/normal.h"
-#include "rollsim/normal3d.h"
-#include "rollsim/rig.h"
+#include "physics/normal.h"
+#include "physics/normal3d.h"
+#include "physics/rig.h"
 
 int rs_model_pressure(const rs_model *m, rs_elastic_work *ew, double load, double *pn,
                       double *approach, rs_msg *msg)
@@ -424,6 +424,66 @@ int rs_model_residual(const rs_model *m, rs_work *w, const rs_inputs *in, const 
                       const double *yp, double cj, double *F)
 {
   return rs_model_evaluate(m, w, in, y, yp, cj, F, 0);
+}
+
+/* What J v and the assembly need beyond the local laws: each row's dense flag and pivot,
+ * and the local Jacobians' present entries in a compact list (rs_work). The products then
+ * skip the entries that are not present, exact zeros (rs_contact_law): the same sums in
+ * the same order, bit for bit the same results. Measured (perf, 2-core Intel VM): the
+ * products' own share of the 3D plastic start-up of bench/cases at 44 x 44 cells (rtol
+ * 3e-3) 12.1 % -> 6.3 %, of the 30-point plastic creep curve 8.6 % -> 4.4 %.
+ * rs_model_evaluate takes each cell's right after its law (rs_model_cell_flags), while the
+ * law's output is still in the first-level cache; a pass over all the cells' outputs after
+ * the laws read them back from memory on fine grids (at 128 x 128 cells 10 MB). */
+int rs_model_flags_alloc(const rs_model *m, rs_work *w)
+{
+  const rs_layout *L = &m->lay;
+  const int n = L->n, nc = L->ncomp;
+  const int nrow = 2 * nc + 1 + L->memory, nvar = 3 * nc + 2 + 2 * L->memory;
+  if (w->jv_start) return RS_OK;
+  const size_t entries = (size_t)n * (size_t)(nrow * nvar);
+  w->jv_start = malloc(((size_t)n + 1) * sizeof *w->jv_start);
+  w->jv_idx = malloc(entries * sizeof *w->jv_idx);
+  w->jv_val = malloc(entries * sizeof *w->jv_val);
+  if (!w->jv_start || !w->jv_idx || !w->jv_val) {
+    free(w->jv_start);
+    free(w->jv_idx);
+    free(w->jv_val);
+    w->jv_start = NULL;
+    w->jv_idx = NULL;
+    w->jv_val = NULL;
+    return rs_msg_set(&w->msg, RS_ERR_INTERNAL, "out of memory (local Jacobians)");
+  }
+  return RS_OK;
+}
+
+void rs_model_cell_flags(const rs_model *m, rs_work *w, int i, int *e)
+{
+  const rs_layout *L = &m->lay;
+  const int nc = L->ncomp;
+  const int nrow = 2 * nc + 1 + L->memory, nvar = 3 * nc + 2 + 2 * L->memory;
+  const rs_law_out *o = &w->law[i];
+  int k = *e;
+  w->jv_start[i] = k;
+  for (int lr = 0; lr < nrow; lr++)
+    for (int q = 0; q < nvar; q++)
+      if (o->present[lr][q]) {
+        w->jv_idx[k] = (unsigned char)(16 * lr + q);
+        w->jv_val[k++] = o->jac[lr][q];
+      }
+  *e = k;
+  for (int c = 0; c < nc; c++) {
+    const int row = rs_law_row_f(c), r = rs_at_p(L, c, i);
+    w->dense[r] = 0;
+    for (int b = 0; b < nc; b++) w->dense[r] |= o->present[row][rs_law_var_vs(nc, b)];
+    w->pivot[r] = o->pins_p ? rs_at_upl(L, c, i) : r;
+  }
+  if (L->memory) { /* a memory row in the contact involves v_s: eliminated on mu */
+    const int r = rs_at_mu(L, i);
+    w->dense[r] = 0;
+    for (int b = 0; b < nc; b++) w->dense[r] |= o->present[rs_law_row_mu(nc)][rs_law_var_vs(nc, b)];
+    w->pivot[r] = r;
+  }
 }
 
 int rs_model_evaluate(const rs_model *m, rs_work *w, const rs_inputs *in, const double *y,

@@ -1,4 +1,4 @@
-/* Internal to the model (rollsim/model.h), split by concept:
+/* Internal to the model (physics/model.h), split by concept:
  *   model.c           creation, inputs, normal pressure, kinematics, residual
  *   model_jacobian.c  Jacobian assembly (whole or near field), J v, row structure
  *   model_state.c     consistent rates, projection and interpolation of states
@@ -6,7 +6,7 @@
 #ifndef ROLLSIM_MODEL_INTERNAL_H
 #define ROLLSIM_MODEL_INTERNAL_H
 
-#include "rollsim/model.h"
+#include "physics/model.h"
 
 /* Transport terms shared by residual, Jacobian, rates and diagnostics: u_el on the
  * padded grid, its rate, and the material derivatives of u_el, u_pl, u* (and mu with

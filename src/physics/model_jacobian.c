@@ -1,5 +1,5 @@
-/* The generalized Jacobian of the model (rollsim/model.h): each row is the contact law's
- * local row (rollsim/contact_law.h) chained with the derivatives of the local variables:
+/* The generalized Jacobian of the model (physics/model.h): each row is the contact law's
+ * local row (physics/contact_law.h) chained with the derivatives of the local variables:
  *   p_c(I)         -> 1 on p_c(I)
  *   v_s,c(I)       -> cj A_cb(I-J) - a (A_cb(up-J) - A_cb(I-J)) on p_b(J) (+ the layer
  *                     (cj + a) c3 on p_c(I), -a c3 on p_c(up)), cj + a on u_pl,c(I),
@@ -279,66 +279,6 @@ static void put_row(const rs_model *m, const rs_law_out *o, int lr, int I, const
   csr_next_row(J);
 }
 
-/* What J v and the assembly need beyond the local laws: each row's dense flag and pivot,
- * and the local Jacobians' present entries in a compact list (rs_work). The products then
- * skip the entries that are not present, exact zeros (rs_contact_law): the same sums in
- * the same order, bit for bit the same results. Measured (perf, 2-core Intel VM): the
- * products' own share of the 3D plastic start-up of bench/cases at 44 x 44 cells (rtol
- * 3e-3) 12.1 % -> 6.3 %, of the 30-point plastic creep curve 8.6 % -> 4.4 %.
- * rs_model_evaluate takes each cell's right after its law (rs_model_cell_flags), while the
- * law's output is still in the first-level cache; a pass over all the cells' outputs after
- * the laws read them back from memory on fine grids (at 128 x 128 cells 10 MB). */
-int rs_model_flags_alloc(const rs_model *m, rs_work *w)
-{
-  const rs_layout *L = &m->lay;
-  const int n = L->n, nc = L->ncomp;
-  const int nrow = 2 * nc + 1 + L->memory, nvar = 3 * nc + 2 + 2 * L->memory;
-  if (w->jv_start) return RS_OK;
-  const size_t entries = (size_t)n * (size_t)(nrow * nvar);
-  w->jv_start = malloc(((size_t)n + 1) * sizeof *w->jv_start);
-  w->jv_idx = malloc(entries * sizeof *w->jv_idx);
-  w->jv_val = malloc(entries * sizeof *w->jv_val);
-  if (!w->jv_start || !w->jv_idx || !w->jv_val) {
-    free(w->jv_start);
-    free(w->jv_idx);
-    free(w->jv_val);
-    w->jv_start = NULL;
-    w->jv_idx = NULL;
-    w->jv_val = NULL;
-    return rs_msg_set(&w->msg, RS_ERR_INTERNAL, "out of memory (local Jacobians)");
-  }
-  return RS_OK;
-}
-
-void rs_model_cell_flags(const rs_model *m, rs_work *w, int i, int *e)
-{
-  const rs_layout *L = &m->lay;
-  const int nc = L->ncomp;
-  const int nrow = 2 * nc + 1 + L->memory, nvar = 3 * nc + 2 + 2 * L->memory;
-  const rs_law_out *o = &w->law[i];
-  int k = *e;
-  w->jv_start[i] = k;
-  for (int lr = 0; lr < nrow; lr++)
-    for (int q = 0; q < nvar; q++)
-      if (o->present[lr][q]) {
-        w->jv_idx[k] = (unsigned char)(16 * lr + q);
-        w->jv_val[k++] = o->jac[lr][q];
-      }
-  *e = k;
-  for (int c = 0; c < nc; c++) {
-    const int row = rs_law_row_f(c), r = rs_at_p(L, c, i);
-    w->dense[r] = 0;
-    for (int b = 0; b < nc; b++) w->dense[r] |= o->present[row][rs_law_var_vs(nc, b)];
-    w->pivot[r] = o->pins_p ? rs_at_upl(L, c, i) : r;
-  }
-  if (L->memory) { /* a memory row in the contact involves v_s: eliminated on mu */
-    const int r = rs_at_mu(L, i);
-    w->dense[r] = 0;
-    for (int b = 0; b < nc; b++) w->dense[r] |= o->present[rs_law_row_mu(nc)][rs_law_var_vs(nc, b)];
-    w->pivot[r] = r;
-  }
-}
-
 int rs_model_linearise(const rs_model *m, rs_work *w, const rs_inputs *in, const double *y,
                        const double *yp, double cj)
 {
@@ -356,7 +296,7 @@ int rs_model_jacobian_assemble(const rs_model *m, const rs_work *w, const rs_inp
 {
   const rs_layout *L = &m->lay;
   const int n = L->n, nc = L->ncomp;
-  /* Rows in the order of the unknowns (rollsim/layout.h). */
+  /* Rows in the order of the unknowns (physics/layout.h). */
   J->nrows = 0;
   J->cap_rows = L->neq;
   J->rowptr[0] = J->rowptr[1] = 0;

@@ -1,4 +1,4 @@
-/* States of the model (rollsim/model.h): consistent rates, projection on the admissible
+/* States of the model (physics/model.h): consistent rates, projection on the admissible
  * tractions, interpolation between grids. */
 #include <math.h>
 #include <stdlib.h>
@@ -6,7 +6,7 @@
 
 #include "base/util.h"
 #include "physics/model_internal.h"
-#include "rollsim/normal.h"
+#include "physics/normal.h"
 
 /* |p| of cell I (2D: |p_x|). */
 static double traction_norm(const rs_layout *L, const double *y, int I)

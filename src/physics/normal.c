@@ -3,8 +3,8 @@
  * equations A_CC p_C - delta = -h_C, dx sum p_C = load, then drop cells with tension
  * and add cells that penetrate, until neither happens. Large grids use the
  * conjugate-gradient method of normal_cg.c instead (same solution). */
-#include "rollsim/normal.h"
-#include "rollsim/normal3d.h"
+#include "physics/normal.h"
+#include "physics/normal3d.h"
 
 #include "physics/normal_methods.h"
 

@@ -1,8 +1,8 @@
 /* The discrete 3D normal problem (model.md §3, §10): the dimension-independent
  * constrained CG (normal_constrained_cg.c) with A_zz products by FFT convolution. */
-#include "rollsim/normal3d.h"
+#include "physics/normal3d.h"
 
-#include "rollsim/normal_cg.h"
+#include "physics/normal_cg.h"
 
 typedef struct zz_product {
   const rs_elastic3d *el;

@@ -1,5 +1,5 @@
 /* Constrained conjugate gradients for the normal contact problem, for any dimension
- * (rollsim/normal_cg.h; Polonsky & Keer 1999, Wear 231, 206-219).
+ * (physics/normal_cg.h; Polonsky & Keer 1999, Wear 231, 206-219).
  *
  * With the contact set C = {p > 0} fixed, the problem is: minimise 1/2 p.A p + h.p on C
  * with sum p fixed. Its gradient A p + h projected on zero-sum vectors is the gap
@@ -11,7 +11,7 @@
  * restarts the directions (beta = 0), rescales p to the load and recomputes u = A p;
  * otherwise u, r and delta follow the recurrences u -= tau A t, r -= tau P A t, where P
  * removes the mean over C. One product A t per iteration. */
-#include "rollsim/normal_cg.h"
+#include "physics/normal_cg.h"
 
 #include <math.h>
 #include <stdlib.h>

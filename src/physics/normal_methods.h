@@ -7,7 +7,7 @@
 
 #include <math.h>
 
-#include "rollsim/normal.h"
+#include "physics/normal.h"
 
 /* The start of both methods: the Hertz contact estimated from the influence
  * coefficients themselves (their far field A(k) ~ -K dx ln|k dx| + const gives the

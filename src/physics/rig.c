@@ -1,5 +1,5 @@
-/* Twin-disc rig memory (rollsim/rig.h). */
-#include "rollsim/rig.h"
+/* Twin-disc rig memory (physics/rig.h). */
+#include "physics/rig.h"
 
 #include <math.h>
 #include <stdlib.h>

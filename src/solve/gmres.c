@@ -6,7 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "rollsim/status.h"
+#include "base/status.h"
 
 #if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
 #define RS_GMRES_CLONES __attribute__((target_clones("avx2", "default")))

@@ -13,8 +13,8 @@
 #include <sundials/sundials_matrix.h>
 #include <sundials/sundials_nvector.h>
 
-#include "rollsim/model.h"
-#include "rollsim/steady.h"
+#include "physics/model.h"
+#include "solve/steady.h"
 
 typedef struct rs_linsys {
   SUNMatrix J;

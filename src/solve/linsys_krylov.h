@@ -16,7 +16,7 @@
 #include <klu.h>
 #include <stdint.h>
 
-#include "rollsim/model.h"
+#include "physics/model.h"
 #include "solve/linsys_lanes.h"
 
 /* A part of the near field that KLU factors on its own: the whole matrix, or (3D) the

@@ -6,7 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "rollsim/status.h"
+#include "base/status.h"
 
 /* The vector operations in 256-bit registers where the processor has them (one function
  * of each kind, chosen when the program is loaded). */

@@ -4,7 +4,7 @@
 #include <math.h>
 #include <nvector/nvector_serial.h>
 
-#include "rollsim/status.h"
+#include "base/status.h"
 
 /* BLAS level 1 (Fortran interface). */
 extern double ddot_(const int *n, const double *x, const int *incx, const double *y,

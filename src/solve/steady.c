@@ -15,7 +15,7 @@
 #include "solve/gmres.h"
 #include "solve/linsys_krylov.h"
 #include "solve/nvector_fast.h"
-#include "rollsim/steady.h"
+#include "solve/steady.h"
 
 /* A Newton iteration with a fallback behind it (3D plastic continuation points, see
  * solve_at) stops when the residual norm fell by less than 1 - STALL_FACTOR over the last

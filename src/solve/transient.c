@@ -13,7 +13,7 @@
 #include "solve/linsys_krylov.h"
 #include "solve/nvector_fast.h"
 #include "solve/nls_kinsol.h"
-#include "rollsim/transient.h"
+#include "solve/transient.h"
 
 struct rs_transient {
   const rs_model *m;

@@ -18,7 +18,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include "rollsim/case.h"
+#include "io/case.h"
 
 /* Rewritten for every input: in /dev/shm (tmpfs) when there is one, as on ext4 each rewrite
  * of a truncated file is flushed to disk on close (auto_da_alloc) and the fuzzer would

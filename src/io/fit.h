@@ -1,0 +1,98 @@
+/* Fitting model parameters to measurements (interfaces.md v2 "Fitting"): the case's
+ * fit: block names case keys to fit (start, bounds) and a CSV of measurements whose
+ * columns are inputs (swept case keys, or a twin-disc protocol step) and one measured
+ * output. rs_fit_load reads and checks it (io/case_fit.c); rs_fit_run (study/fit.c)
+ * solves the bounded least-squares problem with MINPACK's Levenberg-Marquardt. */
+#ifndef ROLLSIM_FIT_H
+#define ROLLSIM_FIT_H
+
+#include <signal.h>
+#include <stddef.h>
+
+#include "base/status.h"
+
+typedef struct rs_fit_param {
+  char *key;        /* dotted case key, e.g. "plasticity.tau_c0" */
+  double start;     /* first guess */
+  double lo, hi;    /* bounds, lo < hi, lo <= start <= hi */
+  const char *unit; /* from the key table (static) */
+} rs_fit_param;
+
+/* What a data row is matched against. */
+typedef enum {
+  RS_FIT_STEADY = 0, /* steady points: the input columns are case keys (a sweep) */
+  RS_FIT_RIG_STEP,   /* twin-disc protocol: the column `step` (1-based protocol step) */
+  RS_FIT_RIG_SLIP,   /* twin-disc protocol: the column `twin_disc.slip` (a held step's slip) */
+  RS_FIT_RIG_REV     /* twin-disc protocol: the column `revolution` (1-based, of disc 1) */
+} rs_fit_kind;
+
+/* Role of a CSV column. */
+typedef enum { RS_FIT_COL_INPUT = 0, RS_FIT_COL_MEASURED, RS_FIT_COL_WEIGHT } rs_fit_role;
+
+typedef struct rs_fit_spec {
+  int nparams;
+  rs_fit_param *params;
+  char *data_path; /* the CSV as opened (relative to the case's directory) */
+  char *measured;  /* output variable the measured column holds: traction_coefficient or Fx */
+  char *weights;   /* column of per-point weights 1/sigma, or NULL */
+  rs_fit_kind kind;
+  int ncols;
+  char **columns;               /* CSV header names [ncols] */
+  char **input_keys;            /* [ncols]: dotted case key of an input column (NULL for others) */
+  rs_fit_role *roles;           /* [ncols] */
+  int measured_col, weight_col; /* weight_col -1: all weights 1 */
+  size_t npoints;
+  double *table; /* [npoints][ncols], rows in file order */
+  int *row_line; /* [npoints] line of each row in the CSV file */
+} rs_fit_spec;
+
+/* Read and check the fit: block of a case (after --set) and its CSV. Errors name
+ * case.yaml:line: fit.KEY or data.csv:line: column; nothing is run. */
+int rs_fit_load(rs_fit_spec *f, const char *case_path, const char *const *sets, int nsets,
+                rs_msg *msg);
+void rs_fit_free(rs_fit_spec *f);
+
+typedef struct rs_fit_opts {
+  const char *output_path; /* FIT.nc (default: the case's output.file) */
+  const char *history;
+  int progress;                          /* evaluation count and residual on stderr */
+  volatile sig_atomic_t *interrupt_flag; /* Ctrl-C: stop, keep the best point */
+  int mpi_rank, mpi_size; /* under MPI: the Jacobian's columns over the ranks (else 0, 1) */
+} rs_fit_opts;
+
+typedef struct rs_fit_result {
+  int nparams;
+  size_t npoints;
+  double *fitted, *std_error; /* [nparams] */
+  double *covariance;         /* [nparams][nparams] */
+  double *simulated;          /* [npoints] at the fitted values */
+  double residual_norm;       /* |W (simulated - measured)| */
+  long evaluations;           /* model evaluations (whole data sets) */
+  int minpack_info;           /* lmder's info */
+  double wall_seconds;
+  char stop_reason[256];
+  char notes[2048]; /* bounds reached, no effect, correlated pairs ("" when none) */
+  char file[1024];
+  char backup[1040];
+} rs_fit_result;
+
+int rs_fit_run(const rs_fit_spec *f, const char *case_path, const char *const *sets, int nsets,
+               const rs_fit_opts *o, rs_fit_result *res, rs_msg *msg);
+void rs_fit_result_free(rs_fit_result *res);
+/* MPI ranks > 0 of a fit: serve rank 0's Jacobian columns until it is done. */
+int rs_fit_serve(const rs_fit_spec *f, const char *case_path, const char *const *sets, int nsets,
+                 const rs_fit_opts *o, rs_msg *msg);
+
+/* FIT.nc (io/output_fit.c): written whole to PATH.part and renamed over PATH (an older
+ * file is kept as PATH~ the first time). */
+typedef struct rs_fit_output {
+  const char *path, *title, *case_text, *history, *status, *notes;
+  const rs_fit_spec *spec;
+  const double *start, *fitted, *std_error, *covariance, *simulated;
+  double residual_norm;
+  long evaluations;
+  int keep_old; /* rename an existing file to PATH~ first */
+} rs_fit_output;
+int rs_fit_output_write(const rs_fit_output *o, char *backup, size_t backup_len, rs_msg *msg);
+
+#endif

@@ -1,0 +1,30 @@
+/* Steady rolling (model.md §6): KINSOL (exact semismooth Newton) on F(y, y' = 0) = 0,
+ * with grid sequencing, pseudo-time steps and a pseudo-transient as fallbacks, and a
+ * physical check of every result (rs_model_check_steady). */
+#ifndef ROLLSIM_STEADY_H
+#define ROLLSIM_STEADY_H
+
+#include "solve/transient.h"
+
+/* Steady rolling (V > 0): a reusable solver so that continuation (creep curves)
+ * keeps its allocations. */
+typedef struct rs_steady rs_steady;
+int rs_steady_create(rs_steady **s, const rs_model *m, SUNContext ctx, rs_msg *msg);
+int rs_steady_create_with(rs_steady **s, const rs_model *m, SUNContext ctx, rs_linear linear,
+                          rs_msg *msg);
+/* Solve F(y, 0) = 0 at time t (inputs evaluated at t); y holds the initial guess
+ * on entry, the solution on return. */
+int rs_steady_solve(rs_steady *s, double t, double *y, rs_stats *stats, rs_msg *msg);
+/* An approximate steady state at time t for a continuation predictor: Newton with the
+ * line search from y until the max norm of the scaled residual is below tol (>= the
+ * solve's own 1e-10), at most max_iters iterations, no fallbacks and no physical check.
+ * Returns RS_OK with the iterate in y, or RS_ERR_SOLVER with y unchanged. */
+int rs_steady_approximate(rs_steady *s, double t, double *y, double tol, int max_iters,
+                          rs_stats *stats);
+/* The model evaluated at the steady state y (y' = 0) by the solver's last residual, if
+ * that was at y (3D Newton-Krylov), else NULL: a solution's diagnostics without an
+ * evaluation of their own (rs_model_diagnostics_of). Valid until the next solve. */
+const rs_work *rs_steady_evaluated(rs_steady *s, const double *y);
+void rs_steady_free(rs_steady *s);
+
+#endif

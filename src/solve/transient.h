@@ -1,0 +1,83 @@
+/* Transient integration of the rolling-contact DAE (model.md §6): IDA (variable-order
+ * BDF) whose nonlinear systems are solved by KINSOL through a custom
+ * SUNNonlinearSolver, with the generalized Jacobian in a SUNSparseMatrix (CSR) factored
+ * by KLU, or with its sparse rows eliminated and the Schur complement of the dense
+ * traction rows factored by LAPACK (see rs_linear). Also the solver statistics and the
+ * choice of linear algebra shared with the steady solver (solve/steady.h). */
+#ifndef ROLLSIM_TRANSIENT_H
+#define ROLLSIM_TRANSIENT_H
+
+#include <signal.h>
+#include <sundials/sundials_context.h>
+
+#include "physics/model.h"
+#include "base/status.h"
+
+/* One SUNDIALS context per run: the driver creates it and every solver of the run
+ * (steady, coarse grids, pseudo-transient, transient) uses it. A solver created with
+ * ctx = NULL makes a context of its own (for a single solve, e.g. in a test). */
+
+typedef struct rs_stats {
+  long steps;          /* IDA steps (transient) */
+  long nonlin_iters;   /* Newton iterations (KINSOL, summed) */
+  long nonlin_fails;   /* nonlinear solves that failed (IDA then cuts the step) */
+  long err_test_fails; /* IDA error-test failures */
+  long res_evals;      /* residual evaluations */
+  long jac_evals;      /* Jacobian evaluations = KLU factorizations */
+  long klu_analyses;   /* KLU symbolic analyses (the sparsity pattern changed) */
+  long lin_solves;     /* linear solves (direct) or Krylov iterations (steady solver) */
+  long
+      factorizations; /* of the iteration matrix (transient; a matrix equal to the last keeps it) */
+  long refused;       /* steady solutions refused by rs_model_check_steady (then recomputed
+                         by rolling the material, or the solve failed) */
+} rs_stats;
+
+/* Linear algebra of the steady Newton iteration (all give the same solution to the
+ * Newton tolerance): KLU on the whole sparse Jacobian; DENSE, the sparse rows
+ * eliminated and the Schur complement on the dense traction rows factored by LAPACK;
+ * KRYLOV, GMRES with FFT elastic products and a KLU-factored near-field
+ * preconditioner; AUTO picks KRYLOV for elastic models from 300 cells, DENSE
+ * otherwise (KLU when the model has unknowns beyond the per-cell ones). */
+typedef enum { RS_LINEAR_AUTO = 0, RS_LINEAR_KLU, RS_LINEAR_DENSE, RS_LINEAR_KRYLOV } rs_linear;
+
+/* Transient integration. */
+typedef struct rs_transient rs_transient;
+typedef struct rs_transient_opts {
+  double rtol;                      /* relative tolerance */
+  double atol;                      /* absolute tolerance of tractions, N/mm^2 */
+  int max_order;                    /* BDF order limit, 1..5 */
+  long max_steps;                   /* per call of rs_transient_advance */
+  int max_newton;                   /* Newton iterations per step (KINSOL), default 10 */
+  double t_stop;                    /* IDA never steps beyond this time (INFINITY: no limit) */
+  volatile sig_atomic_t *interrupt; /* set asynchronously: stop at once (may be NULL) */
+  double max_step;                  /* s, 0: no limit */
+  /* Called after every accepted time step with the solution there (may be NULL);
+   * a status other than RS_OK stops the integration with that status. */
+  int (*step_hook)(void *ctx, double t, const double *y);
+  void *hook_ctx;
+  /* Linear algebra of the Newton iterations: KLU, or the dense Schur complement for
+   * AUTO (0), DENSE and KRYLOV alike (Newton-Krylov with the near-field preconditioner
+   * was about 10 times slower than DENSE on the 400-cell start-up: with c_j > 0 the
+   * elastic rows carry the slowly decaying A(i-j) itself); KLU whenever the model has
+   * unknowns beyond the 3 n per-cell ones. */
+  rs_linear linear;
+  /* NULL, or inputs held at these values whatever the time (the steady solver's
+   * pseudo-transient: the material rolls at the inputs of one time). */
+  const rs_inputs *frozen;
+} rs_transient_opts;
+
+/* y0, yp0: a consistent initial state (see rs_model_consistent_rates). */
+int rs_transient_create(rs_transient **tr, const rs_model *m, SUNContext ctx, double t0,
+                        const double *y0, const double *yp0, const rs_transient_opts *opts,
+                        rs_msg *msg);
+/* Integrate to tout; y, yp receive the (interpolated) solution at tout. */
+int rs_transient_advance(rs_transient *tr, double tout, double *y, double *yp, rs_msg *msg);
+/* Restart at time t from a consistent state (after a breakpoint of an input
+ * history: IDA never integrates across a kink or jump); new stop time t_stop.
+ * Step statistics keep accumulating. */
+int rs_transient_restart(rs_transient *tr, double t, const double *y, const double *yp,
+                         double t_stop, rs_msg *msg);
+void rs_transient_get_stats(const rs_transient *tr, rs_stats *stats);
+void rs_transient_free(rs_transient *tr);
+
+#endif

@@ -1,0 +1,118 @@
+/* The embedding API (rollsim/api.h): the command line's run, sweep and check without the
+ * printing. Everything lives on the caller's stack or in what it frees. */
+#define _POSIX_C_SOURCE 200809L
+#include <signal.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "rollsim/api.h"
+#include "io/case.h"
+#include "study/run.h"
+#include "study/sweep.h"
+#include "study/sweep_dist.h"
+
+static int finish(int status, const rs_msg *m, char *msg, size_t len)
+{
+  if (msg && len) snprintf(msg, len, "%s", status == 0 ? "" : m->text);
+  return status;
+}
+
+int rs_api_run(const char *case_path, const char *const *sets, int nsets, const char *out_path,
+               char *msg, size_t msg_len)
+{
+  rs_msg m = {{0}};
+  rs_case c;
+  int status = rs_case_load(&c, case_path, sets, nsets, &m);
+  if (status != RS_OK) return finish(status, &m, msg, msg_len);
+  volatile sig_atomic_t stop = 0;
+  const rs_run_opts o = {.output_path = out_path,
+                         .history = "rollsim " RS_VERSION " (API: rs_api_run)",
+                         .interrupt_flag = &stop};
+  rs_run_result res;
+  status = rs_run(&c, &o, &res, &m);
+  rs_run_result_free(&res);
+  rs_case_free(&c);
+  return finish(status, &m, msg, msg_len);
+}
+
+int rs_api_sweep(const char *case_path, const char *const *sets, int nsets, const char *out_path,
+                 char *msg, size_t msg_len)
+{
+  rs_msg m = {{0}};
+  rs_case c;
+  int status = rs_case_load(&c, case_path, sets, nsets, &m);
+  if (status != RS_OK) return finish(status, &m, msg, msg_len);
+  const int has_sweep = c.has_sweep;
+  rs_case_free(&c);
+  if (!has_sweep) {
+    rs_msg_set(&m, RS_ERR_INPUT, "%s: the case has no sweep: block (use rollsim run)", case_path);
+    return finish(RS_ERR_INPUT, &m, msg, msg_len);
+  }
+  rs_sweep sw;
+  status = rs_sweep_load(&sw, case_path, sets, nsets, &m);
+  if (status != RS_OK) return finish(status, &m, msg, msg_len);
+  volatile sig_atomic_t stop = 0;
+  const rs_run_opts o = {.output_path = out_path,
+                         .history = "rollsim " RS_VERSION " (API: rs_api_sweep)",
+                         .interrupt_flag = &stop};
+  rs_sweep_result res;
+  status = rs_sweep_run(&sw, case_path, sets, nsets, &o, &res, &m);
+  rs_sweep_free(&sw);
+  return finish(status, &m, msg, msg_len);
+}
+
+int rs_api_sweep_progress(const char *case_path, const char *const *sets, int nsets,
+                          const char *out_path, rs_api_progress_fn progress, void *ctx, char *msg,
+                          size_t msg_len)
+{
+  rs_msg m = {{0}};
+  rs_case c;
+  int status = rs_case_load(&c, case_path, sets, nsets, &m);
+  if (status != RS_OK) return finish(status, &m, msg, msg_len);
+  const int has_sweep = c.has_sweep;
+  rs_case_free(&c);
+  if (!has_sweep) {
+    rs_msg_set(&m, RS_ERR_INPUT, "%s: the case has no sweep: block (use rollsim run)", case_path);
+    return finish(RS_ERR_INPUT, &m, msg, msg_len);
+  }
+  rs_sweep sw;
+  status = rs_sweep_load(&sw, case_path, sets, nsets, &m);
+  if (status != RS_OK) return finish(status, &m, msg, msg_len);
+  volatile sig_atomic_t stop = 0;
+  const rs_run_opts o = {.output_path = out_path,
+                         .history = "rollsim " RS_VERSION " (API: rs_api_sweep_progress)",
+                         .interrupt_flag = &stop};
+  const rs_sweep_dist d = {.progress = progress, .progress_ctx = ctx};
+  rs_sweep_result res;
+  status = rs_sweep_run_dist(&sw, case_path, sets, nsets, &o, &d, &res, &m);
+  rs_sweep_free(&sw);
+  return finish(status, &m, msg, msg_len);
+}
+
+int rs_api_check(const char *case_path, const char *const *sets, int nsets, char **text, char *msg,
+                 size_t msg_len)
+{
+  *text = NULL;
+  rs_msg m = {{0}};
+  rs_case c;
+  int status = rs_case_load(&c, case_path, sets, nsets, &m);
+  if (status != RS_OK) return finish(status, &m, msg, msg_len);
+  size_t len = 0;
+  FILE *f = open_memstream(text, &len);
+  if (!f) {
+    rs_case_free(&c);
+    rs_msg_set(&m, RS_ERR_INTERNAL, "out of memory");
+    return finish(RS_ERR_INTERNAL, &m, msg, msg_len);
+  }
+  rs_case_print(&c, f);
+  status = rs_run_print_derived(&c, f, &m);
+  fclose(f);
+  rs_case_free(&c);
+  if (status == RS_ERR_SOLVER) status = RS_ERR_INPUT; /* as rollsim check */
+  return finish(status, &m, msg, msg_len);
+}
+
+void rs_api_free(void *p) { free(p); }
+
+const char *rs_api_version(void) { return "rollsim " RS_VERSION; }

@@ -1,0 +1,25 @@
+/* Private to the drivers: sweeps over MPI ranks (a task farm over continuation lines)
+ * and sweep parts for job arrays (rollsim sweep --part K/N; rollsim merge joins them). */
+#ifndef ROLLSIM_SWEEP_DIST_H
+#define ROLLSIM_SWEEP_DIST_H
+
+#include "io/case_sweep.h"
+#include "study/run.h"
+#include "study/sweep.h"
+#include "study/mpi_session.h"
+
+typedef struct rs_sweep_dist {
+  const rs_mpi *mpi; /* NULL or size 1: no farm */
+  int part, parts;   /* --part K/N (1 <= K <= N), or 0 */
+  /* Called after each point written (points written so far, of the sweep's), or NULL. */
+  void (*progress)(void *ctx, size_t done, size_t total);
+  void *progress_ctx;
+} rs_sweep_dist;
+
+/* The sweep over MPI ranks, or one part of it. Rank 0 (or the part) writes the file;
+ * results and statuses as rs_sweep_run. Every rank calls it. */
+int rs_sweep_run_dist(const rs_sweep *s, const char *case_path, const char *const *sets, int nsets,
+                      const rs_run_opts *o, const rs_sweep_dist *dist, rs_sweep_result *res,
+                      rs_msg *msg);
+
+#endif

@@ -1,0 +1,64 @@
+/* Private to the drivers: one continuation line of sweep points solved in memory with
+ * the machinery of rollsim sweep (the same case assignments, models, warm starts and
+ * continuation along the last key), for fits, distributed sweeps and sweep parts. The
+ * lines of a sweep are independent (each starts from rest), so a line computed here
+ * gives the numbers of the serial sweep bit for bit. */
+#ifndef ROLLSIM_SWEEP_LINES_H
+#define ROLLSIM_SWEEP_LINES_H
+
+#include <signal.h>
+#include <stddef.h>
+
+#include "io/case.h"
+#include "physics/model.h"
+#include "study/run.h"
+#include "base/status.h"
+
+/* Called after point j of the line: status RS_OK or RS_ERR_SOLVER (why says why), d its
+ * quantities, the line's fields buffer filled (when given and the point has the grid).
+ * Returns a status; anything but RS_OK stops the line with it. A line solved in two
+ * parts (rs_sweep_line_in_two) calls it out of order and from two threads, one call at
+ * a time. */
+typedef int (*rs_line_point_fn)(void *ctx, size_t j, int status, const rs_diag *d, long newton,
+                                const char *why);
+
+typedef struct rs_sweep_line {
+  const char *case_path;
+  const char *const *sets; /* the command's --set, then the other axes' KEY=%.17g */
+  int nsets;
+  const char *key; /* the continued (last) key */
+  const double *values;
+  size_t n;
+  rs_fields *fields; /* the profiles of each point, or NULL */
+  rs_line_point_fn point_done;
+  void *ctx;
+  volatile sig_atomic_t *interrupt_flag; /* transient points stop at it */
+  rs_stats *stats;                       /* steady solver statistics added, or NULL */
+  long *refined;                         /* continuation steps halved added, or NULL */
+  long *midpoints;                       /* approximate midpoints tried added, or NULL */
+  long *in_two;                          /* 1 added when solved in two parts, or NULL */
+  int in_two_known; /* 1: the caller found rs_sweep_line_in_two true (not checked again) */
+} rs_sweep_line;
+
+/* Solve the points key = values[j], j = 0..n-1, each warm-started from the one solved
+ * before it, calling point_done after each: in order; from the end with the larger
+ * |value| when rs_sweep_line_far_first says so; or in two parts at once when
+ * rs_sweep_line_in_two says so. Returns RS_OK, the callback's status, or an
+ * input/internal error's (message in msg). */
+int rs_sweep_line_eval(const rs_sweep_line *line, rs_msg *msg);
+
+/* Whether a line of n points of case c (its first point) along key is solved from its
+ * end with the larger |value| back (a creep curve from saturation towards rest): steady
+ * plastic points along a rolling input with a unique steady state (3D, Coulomb friction,
+ * no softening), where a point does not depend on the path to it beyond Newton's
+ * tolerance and the plastic Newton iterations are fewer in that direction (elastic
+ * lines: more, so they run in order). */
+int rs_sweep_line_far_first(const rs_case *c, const char *key, size_t n);
+
+/* Whether a line of n points of case c along key is solved in two parts at once, on two
+ * threads, each part from its end with the larger |value| back: steady points along a
+ * rolling input with a unique steady state (elastic or plastic), solver.threads 2 with
+ * two threads available. */
+int rs_sweep_line_in_two(const rs_case *c, const char *key, size_t n);
+
+#endif

@@ -1,0 +1,207 @@
+/* Plausibility warnings (study/warnings.h): inputs that are valid but most likely not what the
+ * user meant, and runs that will take very long. They go to stderr and never change
+ * the exit code. */
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "study/warnings.h"
+#include "base/util.h"
+#include "physics/elastic2d.h" /* RS_PI */
+#include "physics/normal3d.h"
+
+/* Carter's saturation creepage of the elastic 2D contact, mu a/R, with the Hertz
+ * half-width a = sqrt(4 q R (1 - nu)/(pi G)) at the largest load of the run
+ * (verification.md §2); *a gets a. In 3D a is the Hertz ellipse's semi-axis along the
+ * rolling direction at the largest load (N), and mu a/R_x the same scale of the
+ * creepage of full sliding (Kalker's theory gives it within a factor of order one, by far
+ * less than the factor the warning allows). A layer or plasticity move saturation, but
+ * by far less than that factor too. */
+static double saturation_creepage(const rs_case *c, double *a)
+{
+  const double q = rs_history_max_abs(&c->normal_load, 0.0, c->end_time);
+  *a = sqrt(4.0 * q * c->radius * (1.0 - c->poisson_ratio) / (RS_PI * c->shear_modulus));
+  rs_hertz_ellipse hz;
+  rs_msg ignored = {{0}};
+  if (c->dimension == 3 && q > 0.0 &&
+      rs_hertz3d(q, 0.5 / c->radius, 0.5 / c->radius_y, c->shear_modulus, c->poisson_ratio, &hz,
+                 &ignored) == RS_OK)
+    *a = hz.a;
+  return c->mu * *a / c->radius;
+}
+
+int rs_warn_creepage(const rs_case *c, double max_abs, const char *where, FILE *err)
+{
+  int count = 0;
+  if (!(max_abs > 0.0) || !isfinite(max_abs)) return 0;
+  if (max_abs >= RS_WARN_PERCENT) {
+    fprintf(err,
+            "rollsim: warning: %s reaches |xi| = %.6g, that is %.6g %% creepage: creepage is a "
+            "fraction, not a percentage; did you mean %.6g %% (|xi| = %.6g)?\n",
+            where, max_abs, 100.0 * max_abs, max_abs, max_abs / 100.0);
+    count++;
+  }
+  double a;
+  const double xi_sat = saturation_creepage(c, &a);
+  if (max_abs > RS_WARN_SATURATION_FACTOR * xi_sat) {
+    fprintf(err,
+            "rollsim: warning: %s reaches |xi| = %.6g, %.3g times the creepage of full sliding "
+            "mu a/R = %.6g (elastic contact: mu = %g, a = %.6g mm, R = %g mm): the whole contact "
+            "slides (F_x = mu F_n) long before%s\n",
+            where, max_abs, max_abs / xi_sat, xi_sat, c->mu, a, c->radius,
+            c->has_plasticity ? " (local plasticity delays saturation, rarely by this much)" : "");
+    count++;
+  }
+  return count;
+}
+
+/* 3D softening (k_tau < 0): the steady problem can have several solutions, each stable
+ * under rolling, and which one Newton finds depends on its start. Measured on
+ * bench/cases/hertz3d.yaml (44 x 44 cells, tau_c0 = 150 N/mm^2, k_rel = -0.3, xi = -0.4 %):
+ * the steady solve from rest gives F_x = 848.4 N, a fine sweep from xi = 0 and the
+ * transient from rest 902.2 N, and a transient started on either stays there. (2D softening
+ * gave one solution by every path on cases/carter_plast.yaml, k_rel = -0.3.) */
+static int warn_softening(const rs_case *c, FILE *err)
+{
+  const int steady = c->mode == RS_MODE_STEADY || c->initial_state == RS_START_STEADY;
+  if (c->dimension != 3 || !c->has_plasticity || !(c->k_tau < 0.0) || !steady) return 0;
+  fprintf(err, "rollsim: warning: plasticity.k_rel < 0 (softening) in 3D: the steady state "
+               "need not be unique, and the one found depends on where Newton starts (a "
+               "sweep from a lower creepage and a transient from rest can settle on another "
+               "one); simulation.mode: transient, initial_state: rest follows the physical "
+               "path\n");
+  return 1;
+}
+
+int rs_warn_case(const rs_case *c, FILE *err)
+{
+  const int soft = warn_softening(c, err);
+  if (c->force_control) return soft;
+  const double max_abs = c->mode == RS_MODE_STEADY
+                             ? fabs(rs_history_eval(&c->creepage, 0.0))
+                             : rs_history_max_abs(&c->creepage, 0.0, c->end_time);
+  return soft +
+         rs_warn_creepage(c, max_abs, c->rig.on ? "the twin-disc slip" : "rolling.creepage", err);
+}
+
+int rs_warn_sweep(const rs_case *base, const rs_sweep *s, FILE *err)
+{
+  for (int a = 0; a < s->naxes; a++) {
+    if (strcmp(s->axes[a].key, "rolling.creepage")) continue;
+    double max_abs = 0.0;
+    for (int k = 0; k < s->axes[a].n; k++) max_abs = fmax(max_abs, fabs(s->axes[a].values[k]));
+    return warn_softening(base, err) +
+           rs_warn_creepage(base, max_abs, "sweep: rolling.creepage", err);
+  }
+  return rs_warn_case(base, err);
+}
+
+void rs_cost_watch_init(rs_cost_watch *w, const rs_case *c, int cells, double t0, double started)
+{
+  *w = (rs_cost_watch){.c = c, .cells = cells, .t0 = t0, .started = started, .done = 0};
+}
+
+/* "1 h 05 min", "12 min 30 s", "45 s" */
+static void format_duration(double seconds, char *buf, size_t len)
+{
+  const long s = (long)(seconds + 0.5);
+  if (s >= 3600)
+    snprintf(buf, len, "%ld h %02ld min", s / 3600, (s % 3600) / 60);
+  else if (s >= 60)
+    snprintf(buf, len, "%ld min %02ld s", s / 60, s % 60);
+  else
+    snprintf(buf, len, "%ld s", s);
+}
+
+/* Inputs that do not change with time: the run ends in steady rolling. */
+static int constant_inputs(const rs_case *c)
+{
+  return !c->rig.on && rs_history_is_constant(&c->normal_load) &&
+         rs_history_is_constant(&c->velocity) && rs_history_is_constant(&c->shift_velocity) &&
+         (c->force_control ? rs_history_is_constant(&c->tangential_force)
+                           : rs_history_is_constant(&c->creepage)) &&
+         rs_history_eval(&c->velocity, 0.0) > 0.0;
+}
+
+/* The projected wall time of the rest of the run from the window (t_a, wall_a, steps_a) to
+ * (t, now, steps): the window's steps per simulated second until the run is settled (constant
+ * inputs) or ends, at the window's cost per step. 0 when there is nothing to project. */
+static double projected_rest(const rs_cost_watch *w, double t, double now, long steps,
+                             double *steps_left)
+{
+  const rs_case *c = w->c;
+  double t_busy = c->end_time; /* until when the steps stay as dense as now */
+  if (constant_inputs(c)) {
+    double a;
+    saturation_creepage(c, &a);
+    t_busy = c->mode == RS_MODE_TRANSIENT && c->initial_state == RS_START_STEADY && w->t0 == 0.0
+                 ? 0.0
+                 : fmin(c->end_time, w->t0 + RS_COST_SETTLE_LENGTHS * 2.0 * a /
+                                                 rs_history_eval(&c->velocity, 0.0));
+  }
+  const double left = t_busy - t, dt = t - w->t_a, dwall = now - w->wall_a;
+  const long dsteps = steps - w->steps_a;
+  if (!(left > 0.0) || !(dt > 0.0) || dsteps <= 0 || !(dwall > 0.0)) return 0.0;
+  *steps_left = dsteps * left / dt;    /* at the window's step density */
+  return dwall / dsteps * *steps_left; /* at the window's cost per step */
+}
+
+int rs_cost_watch_update(rs_cost_watch *w, double t, long steps, double now, FILE *err)
+{
+  if (w->done) return 0;
+  const double elapsed = now - w->started;
+  if (w->confirming && elapsed < RS_COST_CONFIRM_SECONDS) return 0;
+  if (!w->confirming) {
+    if (elapsed < 0.5 * RS_COST_PROBE_SECONDS) return 0;
+    if (!w->sampled && elapsed < RS_COST_PROBE_SECONDS) {
+      w->sampled = 1;
+      w->t_a = t;
+      w->wall_a = now;
+      w->steps_a = steps;
+      return 0;
+    }
+    if (elapsed < RS_COST_PROBE_SECONDS) return 0;
+    if (!w->sampled) { /* the first records came slowly: the window is the whole run so far */
+      w->t_a = w->t0;
+      w->wall_a = w->started;
+      w->steps_a = 0;
+    }
+  }
+  double steps_left = 0.0;
+  const double remaining = projected_rest(w, t, now, steps, &steps_left);
+  if (remaining < RS_COST_WARN_SECONDS) {
+    w->done = 1;
+    return 0;
+  }
+  if (!w->confirming) {
+    /* the second window starts where the first ended, and lasts at least one record */
+    w->confirming = 1;
+    w->t_a = t;
+    w->wall_a = now;
+    w->steps_a = steps;
+    return 0;
+  }
+  w->done = 1;
+  const rs_case *c = w->c;
+  const int constant = constant_inputs(c);
+  const double dt = t - w->t_a, dwall = now - w->wall_a;
+  const long dsteps = steps - w->steps_a;
+  char eta[64];
+  format_duration(remaining, eta, sizeof eta);
+  fprintf(err,
+          "rollsim: warning: a long transient: at t = %.6g s of %.6g s, after %ld IDA steps "
+          "in %.1f s, the last %ld steps (%.3g ms each, %d cells) covered %.3g s: %s about "
+          "%.3g steps, ETA %s (%.0f s).\n",
+          t, c->end_time, steps, elapsed, dsteps, 1e3 * dwall / dsteps, w->cells, dt,
+          constant ? "settling to steady rolling needs" : "the rest needs", steps_left, eta,
+          remaining);
+  if (constant)
+    fprintf(err, "rollsim: hint: the inputs are constant, so the run ends in steady rolling: "
+                 "simulation.mode: steady (--set simulation.mode=steady) computes that state "
+                 "directly, in well under a second.\n");
+  else
+    fprintf(err, "rollsim: hint: fewer cells (grid.cells), a shorter simulation.end_time or "
+                 "rolled_distance, or a larger solver.rtol make it cheaper.\n");
+  fflush(err);
+  return 1;
+}
