@@ -1,5 +1,5 @@
 /* The discrete 3D normal problem (model.md §3, §10): the dimension-independent
- * constrained CG (normal_constrained_cg.c) with A_zz products by FFT convolution. */
+ * constrained CG (normal_cg.c) with A_zz products by FFT convolution. */
 #include "physics/normal3d.h"
 
 #include "physics/normal_cg.h"

@@ -1,7 +1,8 @@
 /* Internal to the normal-problem module (model.md §3):
  *   normal.c     Hertz formulas, the start estimate, the dense active-set method and
  *                the choice between the methods (rs_normal2d_solve_with)
- *   normal_cg.c  the constrained conjugate-gradient method with FFT products */
+ *   normal2d_cg.c  the constrained conjugate-gradient method (normal_cg.c, any dimension)
+ *                  on the line kernel with FFT products */
 #ifndef ROLLSIM_NORMAL_METHODS_H
 #define ROLLSIM_NORMAL_METHODS_H
 
