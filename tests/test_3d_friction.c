@@ -1,4 +1,4 @@
-/* Velocity-dependent friction in 3D steady rolling (model.md §10-11, verification.md 14), on
+/* Velocity-dependent friction in 3D steady rolling (docs/model.md §10-11, docs/verification.md 14), on
  * an elastic elliptic contact: Rx = 100 mm, Ry = 200 mm, F = 1000 N, G = 82000 N/mm^2,
  * nu = 0.28, V = 30000 mm/s, 22 x 22 cells over +-1.1 a, +-1.1 b.
  *

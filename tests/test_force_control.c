@@ -1,4 +1,4 @@
-/* Prescribed tangential force (issue 4 item 2, model.md §6): the creepage is an
+/* Prescribed tangential force (issue 4 item 2, docs/model.md §6): the creepage is an
  * unknown with the equation sum p dx = F_x(t).
  *  - Steady: the force is held to 1e-8 relative (Newton tolerance 1e-10 on a mean
  *    traction), and the creepage found equals the creepage at which prescribed-

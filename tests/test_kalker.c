@@ -11,7 +11,7 @@
  *   (in a/b, and in nu) the interpolant is monotone and stays between the node values,
  *   also at a Poisson ratio off the nodes; continuous through a/b = 1; outside the
  *   table an input error.
- * - Signs of the linear forces (model.md §1): xi < 0 gives F_x > 0; eta > 0 and phi > 0
+ * - Signs of the linear forces (docs/model.md §1): xi < 0 gives F_x > 0; eta > 0 and phi > 0
  *   give F_y < 0. */
 #include "rollsim/kalker.h"
 #include "test_support.h"

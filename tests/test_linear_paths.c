@@ -179,7 +179,7 @@ int main(void)
   fail |= compare_transient("Carter elastic start-up, 100 cells", &c, 6.0);
   ts_fig7_case(&c, 100, 0.6);
   fail |= compare_transient("Carter plastic k_rel = 0.6 start-up, 100 cells", &c, 6.0);
-  /* Friction memory (model.md §11): the memory rows are dense in the contact and the
+  /* Friction memory (docs/model.md §11): the memory rows are dense in the contact and the
    * Schur solver eliminates them on mu; the three steady paths and the two transient ones
    * must agree as above. Exponential law mu(0) = 0.3, mu_k = 0.2, v_h = 10 mm/s,
    * d_c = 0.05 mm (long enough that the weakening stays below the elastic stiffness). */

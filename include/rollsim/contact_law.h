@@ -1,4 +1,4 @@
-/* The contact law of one cell (model.md §4, paper eqs. 7-10): the semismooth residual
+/* The contact law of one cell (docs/model.md §4, paper eqs. 7-10): the semismooth residual
  * of friction, plasticity and hardening and its local generalized Jacobian, from the
  * cell's local quantities. The model (rollsim/model.h) computes the local quantities
  * from the unknowns (kinematics) and chains the local Jacobian with their derivatives;

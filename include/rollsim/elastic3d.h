@@ -1,5 +1,5 @@
 /* Elastic influence coefficients of the 3D half-space for quasi-identical bodies,
- * piecewise-constant tractions on equal rectangles dx x dy (model.md §2, §10).
+ * piecewise-constant tractions on equal rectangles dx x dy (docs/model.md §2, §10).
  *
  * Point load on body 1 (minus it on body 2), displacement difference at (x, y) from
  * the load (Boussinesq-Cerruti, Johnson 1985 §3.2, doubled for two bodies):
@@ -17,7 +17,7 @@
  * Grid: nx x ny cells, index I = iy nx + ix (x fastest). The coefficient A_ij(kx, ky)
  * is the displacement u_i at the centre of a cell offset by (kx dx, ky dy) from a cell
  * carrying unit traction p_j. Offsets kx in [-(nx-1), nx] (kx = nx serves the padded
- * column one cell beyond the leading edge, model.md §5), ky in [-(ny-1), ny-1].
+ * column one cell beyond the leading edge, docs/model.md §5), ky in [-(ny-1), ny-1].
  *
  * Memory: the coefficients 4 (nx+1) ny doubles (stored for kx, ky >= 0, the rest by
  * symmetry); the transformed kernels 4 my (mx/2+1) complex doubles on the padded

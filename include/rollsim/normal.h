@@ -1,4 +1,4 @@
-/* 2D normal contact problem on the grid (model.md §3): find p_n >= 0 and the
+/* 2D normal contact problem on the grid (docs/model.md §3): find p_n >= 0 and the
  * approach delta with gap h - delta + A_zz p_n >= 0, complementarity, and
  * sum p_n dx = load, for the undeformed gap h at the cell centres (the model's is
  * x^2/(2R), rs_normal2d_profile). Hertz line contact is the check:

@@ -12,7 +12,7 @@
 
 /* Carter's saturation creepage of the elastic 2D contact, mu a/R, with the Hertz
  * half-width a = sqrt(4 q R (1 - nu)/(pi G)) at the largest load of the run
- * (verification.md §2); *a gets a. In 3D a is the Hertz ellipse's semi-axis along the
+ * (docs/verification.md 2); *a gets a. In 3D a is the Hertz ellipse's semi-axis along the
  * rolling direction at the largest load (N), and mu a/R_x the same scale of the
  * creepage of full sliding (Kalker's theory gives it within a factor of order one, by far
  * less than the factor the warning allows). A layer or plasticity move saturation, but

@@ -1,4 +1,4 @@
-/* 3D elastic products by FFT convolution (model.md §10). The linear convolution
+/* 3D elastic products by FFT convolution (docs/model.md §10). The linear convolution
  * u(I) = sum_J A(I - J) p(J) on the grid equals a circular one on the padded grid
  * mx x my (mx >= 2 nx, my >= 2 ny - 1): the kernel's offsets kx in [-(nx-1), nx] and
  * ky in [-(ny-1), ny-1] wrap to distinct indices, and p is zero beyond the grid.

@@ -1,4 +1,4 @@
-/* The semi-discrete rolling-contact DAE with local plasticity (model.md §4-5): creation
+/* The semi-discrete rolling-contact DAE with local plasticity (docs/model.md §4-5): creation
  * from plain parameters, the inputs at a time, the normal pressure, the kinematics and
  * the residual. Per contact cell I, with D f/Dt = f' - V (f_up - f_I)/dx (first-order
  * upwind, material enters at the high-x edge) and v_s = V xi + v_shift + Du_el/Dt +
@@ -384,7 +384,7 @@ void rs_model_kinematics_scaled(const rs_model *m, rs_work *w, const rs_inputs *
       for (int c = 0; c < nc; c++) {
         const double *upl = y + rs_at_upl(L, c, 0);
         const double *u = w->uel + (size_t)c * px * ny + iy * px;
-        /* rigid slip V w = V (xi - phi y, eta + phi x), model.md §1 */
+        /* rigid slip V w = V (xi - phi y, eta + phi x), docs/model.md §1 */
         const double vrigid =
             c == 0 ? V * (xi - phi * g->y[iy]) + shift : V * (eta + phi * g->x[ix]);
         const double upl_next = up >= 0 ? upl[up] : in_row[c];

@@ -9,7 +9,7 @@
  *   u*(I)          -> 1 on u*(I)
  *   Dmu/Dt(I)      -> cj + a on mu(I), -a on mu(up)            (friction memory)
  *   mu(I)          -> 1 on mu(I)
- * with a = V/dx and up the upstream neighbour (model.md §5). The same chain gives exact
+ * with a = V/dx and up the upstream neighbour (docs/model.md §5). The same chain gives exact
  * J v products: the local rows applied to the kinematics of v. */
 #include <math.h>
 #include <stdlib.h>
@@ -69,7 +69,7 @@ static void add(double *v, unsigned char *has, double x)
 }
 
 /* r dv_s,c/dp_b at the offset (kx, ky) from the cell, without the layer: the kinematics'
- * cj A_cb(kx, ky) - a (A_cb(kx + 1, ky) - A_cb(kx, ky)), a = V/dx (model.md §5). */
+ * cj A_cb(kx, ky) - a (A_cb(kx + 1, ky) - A_cb(kx, ky)), a = V/dx (docs/model.md §5). */
 static double kin_coef(const rs_model *m, int c, int b, int kx, int ky, double cj, double a)
 {
   const double A0 = rs_elastic_op_coef(&m->el, c, b, kx, ky);

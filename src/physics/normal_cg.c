@@ -1,4 +1,4 @@
-/* 2D normal contact by conjugate gradients with the load as a constraint (model.md §3),
+/* 2D normal contact by conjugate gradients with the load as a constraint (docs/model.md §3),
  * after Polonsky & Keer (1999, Wear 231, 206-219). The discrete problem is
  *
  *   minimise 1/2 p.A p + h.p  over p >= 0 with dx sum p = load,

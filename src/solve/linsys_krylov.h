@@ -1,5 +1,5 @@
 /* Private: the pieces of Newton-Krylov for the steady/pseudo-time Newton iteration on
- * large grids (model.md §6): exact Jacobian-vector products from the model
+ * large grids (docs/model.md §6): exact Jacobian-vector products from the model
  * (rs_model_jv: the contact law's local rows applied to the kinematics of v, the
  * elastic products by FFT), and a KLU-factored near-field preconditioner.
  *

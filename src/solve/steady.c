@@ -1,8 +1,8 @@
-/* Steady rolling: KINSOL on F(y, y' = 0) = 0 (model.md §6). With the scaling r
- * of model.md §4 the residual is piecewise linear in the tractions, and exact
+/* Steady rolling: KINSOL on F(y, y' = 0) = 0 (docs/model.md §6). With the scaling r
+ * of docs/model.md §4 the residual is piecewise linear in the tractions, and exact
  * (semismooth) Newton with the generalized Jacobian settles the active set in a
  * few iterations from p = 0. Plain Newton is tried first, a line search second
- * (model.md §9: the line search backtracks heavily on this non-smooth residual). */
+ * (docs/model.md §9: the line search backtracks heavily on this non-smooth residual). */
 #include <kinsol/kinsol.h>
 #include <math.h>
 #include <nvector/nvector_serial.h>
@@ -411,8 +411,8 @@ static int newton(rs_steady *s, double *y, int plain_iters, int search_iters, rs
   return RS_OK;
 }
 
-/* Fallback after grid sequencing when Newton cycles between active sets (model.md
- * §9; seen with work hardening, where the trailing end of the plastic zone moves by
+/* Fallback after grid sequencing when Newton cycles between active sets (docs/model.md
+ * §13; seen with work hardening, where the trailing end of the plastic zone moves by
  * about one cell per iteration): pseudo-transient continuation with backward-Euler steps of the
  * rolling transient, F(y, (y - y_prev)/dtau) = 0, each solved by the same exact
  * Newton. The c_j terms keep the active set close to the previous one, so the steps
@@ -463,7 +463,7 @@ static int pseudo_time_steps(rs_steady *s, double *y, rs_stats *stats)
 }
 
 /* Last fallback when Newton cycles between active sets (seen with moderate hardening,
- * model.md §9): pseudo-transient continuation, i.e. roll the material through the
+ * docs/model.md §13): pseudo-transient continuation, i.e. roll the material through the
  * contact at the inputs of the time being solved (all of them held: velocity, creepage,
  * shift, load, prescribed force and the rig memory's inflow), which is the physical
  * transient and settles on the steady state, trying Newton from the rolled state after
@@ -521,7 +521,7 @@ static int pseudo_transient(rs_steady *s, double *y, rs_stats *stats, rs_msg *ms
   return status;
 }
 
-/* Grid sequencing (model.md §9): first for a plastic model from rest, the first
+/* Grid sequencing (docs/model.md §13): first for a plastic model from rest, the first
  * fallback otherwise. The same problem on a grid of half the cells (solved by this
  * same function, so recursively down to a grid where Newton converges), interpolated
  * to this grid, is a start close enough that the active set settles in a few

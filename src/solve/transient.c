@@ -1,7 +1,7 @@
 /* Transient rolling: IDA (variable-order, variable-step BDF with error control)
  * on the semi-discrete DAE, each step's nonlinear system solved by KINSOL with
  * the generalized Jacobian, factored by the Schur-complement solver or by KLU
- * (model.md §6). */
+ * (docs/model.md §6). */
 #include <ida/ida.h>
 #include <math.h>
 #include <nvector/nvector_serial.h>
@@ -134,7 +134,7 @@ int rs_transient_create(rs_transient **out, const rs_model *m, SUNContext ctx, d
   memcpy(N_VGetArrayPointer(tr->y), y0, (size_t)neq * sizeof *y0);
   memcpy(N_VGetArrayPointer(tr->yp), yp0, (size_t)neq * sizeof *yp0);
   /* Absolute tolerances: tractions in N/mm^2 as given; plastic displacements in mm,
-   * scaled to the contact size (model.md §9: about 1e-4 rtol a). */
+   * scaled to the contact size (docs/model.md §9: about 1e-4 rtol a). */
   double *at = N_VGetArrayPointer(tr->atol);
   for (int k = 0; k < rs_at_upl(L, 0, 0); k++) at[k] = o->atol;
   for (int k = rs_at_upl(L, 0, 0); k < rs_at_extra(L, 0); k++) at[k] = 1e-4 * o->rtol * m->hertz_a;
