@@ -5,7 +5,7 @@
  *   coefficient grows with nu in every row, and C22, C23 grow with a/b along every
  *   column (C11 too, except its shallow minimum near a/b = 0.3 at nu = 0.5); and each
  *   column is smooth: its log-log slope against a/b changes by at most 0.25 from one row
- *   interval to the next (measured 0.13 at most), a check shown to catch the 1.15-for-
+ *   interval to the next (the table's largest change is 0.13), a check shown to catch the 1.15-for-
  *   1.25 slip of one source copy (it makes the slope jump by 1.36).
  * - Interpolation: table values returned exactly at the nodes; between adjacent nodes
  *   (in a/b, and in nu) the interpolant is monotone and stays between the node values,

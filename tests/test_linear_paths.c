@@ -14,7 +14,7 @@
  * difference can move a regime switch to the other side of a step and IDA then
  * takes a different step sequence, so the two F_x(t) histories agree only to the
  * time-integration error, not to roundoff. The assertion: the paths differ by no
- * more than the KLU path's own global error, measured against a KLU run with
+ * more than the KLU path's own global error, taken against a KLU run with
  * rtol 100 times smaller: max_t |F_dense - F_klu| <= max_t |F_klu - F_ref|; and that
  * error is below 100 rtol max|F_x| (a few rtol expected), so that a broken reference
  * cannot make room for a broken path. Cases: Carter elastic start-up, and the

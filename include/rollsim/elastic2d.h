@@ -33,7 +33,7 @@ int rs_elastic2d_work_create(rs_elastic2d_work *w, const rs_elastic2d *el);
 void rs_elastic2d_work_free(rs_elastic2d_work *w);
 
 /* Grids from this many cells apply the influence coefficients by FFT convolution
- * (FFTW) instead of the direct O(n^2) sum (the crossover measured in bench/). */
+ * (FFTW) instead of the direct O(n^2) sum (the crossover, bench/normal_timing.c). */
 #define RS_ELASTIC_FFT_FROM 256
 
 /* Coefficients for offsets -n..n (the offset n serves the padded point x_n, one

@@ -157,8 +157,7 @@ void rs_contact_law(const rs_plasticity *pl, const rs_law_in *in, int jac, rs_la
 
 /* |(a, b)|. Not hypot(): the components are tractions, slip velocities and flows of
  * moderate size (no overflow or underflow of their squares), and glibc's hypot, which
- * guards against both, was 3-4 % of the 3D plastic creep curve's time (perf, 44 x 44
- * cells). */
+ * guards against both, is slow enough to show in a 3D plastic run's profile. */
 static inline double norm2(double a, double b) { return sqrt(a * a + b * b); }
 
 static void disk_law(const rs_plasticity *pl, const rs_law_in *in, int jac, rs_law_out *out)

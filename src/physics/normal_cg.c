@@ -95,7 +95,7 @@ int rs_normal2d_solve_cg(const rs_elastic2d *el, rs_elastic2d_work *w, const dou
   if (nstart == 0)
     for (int i = 0; i < n; i++) pn[i] = 1.0;
   /* Convergence. lambda = (A(0) - A(1))/2 lies below the smallest eigenvalue of A_CC
-   * on zero-sum vectors, measured 0.708 (A(0) - A(1)) on 100..1000 cells (a
+   * on zero-sum vectors, which is 0.708 (A(0) - A(1)) on 100..1000 cells (a
    * cell-to-cell mode; the ratio does not depend on G, nu, L or dx, and a subset C
    * only raises it), so ||r||_2 <= CG_TOL lambda p_max bounds the pressure error by
    * CG_TOL p_max in every cell (for the final C, down to the rounding of A p).
