@@ -1,4 +1,4 @@
-/* Timings of the discrete 2D normal problem alone (model.md §3): Carter's case
+/* Timings of the discrete 2D normal problem alone (docs/model.md §3): Carter's case
  * (cases/carter2d.yaml, q = 178.9 N/mm, grid +-1.05 a) on grids of 100..3200 cells
  * or the ones given; per grid and method (rs_normal2d_solve_with: DIRECT, CG and
  * AUTO, the one rs_normal2d_solve uses) the median of REPS solves (ms) and the

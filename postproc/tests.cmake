@@ -58,7 +58,7 @@ add_test(NAME pp_run_rig
     --set "twin_disc.protocol=[{slip: 0.005, revolutions: 3}, {slip: 0.01, revolutions: 3}]")
 set_tests_properties(pp_run_rig PROPERTIES FIXTURES_SETUP pp_rig)
 
-# Synthetic sweep files (the layout of interfaces.md; rollsim sweep is not there yet) and a run
+# Synthetic sweep files (the layout of docs/file-format.md) and a run
 # file without records.
 set(PP_SYNTH ${PP_OUT}/synthetic)
 add_test(NAME pp_make_synthetic COMMAND ${SYSTEM_PYTHON3} ${PP_TESTS}/make_fixtures.py ${PP_SYNTH})

@@ -2,7 +2,7 @@
 
 transient_vs_steady TRANSIENT.nc STEADY.nc
     The default case (Carter, rolled 20 contact lengths from rest) ends within
-    1e-4 of the steady solution of the same grid (verification.md §3).
+    1e-4 of the steady solution of the same grid (docs/verification.md 3).
 final_matches RUN.nc STEADY.nc TOL
     A transient run at constant final inputs ends at the steady solution of the same grid.
 carter STEADY.nc MU XI

@@ -1,4 +1,4 @@
-"""Checks of friction memory (issue 14, model.md §11) on cases/friction_memory.yaml (ctest,
+"""Checks of friction memory (issue 14, docs/model.md §11) on cases/friction_memory.yaml (ctest,
 /usr/bin/python3). Every expectation comes from the equations or from an independent run
 (the memoryless law, the Coulomb law, the steady solver, an uninterrupted run), never from
 a stored result. The same checks serve the 3D case tests/cases/friction_memory_3d.yaml: there

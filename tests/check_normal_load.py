@@ -3,7 +3,7 @@
 every stored time that
 
   1. F_n equals the load history exactly (the normal problem enforces sum p_n dx = q);
-  2. p_n is the discrete normal solution for that load (model.md §3): p_n >= 0, the
+  2. p_n is the discrete normal solution for that load (docs/model.md §3): p_n >= 0, the
      deformed gap h + A_zz p_n - delta vanishes on the contact cells (one delta for all
      of them) and is >= 0 outside; A_zz is rebuilt here from its closed form
      (plane strain, piecewise-constant pressure, Johnson 1985 ch. 2);

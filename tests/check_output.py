@@ -15,7 +15,7 @@ FIELDS = ["px", "pn", "slip", "upl", "ustar", "tauc"]
 CASE_TEXT = "title: crash test\n" + "".join(
     f"# line {k:03d} of a long case text, so the header spans blocks\n" for k in range(100))
 
-UNITS = {  # interfaces.md "Output file", 2D
+UNITS = {  # docs/file-format.md "Run files", 2D
     "time": "s", "x": "mm", "Fx": "N/mm", "Fn": "N/mm", "traction_coefficient": "1",
     "creepage": "1", "velocity": "mm/s", "n_exterior": "1", "n_adhesion": "1",
     "n_slip": "1", "n_plastic": "1", "frictional_power": "N mm/s/mm",
@@ -73,7 +73,7 @@ def check_file(path, nrec):
         assert ds.history == "test_output_crash_writer"
         assert ds.case == CASE_TEXT, ds.case[:100]
         assert ds.status == "complete", repr(ds.status)
-        # variables: all of interfaces.md, each with units and long_name
+        # variables: all of docs/file-format.md, each with units and long_name
         assert set(ds.variables) == set(UNITS), sorted(ds.variables)
         for name, var in ds.variables.items():
             assert var.units == UNITS[name], f"{name}: units {var.units!r}"

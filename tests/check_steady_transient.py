@@ -3,7 +3,7 @@
     check_steady_transient.py ROLLSIM CASE.yaml OUTDIR DISTANCE [--start STATE.csv] [--set KEY=VALUE]...
 
 The expectation of every steady number is an independent path through the code: the
-transient from rest (verification.md §3), run over DISTANCE mm of rolling at rtol 1e-8,
+transient from rest (docs/verification.md 3), run over DISTANCE mm of rolling at rtol 1e-8,
 which must have settled (its traction coefficient moves by less than 1e-6 relative over
 the last quarter of the run; the test fails otherwise rather than compare against an
 unsettled value). For every point of the case's sweep: block,

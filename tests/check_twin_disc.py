@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Twin-disc rig mode (issue 4 item 4, model.md §8): three runs of
+"""Twin-disc rig mode (issue 4 item 4, docs/model.md §8): three runs of
 tests/cases/twin_disc_small.yaml (constant slip 0.5 %, k_rel = 0.2 > 0):
 
  1. recovery 1: the plastic state comes back every revolution, the yield limit keeps

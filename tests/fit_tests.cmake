@@ -40,7 +40,7 @@ endif()
 # The summary's notes on noise-free data of cases/fit_creep_curve.yaml (21 points): a
 # parameter without effect (the layer's modulus when the layer has no thickness), one that
 # ends at its bound (mu bounded below its true 0.3), and a pair whose effects on the data are
-# proportional (layer thickness and modulus act only through h3/G3, model.md).
+# proportional (layer thickness and modulus act only through h3/G3, docs/model.md).
 add_test(NAME fit_notes_data
   COMMAND ${SYSTEM_PYTHON3} ${PROJECT_SOURCE_DIR}/cases/data/make_measured.py ${RS_BIN}
           ${RS_CASES}/fit_creep_curve.yaml ${RS_FIT_WORK}/notes.csv --sigma 0 --points 21)

@@ -1,4 +1,4 @@
-# Friction memory (issue 14, model.md §11): cases/friction_memory.yaml and variants (2D),
+# Friction memory (issue 14, docs/model.md §11): cases/friction_memory.yaml and variants (2D),
 # checked by tests/check_friction_memory.py against the equations or independent runs (the
 # memoryless law, the Coulomb law, the steady solver, an uninterrupted run).
 set(RS_FM ${CMAKE_CURRENT_BINARY_DIR}/friction_memory_out)

@@ -1,4 +1,4 @@
-# Physics and solver unit tests (verification.md §1-3, §7).
+# Physics and solver unit tests (docs/verification.md 1-3, 7).
 rs_unit_test(test_normal_hertz)
 rs_unit_test(test_normal_cg)
 rs_unit_test(test_carter_steady)
@@ -33,7 +33,7 @@ target_include_directories(test_lanes PRIVATE ${PROJECT_SOURCE_DIR}/src)
 # residuals measured from J v; its iterations against SUNDIALS' SPGMR.
 rs_unit_test(test_gmres)
 target_include_directories(test_gmres PRIVATE ${PROJECT_SOURCE_DIR}/src)
-# Velocity-dependent friction: the Coulomb limit and full sliding (verification.md 14).
+# Velocity-dependent friction: the Coulomb limit and full sliding (docs/verification.md 14).
 rs_unit_test(test_falling_friction)
 # grid.x_range gives the same discrete problem as grid.extent with the same edges.
 rs_unit_test(test_grid_range)

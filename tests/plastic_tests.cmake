@@ -14,7 +14,7 @@ set_tests_properties(plastic_transient_run PROPERTIES FIXTURES_SETUP pl_transien
 add_test(NAME plastic_regimes_steady COMMAND ${SYSTEM_PYTHON3} ${RS_TESTS}/check_plastic.py regimes
                                              ${RS_PL}/steady_k06.nc 1e-9)
 set_tests_properties(plastic_regimes_steady PROPERTIES FIXTURES_REQUIRED pl_steady)
-# rtol of the case: 1e-6 (interfaces.md default)
+# rtol of the case: 1e-6 (the default of docs/case-file.md)
 add_test(NAME plastic_regimes_transient COMMAND ${SYSTEM_PYTHON3} ${RS_TESTS}/check_plastic.py regimes
                                                 ${RS_PL}/transient_k06.nc 1e-6)
 set_tests_properties(plastic_regimes_transient PROPERTIES FIXTURES_REQUIRED pl_transient)

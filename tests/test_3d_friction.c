@@ -1,6 +1,6 @@
-/* Velocity-dependent friction in 3D steady rolling (model.md §10-11, verification.md 14), on
- * an elastic elliptic contact: Rx = 100 mm, Ry = 200 mm, F = 1000 N, G = 82000 N/mm^2,
- * nu = 0.28, V = 30000 mm/s, 22 x 22 cells over +-1.1 a, +-1.1 b.
+/* Velocity-dependent friction in 3D steady rolling (docs/model.md §10-11, docs/verification.md 14),
+ * on an elastic elliptic contact: Rx = 100 mm, Ry = 200 mm, F = 1000 N, G = 82000 N/mm^2, nu =
+ * 0.28, V = 30000 mm/s, 22 x 22 cells over +-1.1 a, +-1.1 b.
  *
  * 1. Coulomb limit. At xi = -8e-4, eta = 4e-4, phi = 2e-4 1/mm (partial slip; the slip
  *    speeds of the Coulomb solution, recomputed as in 2., reach 86 mm/s), the exponential

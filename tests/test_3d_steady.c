@@ -1,4 +1,4 @@
-/* 3D elliptic contact, steady rolling (verification.md 10-13):
+/* 3D elliptic contact, steady rolling (docs/verification.md 10-13):
  *  - Kalker's linear theory: at tiny creepages (full adhesion) F_x = -G a b C11 xi,
  *    F_y = -G a b (C22 eta + sqrt(a b) C23 phi), M_z = G (a b)^(3/2) C23 eta, for a/b = 1
  *    and a/b = 0.40 (Ry = 4 Rx), nu = 0.28, on 22^2, 44^2 and 88^2 cells over +-1.1a,

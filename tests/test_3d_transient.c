@@ -1,4 +1,4 @@
-/* 3D elliptic contact, transient (verification.md 3, 13): IDA with the KINSOL nonlinear
+/* 3D elliptic contact, transient (docs/verification.md 3, 13): IDA with the KINSOL nonlinear
  * solver and Newton-Krylov, from rest, at constant inputs (xi, eta and spin together),
  * settles on the steady solution of the same grid: |F(t) - F_steady| / |F_steady| < 1e-4
  * for F_x, F_y and M_z at the end of 15 contact lengths of rolling (the 3D kernel decays

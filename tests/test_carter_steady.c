@@ -1,9 +1,9 @@
-/* Carter's 2D steady rolling solution (verification.md §2): for the reference case
+/* Carter's 2D steady rolling solution (docs/verification.md 2): for the reference case
  * a'/a = 1 - |xi| R/(mu a) = 0.6 and F_x/(mu F_n) = 1 - (a'/a)^2 = 0.64. The first-
  * order upwind discretisation converges linearly in dx: relative error < 1.5 % at
  * dx = a/25, < 0.5 % at dx = a/100, observed order in [0.7, 1.3]; the adhesion
  * zone is within 2 cells of 2a'. Also: xi -> -xi flips F_x, and in full adhesion
- * F_x is linear in xi (verification.md §7). Grids: potential contact area +-1.04a
+ * F_x is linear in xi (docs/verification.md 7). Grids: potential contact area +-1.04a
  * so that dx = a/25, a/50, a/100 give 52, 104, 208 cells. */
 #include "physics/model.h"
 #include "solve/steady.h"

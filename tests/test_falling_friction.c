@@ -1,4 +1,4 @@
-/* Velocity-dependent friction in steady rolling (model.md §11, verification.md 14), on
+/* Velocity-dependent friction in steady rolling (docs/model.md §11, docs/verification.md 14), on
  * Carter's contact (cases/carter2d.yaml: q = 178.9 N/mm, R = 500 mm, 100 cells, V =
  * 30000 mm/s, p0 = 113.9 N/mm^2):
  *

@@ -1,4 +1,4 @@
-/* Prescribed tangential force (issue 4 item 2, model.md §6): the creepage is an
+/* Prescribed tangential force (issue 4 item 2, docs/model.md §6): the creepage is an
  * unknown with the equation sum p dx = F_x(t).
  *  - Steady: the force is held to 1e-8 relative (Newton tolerance 1e-10 on a mean
  *    traction), and the creepage found equals the creepage at which prescribed-
@@ -9,8 +9,8 @@
  *    Fig. 7 case, tau_c0 = 35 N/mm^2, k_rel = 0.6, mu = 0.5, F = 0.5 mu F_n).
  *  - Transient from rest, the force ramped 0 -> F and held: every output time holds
  *    F_x(t) to rtol = 1e-6 of F, and after 15 contact lengths the creepage equals the
- *    steady one to 1e-5 (the force is imposed, so only the traction pattern relaxes;
- *    measured: equal to ~1e-8 after 8 contact lengths). */
+ *    steady one to 1e-5 (the force is imposed, so only the traction pattern relaxes, which
+ *    takes a few contact lengths). */
 #include <stdlib.h>
 
 #include "physics/model.h"

@@ -10,7 +10,7 @@
  *    iterations within one.
  * 2. Restarts (a basis of 3, so that the residual carried into each restart matters): the
  *    same tolerance is met, after more than 3 iterations.
- * 3. A non-zero initial guess: the residual is measured from b - J x0, and met.
+ * 3. A non-zero initial guess: the residual is taken from b - J x0, and met.
  * 4. No convergence (a basis of 2, no restart, delta 1e-14): SUNLS_RES_REDUCED with a
  *    reported norm below ||s b|| that is the true residual of the returned x. */
 #include <math.h>

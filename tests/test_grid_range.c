@@ -1,4 +1,4 @@
-/* A grid given in millimetres (grid.x_range, interfaces.md v2) is the same discrete
+/* A grid given in millimetres (grid.x_range, docs/case-file.md) is the same discrete
  * problem as the grid given in Hertz half-widths (grid.extent) when the edges agree:
  * Carter's case on 100 cells over +-1.05a, then on x_range = the edges the first grid
  * got. Cell centres, influence coefficients, normal pressure and the steady traction

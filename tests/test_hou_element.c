@@ -1,4 +1,4 @@
-/* Hou's single element in 3D (verification.md 12, issue 13): one material point of the
+/* Hou's single element in 3D (docs/verification.md 13, issue 13): one material point of the
  * layer, p = k_e (u - u_pl), loaded along x into yield and then along y, integrated by
  * implicit Euler with the cell's contact law (rs_contact_law, ncomp = 2: the projection
  * on the disk |p| <= tau_c). Friction is kept inactive (g huge, no slip).

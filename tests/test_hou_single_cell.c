@@ -1,4 +1,4 @@
-/* Hou's rheometer (verification.md §4): one cell with prescribed pressure under a
+/* Hou's rheometer (docs/verification.md 4): one cell with prescribed pressure under a
  * pure shift (V = 0). With c = A(0) + h3/G3 the self-compliance and s(t) the
  * prescribed shift, the traction q = -p follows the piecewise-linear law
  *   elastic        dq/ds = 1/c             while |q| < min(tau_c, g)

@@ -13,7 +13,7 @@
  * The assembled Jacobian applied to v must agree to 1e-12 relative (the same products,
  * summed in another order).
  *
- * Velocity-dependent friction (model.md §11): at the bound R_f = p - s mu(eta) p_n is
+ * Velocity-dependent friction (docs/model.md §11): at the bound R_f = p - s mu(eta) p_n is
  * curved in v_s, so the central difference has an O(h^2) error mu'' h^2 |v_s(v)|^2 p_n;
  * Richardson's extrapolation of the differences at h and h/2 removes it (error O(h^4)
  * plus roundoff ~eps |F| / h), and every law is checked to the same 1e-6, on Carter's
@@ -202,7 +202,7 @@ int main(void)
   ts_table1_case(&c, 100, 200.0, 0.0387, -0.01);
   set_law(&c, RS_FRICTION_EXPONENTIAL, 100.0); /* slip speeds up to ~300 mm/s */
   check_model("plastic Table-1 contact, exponential friction, xi = -1 %, 100 cells", &c);
-  /* Friction memory (model.md §11): the memory rows r (d_c Dmu/Dt + max(|v_s|, s0)
+  /* Friction memory (docs/model.md §11): the memory rows r (d_c Dmu/Dt + max(|v_s|, s0)
    * (mu - mu_law(eta))) are dense through v_s, and the bound mu p_n of a slipping cell
    * depends on the state mu: d_c = 0.05 mm (a few contact lengths of sliding on Carter's
    * contact), s0 = 1 mm/s below most slip speeds and 5 mm/s above many. */

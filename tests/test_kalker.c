@@ -5,13 +5,13 @@
  *   coefficient grows with nu in every row, and C22, C23 grow with a/b along every
  *   column (C11 too, except its shallow minimum near a/b = 0.3 at nu = 0.5); and each
  *   column is smooth: its log-log slope against a/b changes by at most 0.25 from one row
- *   interval to the next (measured 0.13 at most), a check shown to catch the 1.15-for-
+ *   interval to the next (the table's largest change is 0.13), a check shown to catch the 1.15-for-
  *   1.25 slip of one source copy (it makes the slope jump by 1.36).
  * - Interpolation: table values returned exactly at the nodes; between adjacent nodes
  *   (in a/b, and in nu) the interpolant is monotone and stays between the node values,
  *   also at a Poisson ratio off the nodes; continuous through a/b = 1; outside the
  *   table an input error.
- * - Signs of the linear forces (model.md §1): xi < 0 gives F_x > 0; eta > 0 and phi > 0
+ * - Signs of the linear forces (docs/model.md §1): xi < 0 gives F_x > 0; eta > 0 and phi > 0
  *   give F_y < 0. */
 #include "physics/kalker.h"
 #include "test_support.h"

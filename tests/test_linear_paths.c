@@ -14,7 +14,7 @@
  * difference can move a regime switch to the other side of a step and IDA then
  * takes a different step sequence, so the two F_x(t) histories agree only to the
  * time-integration error, not to roundoff. The assertion: the paths differ by no
- * more than the KLU path's own global error, measured against a KLU run with
+ * more than the KLU path's own global error, taken against a KLU run with
  * rtol 100 times smaller: max_t |F_dense - F_klu| <= max_t |F_klu - F_ref|; and that
  * error is below 100 rtol max|F_x| (a few rtol expected), so that a broken reference
  * cannot make room for a broken path. Cases: Carter elastic start-up, and the
@@ -179,7 +179,7 @@ int main(void)
   fail |= compare_transient("Carter elastic start-up, 100 cells", &c, 6.0);
   ts_fig7_case(&c, 100, 0.6);
   fail |= compare_transient("Carter plastic k_rel = 0.6 start-up, 100 cells", &c, 6.0);
-  /* Friction memory (model.md §11): the memory rows are dense in the contact and the
+  /* Friction memory (docs/model.md §11): the memory rows are dense in the contact and the
    * Schur solver eliminates them on mu; the three steady paths and the two transient ones
    * must agree as above. Exponential law mu(0) = 0.3, mu_k = 0.2, v_h = 10 mm/s,
    * d_c = 0.05 mm (long enough that the weakening stays below the elastic stiffness). */

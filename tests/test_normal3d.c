@@ -1,4 +1,4 @@
-/* 3D normal contact (physics/normal3d.h, physics/normal_cg.h), verification.md target 9.
+/* 3D normal contact (physics/normal3d.h, physics/normal_cg.h), docs/verification.md 9.
  *
  * Elliptic integrals: Legendre's relation E K' + E' K - K K' = pi/2 (exact), Gauss-
  * Legendre quadrature of the defining integrals, and the series as k -> 0 and kc -> 0
@@ -14,7 +14,7 @@
  * unit length at the centre section, the 2D half-width sqrt(4 q Ry (1-nu)/(pi G)) equals
  * b up to the relative correction kc^2 (2 ln(4/kc) - 3)/8 (expanding K, E for kc -> 0),
  * asserted to 5 % of that correction.
- * Discrete problem on 60 x 60 cells over +-1.1a x +-1.1b (verification.md 9): a, b from
+ * Discrete problem on 60 x 60 cells over +-1.1a x +-1.1b (docs/verification.md 9): a, b from
  * the second moments (Int x^2 p / Int p = a^2/5 for the Hertz ellipsoid) and p0 from
  * max p within 1 %; the load to 1e-12; complementarity with the gap from direct sums
  * (the solver's 1e-12 (max h + |delta|)). The CG solution against an independent dense

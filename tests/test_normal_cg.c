@@ -1,5 +1,5 @@
 /* The conjugate-gradient normal solver (normal_cg.c) against the direct active-set
- * method (verification.md: an independent path through the code) on grids that take
+ * method (docs/verification.md: an independent path through the code) on grids that take
  * the CG path, Carter's case at its load (contact over 95 % of the grid) and at 0.3
  * of it (contact over half the grid, as within a normal-load history).
  *

@@ -1,11 +1,11 @@
 /* The dimension-independent constrained CG (physics/normal_cg.h) on the 2D line kernel:
  * the same solver the 3D problem uses, given "u = A p" from rs_elastic2d, the gap
  * x^2/(2R) and the cell width, against the existing 2D direct active-set method on
- * Carter's case (verification.md 2: q = 178.9 N/mm, R = 500 mm, G = 82000, nu = 0.28,
+ * Carter's case (docs/verification.md 2: q = 178.9 N/mm, R = 500 mm, G = 82000, nu = 0.28,
  * L = 200 mm), 300 cells over +-1.05a, at the full load and at 0.3 of it.
  * Tolerances as in test_normal_cg: the unique discrete solution, CG stops at 1e-11 p_max
  * with lambda = (A(0) - A(1))/2 below the smallest eigenvalue on zero-sum pressures
- * (0.708 (A(0) - A(1)), measured for the 2D kernel), LU accurate to 4e-11 p_max: the
+ * (0.708 (A(0) - A(1)) for the 2D kernel), LU accurate to 4e-11 p_max: the
  * pressures agree to 1e-10 p_max, the approach to 2e-10; the load to 1e-12. */
 #include "physics/elastic2d.h"
 #include "physics/normal.h"

@@ -1,4 +1,4 @@
-/* Hertz line contact (verification.md §1): the discrete pressure on 100 cells
+/* Hertz line contact (docs/verification.md 1): the discrete pressure on 100 cells
  * gives a and p0 within 1 % and carries exactly the load.
  * a is estimated from the second moment of the pressure, which for the Hertz
  * ellipse is Int x^2 p dx / Int p dx = a^2/4; p0 from the largest pressure. */
@@ -23,8 +23,8 @@ int main(void)
     pmax = fmax(pmax, m.pn[i]);
   }
   const double a_est = 2.0 * sqrt(second / load);
-  /* Example of verification.md: q = 178.9 N/mm, R = 500 mm gives a = 1.000 mm. */
-  ts_check("Hertz a (analytic, verification.md example)", m.hertz_a, 1.000, 5e-4);
+  /* Example of docs/verification.md 1: q = 178.9 N/mm, R = 500 mm gives a = 1.000 mm. */
+  ts_check("Hertz a (analytic, docs/verification.md example)", m.hertz_a, 1.000, 5e-4);
   ts_check("total load (exact by construction)", load, 178.9, 1e-10 * 178.9);
   ts_check("a from the discrete pressure, 1 %", a_est, m.hertz_a, 0.01 * m.hertz_a);
   ts_check("p0 from the discrete pressure, 1 %", pmax, m.hertz_p0, 0.01 * m.hertz_p0);

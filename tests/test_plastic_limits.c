@@ -1,4 +1,4 @@
-/* Limits of the local-plasticity model (verification.md §5, §6), steady rolling
+/* Limits of the local-plasticity model (docs/verification.md 5, 6), steady rolling
  * on the Carter grid with mu = 0.5 (the paper's Figure 7 case):
  *  - tau_c0 -> infinity reproduces the elastic solution of the same grid (to the
  *    Newton tolerance: 1e-9 relative in every traction);

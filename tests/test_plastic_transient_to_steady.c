@@ -1,5 +1,5 @@
 /* A long transient from rest settles on the steady solution of the same grid
- * (verification.md §3) with local plasticity, for each k_rel of the paper's
+ * (docs/verification.md 3) with local plasticity, for each k_rel of the paper's
  * Figure 7 set: |F_x(t) - F_x,steady| / F_x,steady < 1e-4 at the end, and the
  * rolled distance after which it stays there is printed. Grid: 52 cells over
  * +-1.04a (dx = a/25), tau_c0 = 35 N/mm^2, mu = 0.5, xi = -4e-4, L = 200 mm. */

@@ -1,8 +1,8 @@
-/* A small sinusoidal creepage in full adhesion (verification.md §7; issue: varying
+/* A small sinusoidal creepage in full adhesion (docs/verification.md 7; issue: varying
  * creepage): the problem is linear, so F_x is sinusoidal at the same frequency, and
  * as the frequency falls its amplitude and phase approach the quasi-static steady
  * response K xi(t), K = dF_x/dxi of steady rolling. The 2D force builds up slowly
- * (time constant of many contact lengths, model.md §2), so "low" means a period of
+ * (time constant of many contact lengths, docs/model.md §2), so "low" means a period of
  * tens of thousands of contact passages. Three frequencies; at the lowest the amplitude
  * ratio is within 1e-3 of 1 and the phase lag below 1e-3 rad. The fit is the
  * projection on sin/cos over the last two full periods (M equally spaced samples);

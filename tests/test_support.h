@@ -1,4 +1,4 @@
-/* Helpers shared by the C unit tests: a case with the interfaces.md defaults
+/* Helpers shared by the C unit tests: a case with the docs/case-file.md defaults
  * built directly (no YAML), and assertions that print what was expected. */
 #ifndef ROLLSIM_TEST_SUPPORT_H
 #define ROLLSIM_TEST_SUPPORT_H
@@ -11,7 +11,7 @@
 #include "physics/model.h"
 #include "study/run.h"
 
-/* The verification.md Carter case: q = 178.9 N/mm, R = 500 mm, G = 82000, nu = 0.28,
+/* The docs/verification.md Carter case: q = 178.9 N/mm, R = 500 mm, G = 82000, nu = 0.28,
  * mu = 0.3, xi = -2.4e-4, V = 30000 mm/s; elastic, steady. */
 static inline void ts_carter_case(rs_case *c, int cells)
 {
@@ -55,7 +55,7 @@ static inline void ts_fig7_case(rs_case *c, int cells, double k_rel)
   c->tau_c_min = 0.1 * c->tau_c0;
 }
 
-/* A 3D elliptic contact (model.md §10) on Carter's material: Rx = 100 mm, Ry = ratio Rx,
+/* A 3D elliptic contact (docs/model.md §10) on Carter's material: Rx = 100 mm, Ry = ratio Rx,
  * F = 1000 N, V = 30000 mm/s, mu = 0.3, n x n cells over +-1.1 a, +-1.1 b, with creepage,
  * lateral creepage and spin. */
 static inline void ts_ellipse_case(rs_case *c, int n, double ratio, double xi, double eta,

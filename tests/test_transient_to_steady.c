@@ -1,7 +1,7 @@
 /* Transient from rest at constant creepage approaches the steady solution of the
- * same grid (verification.md §3): |F_x(t) - F_x,steady| / |F_x,steady| < 1e-4 after
+ * same grid (docs/verification.md 3): |F_x(t) - F_x,steady| / |F_x,steady| < 1e-4 after
  * enough rolling. In 2D the uniform-displacement term set by the reference length
- * L makes the build-up slow (model.md §2): the rolled distance needed to come
+ * L makes the build-up slow (docs/model.md §2): the rolled distance needed to come
  * within 1e-4 is printed for L = 20, 200 and 2000 mm and must grow with L.
  * Grid: the Carter case, dx = a/25 (52 cells over +-1.04a). */
 #include <stdlib.h>

@@ -36,7 +36,7 @@ us_expect(warn_percent_check --stderr "rolling.creepage reaches \\|xi\\| = 0.3, 
   --stderr "did you mean 0.3 % \\(\\|xi\\| = 0.003\\)" --stdout "^rolling.creepage: 0.3"
   -- ${RS_BIN} check ${RS_CASES}/carter2d.yaml --set rolling.creepage=0.3)
 # Beyond saturation: Carter's contact saturates at mu a/R = 0.3 x 1.00001/500 = 6.00006e-4
-# (verification.md §2); xi = -0.01 is 16.7 times that, below 0.05 (no percentage warning).
+# (docs/verification.md 2); xi = -0.01 is 16.7 times that, below 0.05 (no percentage warning).
 # The run goes on and exits 0 with its file.
 us_expect(warn_saturation_run --stderr "reaches \\|xi\\| = 0.01, 16.7 times the creepage of full sliding mu a/R = 0.000600006"
   --no-stderr "percentage" --out ${RS_US}/saturated.nc --stdout "F_x/\\(mu F_n\\) = 1.000000"

@@ -1,4 +1,4 @@
-"""Post-processing of rollsim netCDF output (interfaces.md, "Output file").
+"""Post-processing of rollsim netCDF output (docs/file-format.md).
 
 Modules, one concept each:
   runfile   open a run or sweep file, read variables, parse the `case` attribute

@@ -15,7 +15,7 @@ from .runfile import RunFile, case_value
 PROG = "rollsim_post"
 
 DESCRIPTION = """\
-Figures and CSV from rollsim netCDF output (interfaces.md, "Output file").
+Figures and CSV from rollsim netCDF output (docs/file-format.md).
 Figures are drawn headless; the format follows the extension of -o (.png, .svg, .pdf).
 Errors (missing file, not netCDF, missing variable, no records) print one line on
 stderr naming the file/variable and exit with status 2."""

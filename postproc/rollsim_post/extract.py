@@ -82,7 +82,7 @@ class TractionProfile:
 
 
 def friction_law(case):
-    """mu(|v_s|) of the case's friction law (interfaces.md "Friction laws") as a function of
+    """mu(|v_s|) of the case's friction law (docs/case-file.md, friction) as a function of
     the slip speed in mm/s, or None for Coulomb."""
     fr = case.get("friction") if isinstance(case, dict) else None
     law = fr.get("law", "coulomb") if isinstance(fr, dict) else "coulomb"
@@ -139,7 +139,7 @@ def friction_profile(run, index):
     def field(name):
         return np.ma.filled(np.ma.asarray(run.variable(name)[index], np.float64), np.nan)
 
-    # the slip field is the relative slip v_s / V (interfaces.md); |v_s| in mm/s
+    # the slip field is the relative slip v_s / V (docs/file-format.md); |v_s| in mm/s
     slip = np.hypot(field("slip_x"), field("slip_y")) if three else np.abs(field("slip"))
     case = run.case()
     return FrictionProfile(

@@ -1,6 +1,6 @@
 """3D (elliptic contact) files: fields over the patch, its outline, and creep curves in F_x, F_y, M_z.
 
-A 3D run file (interfaces.md v2, "3D output") has dimensions time, y, x with coordinate variables
+A 3D run file (docs/file-format.md, "Run files") has dimensions time, y, x with coordinate variables
 x, y (cell centres, mm) and fields over (time, y, x): px, py, pn, slip_x, slip_y, upl_x, upl_y,
 ustar, tauc, regime. A 3D sweep file with output.fields holds them over (swept keys..., y, x).
 Where a record index is taken, a sweep.Point (one sweep point) may be given instead. Nothing here draws; plots.py draws what these functions return.

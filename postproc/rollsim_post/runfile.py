@@ -3,7 +3,7 @@
 A *run file* (rollsim run) has the record dimension `time` and, for fields, `x`. A *sweep file*
 (rollsim sweep) has one dimension per swept key; its coordinate variable is named after the dotted
 key with dots replaced by underscores (plasticity.k_rel -> plasticity_k_rel) and carries the dotted
-key in the attribute `key`. Both carry the global attributes of interfaces.md (title, case,
+key in the attribute `key`. Both carry the global attributes of docs/file-format.md (title, case,
 status, ...).
 """
 import os
@@ -13,10 +13,10 @@ import numpy as np
 
 from . import PostError
 
-# interfaces.md, "Case file": friction.mu defaults to 0.5 when the case does not give it.
+# docs/case-file.md: friction.mu defaults to 0.5 when the case does not give it.
 DEFAULT_MU = 0.5
 
-# Fallback when the regime variable lacks flag_values/flag_meanings (interfaces.md, "Output file").
+# Fallback when the regime variable lacks flag_values/flag_meanings (docs/file-format.md).
 DEFAULT_REGIME_FLAGS = ([0, 1, 2, 3], ["exterior", "adhesion", "slip", "plastic"])
 
 
@@ -146,7 +146,7 @@ class RunFile:
 
     def is_3d(self):
         """A 3D (elliptic contact) file: global attribute dimension = 3, or a `y` dimension,
-        or the 3D-only variables Fy/py (interfaces.md v2, "3D output"). 2D files carry
+        or the 3D-only variables Fy/py (docs/file-format.md, "Run files"). 2D files carry
         dimension = 2 or no such attribute."""
         dim = self.attr("dimension")
         if dim is not None:

@@ -3,7 +3,7 @@
 A sweep file has one dimension per swept key (the dimensions of `traction_coefficient`, in file
 order, the last varying fastest); with output.fields it also holds the profiles px, pn, tauc, ...
 over (swept keys..., x). A *point* is one combination of the swept values; its values of keys that
-are not swept come from the file's `case` attribute (the YAML as run), else interfaces.md defaults.
+are not swept come from the file's `case` attribute (the YAML as run), else the defaults of docs/case-file.md.
 """
 import itertools
 import math
@@ -14,7 +14,7 @@ import numpy as np
 from . import PostError
 from .runfile import case_value
 
-# interfaces.md "Case file": defaults of the keys figures need when a case does not give them.
+# docs/case-file.md: defaults of the keys figures need when a case does not give them.
 CASE_DEFAULTS = {
     "friction.mu": 0.5,
     "contact.normal_load": 178.9,
@@ -114,7 +114,7 @@ def has_plasticity(run):
 
 
 def hertz_peak_pressure(run, point):
-    """p0 = 2q/(pi a), a = sqrt(4 q R (1 - nu)/(pi G)) (verification.md §1) at a point."""
+    """p0 = 2q/(pi a), a = sqrt(4 q R (1 - nu)/(pi G)) (docs/verification.md 1) at a point."""
     q = value_at(run, point, "contact.normal_load")
     r = value_at(run, point, "contact.radius")
     g = value_at(run, point, "material.shear_modulus")

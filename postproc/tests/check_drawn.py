@@ -187,7 +187,7 @@ def rig(path, csv_path):
 
 
 def law_of(case_text):
-    """mu(|v_s|) of the case's exponential, linear or rational law (interfaces.md)."""
+    """mu(|v_s|) of the case's exponential, linear or rational law (docs/case-file.md)."""
     import yaml
     fr = yaml.safe_load(case_text)["friction"]
     mk, ex, vh = fr["mu_kinetic"], fr["mu_excess"], fr["half_velocity"]

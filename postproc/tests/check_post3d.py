@@ -386,7 +386,7 @@ def check_real(path, out, rollsim=None, case=None, *sets):
     check(np.array_equal(drawn, pn) and abs(load - fn) <= 1e-9 * fn,
           f"p_n drawn == the file's; its sum x dx dy = {load:.6g} N == Fn = {fn:.6g} N")
     if rollsim:
-        # verification.md §9: the discrete pressure converges to Hertz's (1 % on 60 x 60); on
+        # docs/verification.md 9: the discrete pressure converges to Hertz's (1 % on 60 x 60); on
         # this coarser grid the peak cell sits half a cell off the centre (an even number of
         # cells), which costs ((dx/a)^2 + (dy/b)^2)/8, 0.3 % at a/9, b/9: 1 % holds with room.
         pmax = float(np.nanmax(drawn))

@@ -3,7 +3,7 @@
 
 Usage: make_fixtures.py OUTDIR
 
-  sweep_krel_creep.nc   a sweep file as interfaces.md describes it ("one dimension per swept key,
+  sweep_krel_creep.nc   a sweep file as docs/file-format.md describes it ("one dimension per swept key,
                         coordinate variables holding the values, scalar results over those
                         dimensions"): dimensions plasticity_k_rel (4) x rolling_creepage (5), the
                         coordinates carrying the dotted key in the attribute `key`; creepage stored

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Synthetic 3D netCDF files with analytic content (interfaces.md v2, "3D output").
+"""Synthetic 3D netCDF files with analytic content (docs/file-format.md, "Run files").
 
 Usage: make_fixtures3d.py OUTDIR
 

@@ -15,18 +15,16 @@
 #define RS_HEAP_HUGE 1
 #endif
 
-/* Why: a first touch of a 4 KiB page cost about 10 us on the 2-core VM of bench/RESULTS.md
- * (20 MiB: 52 ms; in 2 MiB pages 1.2 ms), and a 3D steady chain touches tens of MiB while
- * it starts (its model, the coarse grids', the near field and its lines): 5,000 of the
- * 6,100 page faults of the 30-point plastic creep curve of bench/cases at 44 x 44 cells came
- * in its first point, 180,000 in a 256 x 256 plastic solve (a fifth of its time).
+/* Why: a 3D steady chain touches tens of MiB while it starts (its model, the coarse grids',
+ * the near field and its lines), and the first touch of each 4 KiB page is costly; in 2 MiB
+ * pages it is some forty times cheaper per byte.
  * How: one arena for every thread (the second thread of a sweep line in two parts otherwise
  * takes memory of its own), the heap grown at once by RESERVE_MIB of address space advised
  * as huge pages, and never given back at its top (it would grow again in small pages):
  * touched memory then arrives 2 MiB at a time, untouched address space costs nothing.
  * The price: every block is carved from that heap, where the coarse grids' blocks, once
  * freed, are not big enough for the fine grid's, and a 2 MiB page counts whole in the
- * resident memory: peak memory about a third higher on fine grids (bench/RESULTS.md).
+ * resident memory: peak memory is higher on fine grids.
  * Memory beyond the reserve keeps small pages. */
 enum { RESERVE_MIB = 1024, DEFAULT_TOP_PAD = 128 * 1024 }; /* mallopt takes an int */
 

@@ -1,4 +1,4 @@
-/* rollsim command line (interfaces.md "Command line"; each command's help: cli/help.c):
+/* rollsim command line (the commands and options: README; each command's help: cli/help.c):
  *   rollsim run CASE.yaml [-o OUT.nc] [--restart OLD.nc [--append]] [--set KEY=VALUE]... [--quiet]
  *   rollsim check CASE.yaml [--set KEY=VALUE]...
  *   rollsim sweep CASE.yaml [-o OUT.nc] [--set ...]
@@ -251,7 +251,7 @@ static void print_summary(const rs_case *c, const cli_args *a, const rs_run_resu
   else
     printf("  Newton iterations %ld, linear solves %ld, Jacobian evaluations %ld\n",
            st->nonlin_iters, st->lin_solves, st->jac_evals);
-  /* Rolling transients: the cost per cell passage (model.md §5: one passage is one cell
+  /* Rolling transients: the cost per cell passage (docs/model.md §5: one passage is one cell
    * length rolled; a fixed-shift scheme takes one step per passage). */
   if (c->mode == RS_MODE_TRANSIENT && !c->rig.on && res->rolled > 0.0 && res->dx > 0.0)
     printf("  rolled %.6g mm = %.6g cell passages: %.3g steps per passage\n", res->rolled,

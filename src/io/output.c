@@ -1,4 +1,4 @@
-/* netCDF output (io/output.h, interfaces.md "Output file (netCDF, CF-1.10)").
+/* netCDF output (io/output.h, docs/file-format.md "Run files").
  *
  * Crash safety: the file must stay readable, holding every record written so far, if the
  * process is killed (SIGKILL) at any moment. Nothing here can make a kill wait, so the file
@@ -51,7 +51,7 @@
 /* Free header space reserved beyond the case text (nc__enddef h_minfree). */
 #define RS_HEADER_RESERVE ((size_t)4096)
 
-/* (time, x) fields: interfaces.md table (types in io/output_internal.h). */
+/* (time, x) fields: the table of docs/file-format.md (types in io/output_internal.h). */
 const rs_field_var rs_field_vars[RS_N_FIELDS] = {
     {RS_FIELD_PX, "px", "N/mm2", "tangential traction on body 1", offsetof(rs_record, px)},
     {RS_FIELD_PN, "pn", "N/mm2", "normal pressure", offsetof(rs_record, pn)},
@@ -67,7 +67,7 @@ const rs_field_var rs_field_vars[RS_N_FIELDS] = {
      offsetof(rs_record, mu)},
 };
 
-/* Scalars per output time (model.md §7). Units depend on the dimension: per unit width
+/* Scalars per output time (docs/model.md §7). Units depend on the dimension: per unit width
  * in 2D. traction_coefficient is computed here (Fx/Fn). */
 const rs_scalar_var rs_scalar_vars[RS_N_SCALARS] = {
     {"Fx", NC_DOUBLE, offsetof(rs_record, Fx), "N/mm", "N", "total tangential force on body 1"},

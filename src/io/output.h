@@ -1,4 +1,4 @@
-/* netCDF output (interfaces.md "Output file"): CF-1.10, dimension time (unlimited)
+/* netCDF output (docs/file-format.md "Run files"): CF-1.10, dimension time (unlimited)
  * and x, one record per output time, synced to disk after every record so that the
  * file stays readable with every record written so far if the process dies.
  * The output module knows nothing of the solver: it writes what it is given. */
@@ -40,7 +40,7 @@ typedef struct rs_output_spec {
   const rs_output_rig *rig; /* twin-disc summaries, or NULL */
 } rs_output_spec;
 
-/* One record. Scalars per model.md §7; field arrays have n = nx (3D: nx ny, y slowest)
+/* One record. Scalars per docs/model.md §7; field arrays have n = nx (3D: nx ny, y slowest)
  * entries (NULL allowed for fields not in the mask). In 3D px, slip and upl hold both
  * components, the x one in the first n entries and the y one in the next n; they are
  * written as px/py, slip_x/slip_y and upl_x/upl_y. */

@@ -11,7 +11,7 @@
 /* I/O block size passed to netCDF; its buffer holds at most two blocks (output.c). */
 #define RS_IO_BLOCK ((size_t)4096)
 
-/* (time, x) fields of interfaces.md, in RS_FIELD_* bit order; regime is NC_BYTE. */
+/* (time, x) fields of docs/file-format.md, in RS_FIELD_* bit order; regime is NC_BYTE. */
 typedef struct rs_field_var {
   unsigned bit; /* RS_FIELD_* */
   const char *name;
@@ -23,7 +23,7 @@ typedef struct rs_field_var {
 #define RS_REGIME_FIELD 6
 extern const rs_field_var rs_field_vars[RS_N_FIELDS];
 
-/* Scalars per record (model.md §7). */
+/* Scalars per record (docs/model.md §7). */
 typedef struct rs_scalar_var {
   const char *name;
   nc_type type;  /* NC_DOUBLE or NC_INT */

@@ -1,4 +1,4 @@
-/* Sweep files (interfaces.md "Sweeps"): one dimension per swept key with a
+/* Sweep files (docs/file-format.md "Sweep files"): one dimension per swept key with a
  * coordinate variable holding its values (name: the dotted key with '_' for '.',
  * attribute `key` = the dotted key, `units` = the key's unit from the key table),
  * the scalar results over those dimensions and, with output.fields, the profiles of

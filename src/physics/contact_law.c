@@ -1,5 +1,5 @@
 /* The contact law of one cell (physics/contact_law.h): the interval projections of
- * model.md §4 for one tangential component, the disk projections of §10 for two. */
+ * docs/model.md §4 for one tangential component, the disk projections of §10 for two. */
 #include "physics/contact_law.h"
 
 #include <math.h>
@@ -34,7 +34,7 @@ static void put(rs_law_out *o, int row, int var, double v)
   o->present[row][var] = 1;
 }
 
-/* The disk projections of model.md §10 for two components: proj(z) = z min(1, b/|z|),
+/* The disk projections of docs/model.md §10 for two components: proj(z) = z min(1, b/|z|),
  * whose generalized Jacobian outside the disk is (b/|z|)(I - z^ z^T). */
 static void disk_law(const rs_plasticity *pl, const rs_law_in *in, int jac, rs_law_out *out);
 
@@ -119,7 +119,7 @@ void rs_contact_law(const rs_plasticity *pl, const rs_law_in *in, int jac, rs_la
   memset(out->present, 0, sizeof out->present); /* jac is set where present only */
   /* Friction row: 1 on p at the bound or outside the contact, r on v_s otherwise. At a
    * velocity-dependent bound, R_f = p - s g(eta) with eta = -s v_s also has
-   * d R_f / d v_s = s^2 g'(eta) = g'(eta) (model.md §11: dense through Du_el/Dt). */
+   * d R_f / d v_s = s^2 g'(eta) = g'(eta) (docs/model.md §11: dense through Du_el/Dt). */
   if (br & (RS_BRANCH_EXTERIOR | RS_BRANCH_SLIP))
     put(out, Rf, P, 1.0);
   else
@@ -139,7 +139,7 @@ void rs_contact_law(const rs_plasticity *pl, const rs_law_in *in, int jac, rs_la
     put(out, Rpl, FL, (br & RS_BRANCH_EXTERIOR) ? r : -r);
   }
   /* Hardening row: d|m|/dm is the sign of m, or the direction of p where m = 0
-   * (model.md §9: not 0, which would make cells that slip and harden singular). */
+   * (docs/model.md §9: not 0, which would make cells that slip and harden singular). */
   const double sig = flow != 0.0 ? sign_of(flow) : sign_of(p);
   put(out, Rs, FL, -r * sig);
   put(out, Rs, DUS, r);
@@ -157,8 +157,7 @@ void rs_contact_law(const rs_plasticity *pl, const rs_law_in *in, int jac, rs_la
 
 /* |(a, b)|. Not hypot(): the components are tractions, slip velocities and flows of
  * moderate size (no overflow or underflow of their squares), and glibc's hypot, which
- * guards against both, was 3-4 % of the 3D plastic creep curve's time (perf, 44 x 44
- * cells). */
+ * guards against both, is slow enough to show in a 3D plastic run's profile. */
 static inline double norm2(double a, double b) { return sqrt(a * a + b * b); }
 
 static void disk_law(const rs_plasticity *pl, const rs_law_in *in, int jac, rs_law_out *out)
@@ -262,7 +261,7 @@ static void disk_law(const rs_plasticity *pl, const rs_law_in *in, int jac, rs_l
       put(out, Rf, rs_law_var_p(c), 1.0);
     } else if (br & RS_BRANCH_SLIP) {
       /* R_f = p - g z/|z|: dR/dp = I - (g/|z|)(I - z^ z^T), dR/dv_s = r (g/|z|)(I - z^ z^T);
-       * with g = g(eta) also - s g'(eta) d eta/d(p, v_s) (model.md §11: dense through
+       * with g = g(eta) also - s g'(eta) d eta/d(p, v_s) (docs/model.md §11: dense through
        * Du_el/Dt): + s g' w^T/|z| on p and + s g' (s - r w/|z|)^T on v_s */
       for (int b = 0; b < NC; b++) {
         const double t = (g / zn) * ((b == c ? 1.0 : 0.0) - z[c] * z[b] / (zn * zn));
@@ -294,7 +293,7 @@ static void disk_law(const rs_plasticity *pl, const rs_law_in *in, int jac, rs_l
     }
   }
   /* hardening row: d(m.p^)/dm = p^, d(m.p^)/dp = (m - (m.p^) p^)^T/|p|; where p = 0,
-   * d|m|/dm = m^ (model.md §9) */
+   * d|m|/dm = m^ (docs/model.md §9) */
   const int Rs = rs_law_row_star(NC);
   for (int c = 0; c < NC; c++) {
     const double dir = along_p ? p[c] / pnorm : mnorm > 0.0 ? m[c] / mnorm : (c == 0 ? 1.0 : 0.0);

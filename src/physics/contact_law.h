@@ -1,4 +1,4 @@
-/* The contact law of one cell (model.md §4, paper eqs. 7-10): the semismooth residual
+/* The contact law of one cell (docs/model.md §4, paper eqs. 7-10): the semismooth residual
  * of friction, plasticity and hardening and its local generalized Jacobian, from the
  * cell's local quantities. The model (physics/model.h) computes the local quantities
  * from the unknowns (kinematics) and chains the local Jacobian with their derivatives;
@@ -28,8 +28,7 @@ typedef struct rs_plasticity {
  * enters at >= 0, so a solution has u* >= 0 everywhere, but a Newton iterate can have
  * u* < 0 (the linearised |Du_pl/Dt| with the wrong sign). Without the clamp such an
  * iterate lowers tau_c towards the floor, every slipping cell then "yields", and the
- * active set jumps wildly (measured: Carter k_rel = 0.1, 50 cells, u* down to -1e-2 mm
- * and |F| ~ 1e4 N/mm^2 over 25 iterations without convergence). */
+ * active set jumps wildly (Newton then fails to converge on plastic Carter cases). */
 double rs_yield_limit(const rs_plasticity *pl, double ustar);
 /* d tau_c / d u*: k_tau above the floor and for u* >= 0, 0 otherwise. */
 double rs_yield_slope(const rs_plasticity *pl, double ustar);
@@ -71,8 +70,8 @@ typedef struct rs_law_in {
   /* Velocity-dependent friction (NULL or Coulomb: g above is the bound). Otherwise the
    * bound is g = mu(eta) p_n with eta the slip speed along the bound's direction
    * (eta = -s.v_s, s the sign of p - r v_s, in 3D its unit direction): |v_s| at a
-   * solution, but smooth where slip starts (measured: |v_s| there made Newton cycle
-   * between the branches). */
+   * solution, but smooth where slip starts (with |v_s| Newton cycles between the branches
+   * there). */
   const rs_friction *friction;
   double pn; /* pressure, N/mm^2 */
   /* Friction memory (friction has memory; 1 or 2 components): the state mu of the cell and

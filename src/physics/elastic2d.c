@@ -1,4 +1,4 @@
-/* 2D plane-strain influence coefficients, piecewise-constant tractions (model.md §2;
+/* 2D plane-strain influence coefficients, piecewise-constant tractions (docs/model.md §2;
  * Johnson 1985, ch. 2; Kalker 1990, ch. 1). */
 #include "physics/elastic2d.h"
 

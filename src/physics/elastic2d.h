@@ -1,5 +1,5 @@
 /* Elastic influence coefficients of the 2D (plane-strain) half-plane for
- * quasi-identical bodies, piecewise-constant tractions on equal cells (model.md §2).
+ * quasi-identical bodies, piecewise-constant tractions on equal cells (docs/model.md §2).
  *
  *   u_x(x) = 1/(pi G) Int [ 2(1-nu) ln(L/|x-s|) + 2 nu ] p_x(s) ds
  *   u_z(x) = 1/(pi G) Int   2(1-nu) ln(L/|x-s|)        p_n(s) ds
@@ -33,11 +33,11 @@ int rs_elastic2d_work_create(rs_elastic2d_work *w, const rs_elastic2d *el);
 void rs_elastic2d_work_free(rs_elastic2d_work *w);
 
 /* Grids from this many cells apply the influence coefficients by FFT convolution
- * (FFTW) instead of the direct O(n^2) sum (the crossover measured in bench/). */
+ * (FFTW) instead of the direct O(n^2) sum (the crossover, bench/normal_timing.c). */
 #define RS_ELASTIC_FFT_FROM 256
 
 /* Coefficients for offsets -n..n (the offset n serves the padded point x_n, one
- * cell beyond the leading edge, model.md §5). */
+ * cell beyond the leading edge, docs/model.md §5). */
 int rs_elastic2d_create(rs_elastic2d *el, int n, double dx, double shear_modulus,
                         double poisson_ratio, double reference_length, rs_msg *msg);
 void rs_elastic2d_free(rs_elastic2d *el);

@@ -1,5 +1,5 @@
 /* 3D influence coefficients of piecewise-constant tractions on rectangles, and the
- * products by direct sums (model.md §10; Johnson 1985 §3.2; Kalker 1990 §1.6). The operator
+ * products by direct sums (docs/model.md §10; Johnson 1985 §3.2; Kalker 1990 §1.6). The operator
  * (its tables and FFT products) is set up in elastic3d_fft.c. */
 #include "physics/elastic3d_internal.h"
 

@@ -1,5 +1,5 @@
 /* Elastic influence coefficients of the 3D half-space for quasi-identical bodies,
- * piecewise-constant tractions on equal rectangles dx x dy (model.md §2, §10).
+ * piecewise-constant tractions on equal rectangles dx x dy (docs/model.md §2, §10).
  *
  * Point load on body 1 (minus it on body 2), displacement difference at (x, y) from
  * the load (Boussinesq-Cerruti, Johnson 1985 §3.2, doubled for two bodies):
@@ -17,7 +17,7 @@
  * Grid: nx x ny cells, index I = iy nx + ix (x fastest). The coefficient A_ij(kx, ky)
  * is the displacement u_i at the centre of a cell offset by (kx dx, ky dy) from a cell
  * carrying unit traction p_j. Offsets kx in [-(nx-1), nx] (kx = nx serves the padded
- * column one cell beyond the leading edge, model.md §5), ky in [-(ny-1), ny-1].
+ * column one cell beyond the leading edge, docs/model.md §5), ky in [-(ny-1), ny-1].
  *
  * Memory: the coefficients 4 (nx+1) ny doubles (stored for kx, ky >= 0, the rest by
  * symmetry); the transformed kernels 4 my (mx/2+1) complex doubles on the padded
@@ -25,10 +25,8 @@
  * mx my doubles + 2 my (mx/2+1) complex doubles. For nx = ny = 128: mx = my = 256,
  * 0.5 MB of coefficients, 2.0 MB of kernels, 1.5 MB per work struct.
  * Cost of one product by FFT: tangential 2 forward + 2 backward real 2D transforms of
- * mx x my and 4 complex multiply-adds per frequency; normal 1 + 1 transforms. Measured
- * (bench/normal3d_timing.c, 2 shared cores, FFTW_ESTIMATE plans), tangential / normal:
- * 32^2 cells 0.034 / 0.014 ms, 64^2 0.15 / 0.063 ms, 128^2 0.65 / 0.28 ms; creation
- * (tables + plans + kernels) 1.3, 2.9, 12 ms.
+ * mx x my and 4 complex multiply-adds per frequency; normal 1 + 1 transforms
+ * (bench/normal3d_timing.c times them).
  * The direct sums cost (nout ny) (nx ny) multiply-adds per component pair. */
 #ifndef ROLLSIM_ELASTIC3D_H
 #define ROLLSIM_ELASTIC3D_H
@@ -73,8 +71,8 @@ void rs_elastic3d_work_free(rs_elastic3d_work *work);
 /* Coefficients for a field point offset (sx, sy) from the centre of a loaded dx x dy
  * rectangle: coef[0] = A_xx, coef[1] = A_xy = A_yx, coef[2] = A_yy, coef[3] = A_zz (the
  * closed form above). The corner sums are taken in long double against their
- * cancellation for far cells, which costs ~(r/d)^2 eps_long: measured against quadrature
- * below 1e-13 of A_zz up to 400 cells away (test_elastic3d); 1.3e-12 at 3000 cells. */
+ * cancellation for far cells, which costs ~(r/d)^2 eps_long: within 1e-13 of A_zz up to 400
+ * cells away against quadrature (test_elastic3d). */
 void rs_elastic3d_rect(double dx, double dy, double sx, double sy, double shear_modulus,
                        double poisson_ratio, double coef[4]);
 

@@ -1,5 +1,5 @@
-/* The 3D elastic operator: coefficient tables and products by FFT convolution (model.md §10). The
- * linear convolution u(I) = sum_J A(I - J) p(J) on the grid equals a circular one on the padded
+/* The 3D elastic operator: coefficient tables and products by FFT convolution (docs/model.md §10).
+ * The linear convolution u(I) = sum_J A(I - J) p(J) on the grid equals a circular one on the padded
  * grid mx x my (mx >= 2 nx, my >= 2 ny - 1): the kernel's offsets kx in [-(nx-1), nx] and ky in
  * [-(ny-1), ny-1] wrap to distinct indices, and p is zero beyond the grid. Kernels are transformed
  * once at creation (scaled by 1/(mx my), FFTW's transforms are unnormalised); the products use
@@ -40,14 +40,10 @@ int rs_elastic3d_fft_size(int m)
 
 /* The padded grid's column count my >= m: the transforms along y are complex ones of
  * length my over every column (c2c, strided), and FFTW's estimated plans for those are slow
- * for some 5-smooth lengths; a power of two up to 1.5 times longer is then faster. Measured
- * (FFTW 3.3.10 estimated plans, 2-core Intel Xeon VM, one forward and one backward product
- * transform of n x n cells, padded rows mx = 5-smooth >= 2n): n = 22: 45 x 45 13.2 us, 45 x
- * 64 8.5 us; n = 44: 90 x 90 48.5 us, 90 x 128 23.2 us; n = 50: 100 x 100 47.0, 100 x 128
- * 27.8; n = 60: 120 x 120 63.9, 120 x 128 35.7; n = 88: 180 x 180 204, 180 x 256 146; n = 80
- * kept (160 x 160 108 us, 160 x 256 129: 1.6 times longer); n = 16, 32, 64, 128 are powers
- * of two already. The products are exact linear convolutions for any my >= m (the
- * padding's values are never read), so the choice changes only their roundoff. */
+ * for some 5-smooth lengths; a power of two up to 1.5 times longer is then faster (at 44 x 44
+ * cells the product transforms take half the time with 128 columns instead of 90; beyond 1.5
+ * times the length the power of two loses). The products are exact linear convolutions for any my
+ * >= m (the padding's values are never read), so the choice changes only their roundoff. */
 static int column_size(int m)
 {
   const int smooth = rs_elastic3d_fft_size(m);

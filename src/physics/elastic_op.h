@@ -1,4 +1,4 @@
-/* The elastic operator of the contact grid (model.md §2): tangential displacement
+/* The elastic operator of the contact grid (docs/model.md §2): tangential displacement
  * differences u = A p from the tractions, and the normal ones u_z = A_zz p_n, for the
  * kernel of the grid's dimension. Created from a grid; products direct or by FFT
  * (chosen by the kernel), their scratch in an rs_elastic_work so that a product never
@@ -27,7 +27,7 @@ typedef struct rs_elastic_work {
 } rs_elastic_work;
 
 /* The grid's ny decides: 1 with unit width (y_lo = y_hi = 0) the 2D line kernel,
- * otherwise 3D. 2D: reference_length is L of the line kernel (model.md §2). */
+ * otherwise 3D. 2D: reference_length is L of the line kernel (docs/model.md §2). */
 int rs_elastic_op_create(rs_elastic_op *op, const rs_grid *g, double shear_modulus,
                          double poisson_ratio, double reference_length, rs_msg *msg);
 void rs_elastic_op_free(rs_elastic_op *op);
@@ -45,7 +45,7 @@ static inline double rs_elastic_op_coef(const rs_elastic_op *op, int a, int b, i
 
 /* u = A p for the tangential tractions p (ncomp blocks of n cells). With padded, u has
  * ncomp blocks of (nx + 1) ny values: the grid and one column beyond the leading edge
- * (model.md §5: u_el upstream of the first cell); else ncomp blocks of n. */
+ * (docs/model.md §5: u_el upstream of the first cell); else ncomp blocks of n. */
 void rs_elastic_op_tang(const rs_elastic_op *op, rs_elastic_work *w, const double *p, double *u,
                         int padded);
 

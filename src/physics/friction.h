@@ -1,4 +1,4 @@
-/* Friction laws (model.md §11, interfaces.md "Friction laws"): the coefficient of
+/* Friction laws (docs/model.md §11, docs/case-file.md friction): the coefficient of
  * friction as a function of the slip speed |v_s| (mm/s) and its derivative.
  *   coulomb:     mu
  *   linear:      mu_k + sum_i dmu_i max(0, 1 - |v_s| / (2 v_i))
@@ -29,7 +29,7 @@ typedef struct rs_friction {
   double mu_excess[RS_FRICTION_MAX_TERMS];     /* added to mu_kinetic at rest */
   double half_velocity[RS_FRICTION_MAX_TERMS]; /* mm/s */
   double mu_static, polach_a, polach_b;        /* polach; B in s/mm */
-  /* Friction memory (model.md §11, CONTACT's M-law): mu is a state per cell with
+  /* Friction memory (docs/model.md §11, CONTACT's M-law): mu is a state per cell with
    * d_c Dmu/Dt = -max(|v_s|, s0) (mu - mu_law(|v_s|)); d_c = 0: no memory. */
   double memory_distance; /* d_c, mm */
   double memory_velocity; /* s0, mm/s */

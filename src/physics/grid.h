@@ -1,4 +1,4 @@
-/* The contact grid (model.md §2, §5): nx x ny equal cells over the potential contact
+/* The contact grid (docs/model.md §2, §5): nx x ny equal cells over the potential contact
  * area, cell centres x0 + (i + 1/2) dx, cell index I = iy nx + ix (x fastest). 2D line
  * contact is ny = 1 with unit width (forces per mm of width). Rolling is along +x:
  * material enters at the high-x edge, so the upstream (inflow-side) neighbour of a cell

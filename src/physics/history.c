@@ -1,4 +1,4 @@
-/* Time histories of inputs (physics/history.h, interfaces.md "Histories").
+/* Time histories of inputs (physics/history.h, docs/case-file.md, histories).
  * Piecewise-linear forms (ramp, steps, table) are evaluated exactly at their
  * breakpoints; the sine is mean + amplitude*sin(2 pi f t + phase). */
 #include "physics/history.h"

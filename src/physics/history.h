@@ -1,4 +1,4 @@
-/* Time histories of inputs (interfaces.md "Histories"): constant, ramp, steps,
+/* Time histories of inputs (docs/case-file.md, histories): constant, ramp, steps,
  * sine, or a CSV table (time,value; linear interpolation). */
 #ifndef ROLLSIM_HISTORY_H
 #define ROLLSIM_HISTORY_H

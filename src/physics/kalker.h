@@ -1,6 +1,6 @@
 /* Kalker's linear theory of rolling contact (full adhesion, vanishing creepages):
  * creepage and spin coefficients of an elliptic contact, by interpolation in Kalker's
- * published table (verification.md target 10).
+ * published table (docs/verification.md 10).
  *
  * Source of the numbers. Kalker 1967 (thesis, Delft) computed them; they are tabulated in
  * Kalker 1990, "Three-dimensional elastic bodies in rolling contact", Kluwer, Appendix E,
@@ -29,10 +29,10 @@
  * with F the tangential force exerted on body 1 and M_z its moment about the contact
  * centre. All C_ij > 0.
  *
- * Mapping to rollsim (model.md §1, §10). rollsim's conventions are Kalker's: the rigid
+ * Mapping to rollsim (docs/model.md §1, §10). rollsim's conventions are Kalker's: the rigid
  * slip w = (xi - phi y, eta + phi x), p the traction on body 1, F = sum p dx dy,
  * M_z = sum (x p_y - y p_x) dx dy, rolling along +x with material entering at the
- * leading edge x = +a. So the laws apply unchanged: xi < 0 gives F_x > 0 (model.md §1).
+ * leading edge x = +a. So the laws apply unchanged: xi < 0 gives F_x > 0 (docs/model.md §1).
  * The signs of the coupling terms depend on the rolling direction; with rollsim's they
  * are the ones above: in full adhesion the steady slip vanishes, du/dx = w (v_s = V w -
  * V du/dx), and with the local law p ~ u of Kalker's simplified theory (enough for signs)

@@ -2,7 +2,7 @@
  * residual F: row k belongs to unknown k). Per cell I of n cells: the tangential
  * traction p (ncomp components: 1 in 2D, 2 in 3D), the plastic displacement difference
  * u_pl (ncomp), the accumulated plastic deformation u*, with friction memory the
- * coefficient of friction mu (model.md §11); then the extra unknowns (force-controlled
+ * coefficient of friction mu (docs/model.md §11); then the extra unknowns (force-controlled
  * creepages). Blocks by quantity and component, cells inside a block:
  *   y = [ p_0 | (p_1) | upl_0 | (upl_1) | ustar | (mu) | extras ]
  * (2D: [ p | upl | ustar ( | mu ) ( | xi ) ], neq = 3 n (+ n) (+ 1)). Without memory the

@@ -1,4 +1,4 @@
-/* The semi-discrete rolling-contact DAE with local plasticity (model.md §4-5): creation
+/* The semi-discrete rolling-contact DAE with local plasticity (docs/model.md §4-5): creation
  * from plain parameters, the inputs at a time, the normal pressure, the kinematics and
  * the residual. Per contact cell I, with D f/Dt = f' - V (f_up - f_I)/dx (first-order
  * upwind, material enters at the high-x edge) and v_s = V xi + v_shift + Du_el/Dt +
@@ -384,7 +384,7 @@ void rs_model_kinematics_scaled(const rs_model *m, rs_work *w, const rs_inputs *
       for (int c = 0; c < nc; c++) {
         const double *upl = y + rs_at_upl(L, c, 0);
         const double *u = w->uel + (size_t)c * px * ny + iy * px;
-        /* rigid slip V w = V (xi - phi y, eta + phi x), model.md §1 */
+        /* rigid slip V w = V (xi - phi y, eta + phi x), docs/model.md §1 */
         const double vrigid =
             c == 0 ? V * (xi - phi * g->y[iy]) + shift : V * (eta + phi * g->x[ix]);
         const double upl_next = up >= 0 ? upl[up] : in_row[c];
@@ -429,9 +429,7 @@ int rs_model_residual(const rs_model *m, rs_work *w, const rs_inputs *in, const 
 /* What J v and the assembly need beyond the local laws: each row's dense flag and pivot,
  * and the local Jacobians' present entries in a compact list (rs_work). The products then
  * skip the entries that are not present, exact zeros (rs_contact_law): the same sums in
- * the same order, bit for bit the same results. Measured (perf, 2-core Intel VM): the
- * products' own share of the 3D plastic start-up of bench/cases at 44 x 44 cells (rtol
- * 3e-3) 12.1 % -> 6.3 %, of the 30-point plastic creep curve 8.6 % -> 4.4 %.
+ * the same order, bit for bit the same results, in about half the time.
  * rs_model_evaluate takes each cell's right after its law (rs_model_cell_flags), while the
  * law's output is still in the first-level cache; a pass over all the cells' outputs after
  * the laws read them back from memory on fine grids (at 128 x 128 cells 10 MB). */
@@ -495,22 +493,12 @@ int rs_model_evaluate(const rs_model *m, rs_work *w, const rs_inputs *in, const 
   /* Steady Newton's evaluations (in->newton) of a 3D hardening model (k_tau > 0, Coulomb
    * friction, no friction memory) weigh the slip velocity in the friction projections with
    * 0.7 r; other evaluations (the regimes reported of transient states, which depend on the
-   * weight where cells are not at a steady state) keep r. As below, any r gives the same
-   * zeros; with hardening, cells harden up to the friction bound and then slip, a front that
-   * the predictor of each continuation point misses over 150-200 cells at 128 x 128 (their
-   * friction rows r v_s near the largest bound), and the smaller weight lets Newton move
-   * them in fewer iterations. Measured (Newton / GMRES iterations, the yield projections at
-   * 0.2 r either way): the 30-point plastic creep curve of bench/cases (k_rel 0.3) 174 / 1049 ->
-   * 171 / 1008 at 44 x 44 cells, 262 / 1679 -> 232 / 1526 at 88 x 88, 307 / 2046 -> 295 / 2000 at
-   * 128 x 128 (two threads: 193 / 1113 -> 189 / 1076 at 44 x 44, 338 / 2237 -> 327 / 2170 at 128 x
-   * 128); its single solve from rest 53 / 294 -> 36 / 198 at 128 x 128, 86 / 602 -> 65 / 464 at 256
-   * x 256; tau_c0 200 N/mm^2 with k_rel 0.1 216 / 1276 -> 210 / 1208 at 44 x 44 and 379 / 2265 ->
-   * 232 / 1667 at 88 x 88, tau_c0 100 with k_rel 0.6 unchanged. The same results to 3e-11 of the
-   * forces. 0.6 / 0.8 r: 293 / 299 Newton iterations at 128 x 128 (0.7 r with the yield weight
-   * scaled too: 294). Not used elsewhere: perfect plasticity (k_rel 0) 239 -> 246 Newton iterations
-   * at 44 x 44, softening (several steady states) landed on another one (F_x 8e-5 apart), the
-   * elastic curve 217 -> 243 at 128 x 128. The steady check (rs_model_check_steady) measures rates
-   * through the same weight. */
+   * weight where cells are not at a steady state) keep r. Any r gives the same zeros; with
+   * hardening, cells harden up to the friction bound and then slip, a front that the
+   * continuation predictor misses by many cells, and the smaller weight lets Newton move them
+   * in fewer iterations. Perfect plasticity, softening and elastic models keep r (no gain, or
+   * another of several steady states). The steady check (rs_model_check_steady) measures
+   * rates through the same weight. */
   const int hardening = in->newton && cj == 0.0 && m->el.dim == 3 && m->par.plasticity.on &&
                         m->par.plasticity.k_tau > 0.0 && !rs_friction_varies(&m->par.friction) &&
                         !L->memory;
@@ -518,13 +506,9 @@ int rs_model_evaluate(const rs_model *m, rs_work *w, const rs_inputs *in, const 
   /* The yield projections of steady evaluations (cj = 0) weigh the flow with a fraction of
    * r. Any r > 0 gives the same zeros (a projection is exact for every r); r sets how
    * Newton's linearisation weighs the flow against the traction, and a smaller weight lets
-   * steady Newton move cells into and out of yield with fewer line-search steps. Measured
-   * on the 30-point plastic creep curve of bench/cases (k_rel 0.3), Newton iterations at
-   * 0.01 / 0.03 / 0.1 / 0.2 / 0.3 / 1 / 3 / 10 times r: 234 / 224 / 198 / 194 / 195 / 224 /
-   * 461 / 65906 at 44 x 44 cells; at 0.1 / 0.2 / 0.3 / 1: 281 / 257 / 263 / 408 at 64 x 64,
-   * and 0.2 / 0.3 / 1: 520 / 573 / 676 at 128 x 128. Transients keep r: with 0.2 r
-   * cases/wheel_rail_3d.yaml took 9920 Newton iterations (86 failed solves) instead of 8932
-   * (2), 13 % more time. 2D keeps r (the interval law). */
+   * steady Newton move cells into and out of yield with fewer line-search steps (0.2 r: the
+   * fewest iterations on the bench's plastic creep curves). Transients keep r (more Newton
+   * iterations with 0.2 r), and so does 2D (the interval law). */
   w->r_yield = cj == 0.0 ? 0.2 * r0 : r0;
   int status = rs_model_normal_at(m, w, in, &w->msg);
   if (status != RS_OK) return status;

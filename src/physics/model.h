@@ -1,8 +1,8 @@
-/* The rolling-contact model with local plasticity (model.md §4-5), semi-discretised in
+/* The rolling-contact model with local plasticity (docs/model.md §4-5), semi-discretised in
  * space: the DAE F(t, y, y') = 0 on the contact grid (physics/grid.h) with the unknowns
  * of physics/layout.h (traction, plastic displacement, accumulated plastic deformation
  * per cell; with a prescribed tangential force the creepage as an extra unknown with
- * the equation sum p dA = F_x(t), model.md §6). Per cell the contact law
+ * the equation sum p dA = F_x(t), docs/model.md §6). Per cell the contact law
  * (physics/contact_law.h) gives the residual rows and their local generalized Jacobian;
  * this module supplies the kinematics (v_s, Du_pl/Dt, Dustar/Dt through the elastic
  * operator and the upwind material derivative) and chains the two: residual, Jacobian
@@ -26,7 +26,7 @@ typedef enum { RS_EXTERIOR = 0, RS_ADHESION = 1, RS_SLIP = 2, RS_PLASTIC = 3 } r
 /* Pressure the tangential problem sees: the discrete normal solution or Hertz's. */
 typedef enum { RS_NORMAL_DISCRETE = 0, RS_NORMAL_HERTZ = 1 } rs_normal_solution;
 
-/* Choice of the semismooth scaling r (model.md §4, §9): r = 1/(c_j*C_self + V*C_shift/dx)
+/* Choice of the semismooth scaling r (docs/model.md §4, §9): r = 1/(c_j*C_self + V*C_shift/dx)
  * with C_shift the steady self-compliance difference (A(0)-A(dx)) or the self-compliance A(0). */
 typedef enum { RS_SCALING_AUTO = 0, RS_SCALING_DIFFERENCE = 1, RS_SCALING_SELF = 2 } rs_scaling;
 
@@ -87,7 +87,7 @@ int rs_model_create(rs_model *m, const rs_model_params *par, rs_msg *msg);
 void rs_model_free(rs_model *m);
 
 /* The same model on a grid of `cells` cells over the same extent (coarse-grid solves
- * that start Newton on the fine grid, model.md §9). Free with rs_model_free. */
+ * that start Newton on the fine grid, docs/model.md §13). Free with rs_model_free. */
 int rs_model_regrid(const rs_model *m, int cells, rs_model *out, rs_msg *msg);
 
 /* The time-dependent inputs at one time: every history of the model is evaluated here
@@ -169,7 +169,7 @@ int rs_model_normal_at(const rs_model *m, rs_work *w, const rs_inputs *in, rs_ms
 double rs_model_creepage(const rs_model *m, const rs_inputs *in, const double *y);
 double rs_model_lateral_creepage(const rs_model *m, const rs_inputs *in, const double *y);
 
-/* The semismooth scaling r (traction per slip velocity), model.md §4:
+/* The semismooth scaling r (traction per slip velocity), docs/model.md §4:
  * r = 1 / (cj * C_self + V * C_shift / dx). */
 double rs_model_scaling(const rs_model *m, const rs_inputs *in, double cj);
 
@@ -245,7 +245,7 @@ int rs_model_jacobian_assemble_lines(const rs_model *m, const rs_work *w, const 
 int rs_model_jv(const rs_model *m, const rs_work *w, rs_work *wlin, const rs_inputs *in, double cj,
                 const double *v, double *Jv);
 
-/* Consistent rates at a state y (model.md §9 "consistent start"): solves the adhesion
+/* Consistent rates at a state y (docs/model.md §9 "consistent start"): solves the adhesion
  * rows for p', exterior p' = 0, at the bound p' = g'; upl' and ustar' from their
  * transport equations. With force control the adhesion rows are bordered by
  * sum p' dA = F'(t), which also gives the creepage: its unknown in y is set. */
@@ -266,7 +266,7 @@ int rs_model_project_state(const rs_model *m, rs_work *w, const rs_inputs *in, d
 int rs_model_interpolate_state(const rs_model *from, const double *y_from, const rs_model *to,
                                rs_work *w_to, const rs_inputs *in, double *y_to, rs_msg *msg);
 
-/* Quantities of model.md §7 at (y, yp). Arrays of one value per cell, any may be NULL. */
+/* Quantities of docs/model.md §7 at (y, yp). Arrays of one value per cell, any may be NULL. */
 typedef struct rs_diag {
   double Fx, Fn, creepage, velocity;
   double Fy, Mz, lateral_creepage, spin; /* 3D (0 in 2D) */

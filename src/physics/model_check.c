@@ -1,4 +1,4 @@
-/* Reported quantities (model.md §7) and the check of steady states (physics/model.h). */
+/* Reported quantities (docs/model.md §7) and the check of steady states (physics/model.h). */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>

@@ -11,7 +11,7 @@
 /* Transport terms shared by residual, Jacobian, rates and diagnostics: u_el on the
  * padded grid, its rate, and the material derivatives of u_el, u_pl, u* (and mu with
  * friction memory, fresh material entering at mu_law(0)):
- *   (D f/Dt)_I = f'_I - V (f_up(I) - f_I)/dx   (first-order upwind, model.md §5)
+ *   (D f/Dt)_I = f'_I - V (f_up(I) - f_I)/dx   (first-order upwind, docs/model.md §5)
  *   v_s = V w + v_shift + Du_el/Dt + Du_pl/Dt,  u_el = A p + (h3/G3) p.
  * With in->linear the rigid slip and the inflow state are left out (the linear part,
  * for J v). */

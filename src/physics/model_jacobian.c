@@ -9,7 +9,7 @@
  *   u*(I)          -> 1 on u*(I)
  *   Dmu/Dt(I)      -> cj + a on mu(I), -a on mu(up)            (friction memory)
  *   mu(I)          -> 1 on mu(I)
- * with a = V/dx and up the upstream neighbour (model.md §5). The same chain gives exact
+ * with a = V/dx and up the upstream neighbour (docs/model.md §5). The same chain gives exact
  * J v products: the local rows applied to the kinematics of v. */
 #include <math.h>
 #include <stdlib.h>
@@ -69,7 +69,7 @@ static void add(double *v, unsigned char *has, double x)
 }
 
 /* r dv_s,c/dp_b at the offset (kx, ky) from the cell, without the layer: the kinematics'
- * cj A_cb(kx, ky) - a (A_cb(kx + 1, ky) - A_cb(kx, ky)), a = V/dx (model.md §5). */
+ * cj A_cb(kx, ky) - a (A_cb(kx + 1, ky) - A_cb(kx, ky)), a = V/dx (docs/model.md §5). */
 static double kin_coef(const rs_model *m, int c, int b, int kx, int ky, double cj, double a)
 {
   const double A0 = rs_elastic_op_coef(&m->el, c, b, kx, ky);
@@ -193,12 +193,8 @@ static void put_traction_columns(const rs_model *m, const rs_law_out *o, int lr,
  * refactorisation, which keeps the pivot order of the last factorisation, met zero or tiny
  * pivots whenever cells began or stopped yielding. NEAR_YIELD_SHIFT times the block's trace
  * on its diagonal keeps every pivot order valid. The exact Jacobian (band 0) and 2D are
- * untouched. Measured (30-point plastic creep curve of bench/cases, 44 x 44 cells, one
- * thread): full factorisations 71 of 173 set-ups -> 2, GMRES 1616 -> 1613, A/B 0.92 one
- * thread and 0.94 two (paired, median of 15), forces within 4e-12 of their largest value;
- * shifts 1e-3 / 1e-1: 8 / 3 full factorisations, 1609 / 1826 GMRES. At 128 x 128 the same
- * time (GMRES 3371 -> 3497); the 44 x 44 plastic start-up (rtol 3e-3): 12 full
- * factorisations -> 1, 348 -> 347 Newton iterations. */
+ * untouched. 1e-2 leaves GMRES's iterations as they were and avoids almost every full
+ * factorisation; a smaller shift does not, a larger one costs GMRES iterations. */
 #define NEAR_YIELD_SHIFT 1e-2
 
 /* One residual row of cell I (local row lr), all columns, sorted. */
@@ -212,16 +208,14 @@ static void put_row(const rs_model *m, const rs_law_out *o, int lr, int I, const
   /* Near field: a traction row keeps its own plastic displacements (and the extras),
    * zeros included, so that the pattern does not depend on the branches. In 3D every row
    * keeps a pattern that does not depend on the branches (the cell's traction, plastic
-   * displacements, u* and mu, at the cell and upstream), so that KLU analyses once: the
-   * plastic 30-point creep curve of bench/cases at 44 x 44 cells analysed at 223 of 282
-   * set-ups otherwise, and takes 10 % less CPU time so (paired runs). */
+   * displacements, u* and mu, at the cell and upstream), so that KLU analyses once instead
+   * of at most set-ups. */
   /* In 3D steady assemblies (cj = 0) a traction or memory row of a cell outside the
    * contact keeps its own entries only (the traction's 1, the memory's mu): the contact
    * does not change with the branches, and the cell then stays out of the near field's
    * line blocks. The transient keeps the full pattern: its factorisation serves many
-   * steps, and with the shorter rows the plastic start-up of bench/cases at 44 x 44 cells
-   * (rtol 1e-4) took 1497 Newton iterations instead of 1330, the same steps (the matrix
-   * is the same; KLU's block triangular form differs, and without it 1346). */
+   * steps, and with the shorter rows (the same matrix, another block triangular form in
+   * KLU) its Newton iterations rose by an eighth. */
   const int out3 =
       traction_row && band > 0 && m->el.dim == 3 && cj == 0.0 && (o->branch & RS_BRANCH_EXTERIOR);
   const int fixed = traction_row && band > 0 && !out3, fixed3 = band > 0 && m->el.dim == 3 && !out3;

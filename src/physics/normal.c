@@ -1,4 +1,4 @@
-/* 2D normal contact on the grid (model.md §3). The direct method is an active-set
+/* 2D normal contact on the grid (docs/model.md §3). The direct method is an active-set
  * method in the style of Kalker's NORM (Kalker 1990, §5.1): solve the contact cells'
  * equations A_CC p_C - delta = -h_C, dx sum p_C = load, then drop cells with tension
  * and add cells that penetrate, until neither happens. Large grids use the

@@ -1,4 +1,4 @@
-/* 2D normal contact problem on the grid (model.md §3): find p_n >= 0 and the
+/* 2D normal contact problem on the grid (docs/model.md §3): find p_n >= 0 and the
  * approach delta with gap h - delta + A_zz p_n >= 0, complementarity, and
  * sum p_n dx = load, for the undeformed gap h at the cell centres (the model's is
  * x^2/(2R), rs_normal2d_profile). Hertz line contact is the check:
@@ -32,12 +32,7 @@ typedef enum { RS_NORMAL2D_AUTO = 0, RS_NORMAL2D_DIRECT, RS_NORMAL2D_CG } rs_nor
 
 /* The crossover is where the products become FFT convolutions. Below it each CG
  * product is a direct O(n^2) sum and CG loses to one dense solve (it wins where the
- * active set takes two); from it CG wins by far. Carter's case, median of 31
- * (build/rollsim_bench_normal 31 CELLS..., 2 shared cores, load average 3):
- *   cells             100    200    230    250    256    300
- *   DIRECT ms       0.242  1.176  1.824  8.436  2.335  3.826
- *   active sets         1      1      1      2      1      1
- *   CG ms           0.282  1.552  2.686  3.585  0.315  0.627 */
+ * active set takes two); from it CG wins by far (bench/normal_timing.c). */
 #define RS_NORMAL2D_CG_FROM RS_ELASTIC_FFT_FROM
 
 /* Discrete solution. h: undeformed gap at the cell centres [n] (mm); w: the FFT scratch

@@ -1,4 +1,4 @@
-/* The discrete 3D normal problem (model.md §3, §10): the dimension-independent
+/* The discrete 3D normal problem (docs/model.md §3, §10): the dimension-independent
  * constrained CG (normal_cg.c) with A_zz products by FFT convolution. */
 #include "physics/normal3d.h"
 

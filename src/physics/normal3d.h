@@ -1,4 +1,4 @@
-/* 3D normal contact (model.md §3, §10): the Hertz solution of an elliptic contact and
+/* 3D normal contact (docs/model.md §3, §10): the Hertz solution of an elliptic contact and
  * the discrete problem on the grid of rs_elastic3d.
  *
  * Hertz (Johnson 1985 §4.2, eqs. 4.39; identical elastic constants, so the combined

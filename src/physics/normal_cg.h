@@ -1,4 +1,4 @@
-/* The discrete normal contact problem for any dimension (model.md §3), solved by
+/* The discrete normal contact problem for any dimension (docs/model.md §3), solved by
  * conjugate gradients with the load as a constraint (Polonsky & Keer 1999, Wear 231,
  * 206-219): find p >= 0 and the approach delta with
  *

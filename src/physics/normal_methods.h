@@ -1,4 +1,4 @@
-/* Internal to the normal-problem module (model.md §3):
+/* Internal to the normal-problem module (docs/model.md §3):
  *   normal.c     Hertz formulas, the start estimate, the dense active-set method and
  *                the choice between the methods (rs_normal2d_solve_with)
  *   normal2d_cg.c  the constrained conjugate-gradient method (normal_cg.c, any dimension)

@@ -1,4 +1,4 @@
-/* Twin-disc rig memory (model.md §8): the near-surface plastic state (u_pl, u*) that
+/* Twin-disc rig memory (docs/model.md §8): the near-surface plastic state (u_pl, u*) that
  * leaves the contact at its trailing edge is carried around the discs and re-enters
  * at the leading edge one revolution later, reduced by a recovery factor.
  *

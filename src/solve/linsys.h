@@ -3,7 +3,7 @@
  * single entry at a bound; entries that are structurally zero are left out, so
  * the sparsity pattern changes with the active set. KLU's refactorisation
  * reuses the pivot order of the first factorisation and meets zero pivots when
- * rows flip between the two kinds (model.md §9): the symbolic analysis is
+ * rows flip between the two kinds (docs/model.md §9): the symbolic analysis is
  * redone (SUNLinSol_KLUReInit, partial) whenever the branches changed. */
 #ifndef ROLLSIM_LINSYS_H
 #define ROLLSIM_LINSYS_H

@@ -106,11 +106,9 @@ static int factor_current(const rs_krylov *k, const rs_inputs *in, double cj)
 }
 
 /* KLU's options for a part. No row scaling: the rows are scaled already (r gives the
- * traction rows a unit diagonal), and KLU's scaling was 5 % of the elastic creep curve at
- * 850 cells. Nor KLU's check of the input (scale 0 still checks every refactorisation's
- * matrix; our assembly builds sorted rows without duplicates): 30-point plastic creep
- * curve of bench/cases at 44 x 44 cells 3.8 % less time (paired runs, median of 9),
- * bitwise the same results. */
+ * traction rows a unit diagonal), and KLU's scaling costs time. Nor KLU's check of the
+ * input (scale 0 still checks every refactorisation's matrix; our assembly builds sorted
+ * rows without duplicates): bitwise the same results, less time. */
 static int part_defaults(rs_klu_part *p)
 {
   if (!klu_l_defaults(&p->common)) return RS_ERR_INTERNAL;
@@ -339,11 +337,8 @@ static int setup_linearised(rs_krylov *k, const rs_inputs *in, double cj);
 int rs_krylov_setup(rs_krylov *k, const rs_inputs *in, const double *y, const double *yp, double cj)
 {
   /* J v needs the local laws at this point, whatever becomes of the factorisation: those
-   * of the last residual if it was evaluated here (bitwise the same), else evaluated now.
-   * Measured (one evaluation less per Newton iteration, paired runs): 30-point 3D plastic
-   * creep curve at 44 x 44 cells 4.5 % less time (median of 11), plastic start-up over 10
-   * contact lengths at 44 x 44 cells (rtol 3e-3) 7.8 % (median of 9); the same results bit
-   * for bit. */
+   * of the last residual if it was evaluated here (bitwise the same), else evaluated now:
+   * one model evaluation less per Newton iteration. */
   const int evaluated = k->ev_valid && at_evaluated_point(k, in, y, yp, cj);
   k->ev_valid = 0;
   if (!evaluated) k->w_at_ev = 0;
@@ -373,8 +368,8 @@ static void mark_refresh(rs_krylov *k, int all)
 
 /* A hash of the pattern's columns (FNV-1a steps on whole column indices, four interleaved
  * streams): whether a whole assembly kept the pattern of the last analysis, with the row
- * pointers compared in full. It replaced a copy of the columns (8 bytes per entry: 1.7 MB
- * at 44 x 44 cells, 14.7 MB at 128 x 128); a collision could only make the preconditioner
+ * pointers compared in full, instead of a copy of the columns (8 bytes per entry); a
+ * collision could only make the preconditioner
  * poor (the factors on another pattern), never J v or a result. */
 static uint64_t columns_hash(const int64_t *ci, int64_t nnz)
 {
@@ -413,9 +408,8 @@ static int setup_linearised(rs_krylov *k, const rs_inputs *in, double cj)
   /* The changed lines' rows only, on the pattern of the last assembly. Lines exist in 3D
    * only, where a row's columns follow from its length (rs_model_jacobian_assemble: fixed
    * columns, fewer only in the traction rows of exterior cells), and the assembly checks
-   * each row's length. A check of the columns themselves as well (they could only make the
-   * preconditioner, not J v, wrong) was 1.1 % of the 44 x 44 plastic creep curve of
-   * bench/cases (perf, one thread). */
+   * each row's length. The columns themselves are not checked again: they could only make
+   * the preconditioner, not J v, wrong, and the check costs time at every set-up. */
   if (!all) {
     mark_refresh(k, 0);
     status = rs_model_jacobian_assemble_lines(m, &k->w, in, cj, k->band, k->band_y, k->refresh,

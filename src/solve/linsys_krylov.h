@@ -1,5 +1,5 @@
 /* Private: the pieces of Newton-Krylov for the steady/pseudo-time Newton iteration on
- * large grids (model.md §6): exact Jacobian-vector products from the model
+ * large grids (docs/model.md §6): exact Jacobian-vector products from the model
  * (rs_model_jv: the contact law's local rows applied to the kinematics of v, the
  * elastic products by FFT), and a KLU-factored near-field preconditioner.
  *
@@ -77,37 +77,21 @@ typedef struct rs_krylov {
 
 /* 3D near field: the cell's own line along x, 4 cells each way. The steady rolling
  * operator couples mostly along x (the material derivative of the displacements), and
- * lines do not fill each other in KLU (they are independent blocks). Measured against the
- * 3 x 3 cells of band 1 in x and y (elastic ellipse, one steady solve, 2-core VM): GMRES
- * iterations 193 -> 146 at 44 x 44 cells, 356 -> 236 at 64 x 64, 2611 -> 425 at 128 x 128;
- * wall time 0.28 -> 0.12 s, 1.47 -> 0.40 s, 76 -> 4.1 s. Half widths 2 and 8 in x: within
- * 15 % of 4; the whole line (64): 4x slower at 128 x 128. */
+ * lines do not fill each other in KLU (they are independent blocks). Against a square of
+ * 3 x 3 cells it needs far fewer GMRES iterations, increasingly so on fine grids; half
+ * widths of 2 or 8 do about as well as 4, the whole line is much slower. */
 enum { RS_KRYLOV_BAND_3D = 4, RS_KRYLOV_BAND_3D_Y = 0 };
 /* 3D: the lines are coupled by one red-black Gauss-Seidel sweep across y. P^-1 solves the
  * lines of even iy on their own, subtracts their couplings to the lines of odd iy (the
  * Jacobian's entries at iy +- 1 within the band in x: rs_model_near_ylink, applied from a
  * table, nothing assembled), then solves the odd lines: P is the near field plus those
  * couplings, block lower triangular, and costs one triangular solve of the near field and
- * a product of O(n band). Truncating the kernel in y inside the factored matrix made the
- * preconditioner ill-conditioned (see above); here the couplings only enter a right-hand
- * side. Measured (GMRES iterations, Newton unchanged but for one): 30-point plastic creep
- * curve of bench/cases at 44 x 44 cells 1557 -> 1032, elastic 1338 -> 937, the plastic
- * ellipse at 128 x 128 cells 441 -> 294, the 44 x 44 plastic start-up (rtol 3e-3)
- * 3017 -> 2243. Measured and not kept, on the 44 x 44 plastic curve: the symmetric sweep
- * (even, odd, even) 1008 for half a solve more; a forward sweep line by line with the
- * couplings to the previous 1 / 2 / 4 lines 1372 / 1282 / 1166; red-black with the
- * couplings up to iy +- 3 / 5 1211 / 1475; couplings over 0 / 2 / 6 / 8 cells in x 1829 /
- * 1125 / 991 / 986 (4: 1032); the omitted kernel lumped into the line (sums over
- * iy +- 1 ... 43) 1615 ... 4661; a multiplicative coarse correction on aggregates of
- * 4 x 4 / 2 x 2 cells 1328 / 1104 (elastic 847 / 709, but at 128 x 128 cells 516 / 461
- * against 441: the slow modes are not smooth ones). */
+ * a product of O(n band). Truncating the kernel in y inside the factored matrix makes the
+ * preconditioner ill-conditioned; here the couplings only enter a right-hand side. The
+ * sweep saves about a third of the GMRES iterations. */
 /* The transient's near field: half width 2 along x. With c_j in the iteration matrix the
- * GMRES count hardly depends on the width (elastic start-up over 10 contact lengths at
- * 44 x 44 cells, rtol 1e-3: 10157, 10449, 10485 and 10623 GMRES iterations with half
- * widths 4, 3, 2 and 1), and the narrower band halves KLU's triangular solves, a third of
- * the run's time. Measured with classical Gram-Schmidt: 4.98 -> 4.67 s there; with both
- * changes the plastic start-up at 16 x 16 cells (bench) 3.13 -> 2.65 s, the forces within
- * 1.2e-6 of their size (IDA's step sequence). */
+ * GMRES count hardly depends on the width (within 5 % from 1 to 4 cells), and the narrower
+ * band halves KLU's triangular solves. */
 enum { RS_KRYLOV_BAND_3D_TRANSIENT = 2 };
 
 int rs_krylov_create(rs_krylov *k, const rs_model *m, int band, int band_y);
@@ -128,13 +112,8 @@ int rs_krylov_residual(rs_krylov *k, const rs_inputs *in, const double *y, const
  * factor ratio of its value then (ratio <= 1: refactor at every setup, the default). J v
  * stays exact: only the preconditioner lags. In 3D a set-up that does not keep it whole
  * assembles and refactors only the lines with a cell on another branch than at that line's
- * own factorisation, if cj + V/dx is the same (else every line). Measured against
- * refactoring every line (30-point plastic creep curve of bench/cases at 44 x 44 cells,
- * 2-core Intel VM, paired medians of 11): 0.955 with one thread, 0.945 with two, and with
- * only those lines assembled a further 0.940 / 0.964; GMRES iterations 1032 -> 1049, Newton
- * 174 both; a set-up there changes 11-50 cells in about 18 of the 44 lines (150 set-ups: 15
- * with at most 2 cells, 26 with 3-10, 80 with 11-50, 29 with more). The 44 x 44 plastic
- * start-up (rtol 3e-3): 2243 -> 2283 GMRES, 423 -> 430 Newton, 0.90 of the time (9 pairs). */
+ * own factorisation, if cj + V/dx is the same (else every line): a typical set-up changes
+ * cells in well under half of the lines. */
 void rs_krylov_set_reuse(rs_krylov *k, double ratio, int max_cells);
 /* The next setup factors whatever the reuse rule says (after a failed solve). */
 void rs_krylov_invalidate(rs_krylov *k);

@@ -421,10 +421,9 @@ RS_LANES_CLONES void rs_lanes_refactor(rs_lanes *s, const int *groups, int m, co
  * independent chains, which the processor overlaps (one group's chain of subtractions bound
  * its solve). The factors are read in single precision, the sums kept in double: on fine
  * grids the factors of all lines no longer fit the second-level cache and each solve streams
- * them (at 128 x 128 cells 32 groups of about 10,000 entries). Measured (perf, 30-point
- * plastic creep curve of bench/cases, one thread): the solves 16.6 % -> 13.8 % of the run at
- * 128 x 128 cells, 14.2 % -> 12.2 % at 44 x 44, refactorisations unchanged within the noise;
- * the same Newton and GMRES counts at both (174 / 1049, 317 / 2116). */
+ * them (at 128 x 128 cells 32 groups of about 10,000 entries); half the bytes streamed
+ * make the solves a sixth faster, and GMRES corrects the rounding (the same Newton and GMRES
+ * counts). */
 static inline __attribute__((always_inline)) void solve_groups(const rs_lanes *s, const int *gi,
                                                                int m, double *v)
 {

@@ -5,22 +5,16 @@
  * order), so the union of the lines' patterns is one pattern, which KLU orders and factors
  * once (a representative line, partial pivoting); every line is then refactored on that
  * pattern with that pivot order and solved with it, the lines of a group in the lanes of
- * one vector: an entry of L or U costs one vector operation for RS_LANES lines. The lines'
- * own KLU triangular solves spent about ten scalar instructions per entry and were bound by
- * that count: in the 44 x 44 plastic creep curve of bench/cases their share (27 % with
- * one thread) did not move with the factors in single precision and 16-bit indices, with
- * four lines interleaved by hand, or with KLU's forward instead of its transposed solve.
- * KLU's own choice of pivots there is its ordering's diagonal (the pivot sequence of each
- * line followed from its pattern alone), so one order serves the lines; the union adds
- * 22 % entries at 44 x 44 (L + U 3,657 per line against KLU's 2,997 on average). A line
+ * one vector: an entry of L or U costs one vector operation for RS_LANES lines, where KLU's
+ * own triangular solves spend about ten scalar instructions per entry and are bound by that
+ * count. KLU's own choice of pivots on these lines is its ordering's diagonal (the pivot
+ * sequence of each line follows from its pattern alone), so one order serves the lines;
+ * the union adds about a fifth more entries. A line
  * whose pivots the common order does not suit (the smallest |u_kk| below 1e-8 of the
  * largest, KLU's own test for reusing an order) is marked and left to the caller (KLU with
  * partial pivoting on its own pattern). The entries the union adds to a line are zeros:
- * the factors are those of the line's own matrix up to roundoff. Measured (the curve
- * above, one thread, perf): the triangular solves 27.7 % -> 15.9 % of the run, the
- * refactorisations 7.0 % -> 6.3 %; eight lanes (AVX-512): within the noise (paired runs
- * 0.97). The solves read the factors in single precision (rs_lanes_solve); the factorisation
- * itself is in double. */
+ * the factors are those of the line's own matrix up to roundoff. The solves read the factors in
+ * single precision (rs_lanes_solve); the factorisation itself is in double. */
 #ifndef ROLLSIM_LINSYS_LANES_H
 #define ROLLSIM_LINSYS_LANES_H
 

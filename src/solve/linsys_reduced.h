@@ -1,6 +1,6 @@
 /* Private: a direct SUNLinearSolver for the CSR generalized Jacobian that
  * rs_model_jacobian assembles (no extra unknowns), much cheaper than factoring the
- * whole matrix with KLU (model.md §9 "Linear algebra at scale").
+ * whole matrix with KLU (docs/model.md §9 "Linear algebra at scale").
  *
  * Only the traction rows that involve the slip velocity couple densely (through the
  * elastic operator); every other row has a few entries. The model says which (rs_work

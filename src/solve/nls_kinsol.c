@@ -150,12 +150,8 @@ static int nls_solve(SUNNonlinearSolver nls, N_Vector y0, N_Vector ycor, N_Vecto
    * the scaled residual (about the correction) against a fraction of it. Direct solves
    * converge fast near the solution and keep 1/100; Newton-Krylov iterations cost GMRES
    * solves and stop at tol itself: the max norm bounds IDA's weighted RMS norm, so this is
-   * still IDA's own Newton test at least. Measured (plastic start-up at 16 x 16 cells, rtol
-   * 1e-6): 1/100 -> 1/10 Newton iterations 4190 -> 3816, GMRES 53602 -> 47351; 1/10 -> 1:
-   * 3837 -> 3657 Newton, 45652 -> 39711 GMRES, 2.43 -> 2.11 s, the forces within 2.7e-6 of
-   * their size (IDA's step sequence); 44 x 44 start-ups at rtol 1e-3 elastic 3.63 -> 2.60 s,
-   * plastic 5.42 -> 4.11 s, as close to the rtol 1e-6 run as before (1.6e-3 of F_x);
-   * cases/wheel_rail_3d.yaml 9.50 -> 8.66 s (F_x within 8.8e-7). */
+   * still IDA's own Newton test at least, and the forces stay as close to a tight-tolerance
+   * run as before. */
   const double fraction = c->kry ? 1.0 : 0.01;
   KINSetFuncNormTol(c->kmem, fraction * tol);
   KINSetScaledStepTol(c->kmem, fraction * tol);

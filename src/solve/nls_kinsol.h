@@ -1,6 +1,6 @@
 /* Private: a SUNNonlinearSolver (rootfinding type) for IDA that solves each BDF
  * step's system F(t, ypred + ycor, yppred + cj ycor) = 0 with KINSOL's exact
- * Newton and the generalized Jacobian (model.md §6, §9), so the contact regimes
+ * Newton and the generalized Jacobian (docs/model.md §6, §9), so the contact regimes
  * are re-resolved in every step. The linear solver is that of ls (linsys.h): KLU
  * on the whole matrix, or the Schur-complement solver of linsys_reduced.h. */
 #ifndef ROLLSIM_NLS_KINSOL_H

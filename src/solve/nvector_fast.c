@@ -108,7 +108,7 @@ static double dotprod(N_Vector x, N_Vector y) { return dot(len(x), data(x), data
 
 /* max |x_i|, ignoring NaN as fmax would (SUNDIALS' serial kernel does the same). Four
  * running maxima with comparisons: fmax is a call into libm, and KINSOL takes this norm
- * at every residual and step (2 % of the 3D plastic creep curve's time, perf). */
+ * at every residual and step. */
 static double maxnorm(N_Vector x)
 {
   const double *xd = data(x);

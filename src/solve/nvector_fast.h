@@ -1,11 +1,9 @@
 /* Private: optimised kernels for SUNDIALS' serial N_Vector.
  *
- * Debian 12's SUNDIALS 6.4.1 (libsundials-nvecserial6, 6.4.1+dfsg1-3) is compiled
- * without optimisation: N_VDotProd_Serial keeps its loop counter and its sum in
- * stack memory (one dependent load/add/store per element), 9.8 us for a dot
- * product of 2550 numbers where a plain -O2 loop takes 2.4 us and OpenBLAS' ddot
- * about 0.7 us. In the Newton-Krylov creep curve at 850 cells these kernels were
- * about half of the run time (classical Gram-Schmidt alone 27 %).
+ * Debian 12's SUNDIALS 6.4.1 (libsundials-nvecserial6) is compiled without
+ * optimisation: N_VDotProd_Serial keeps its loop counter and its sum in stack memory
+ * (one dependent load/add/store per element), several times slower than a plain -O2
+ * loop, and the Newton-Krylov iterations spend much of their time in these kernels.
  *
  * rs_nvector_fast_ops replaces the operations of one serial vector that KINSOL,
  * IDA and SPGMR use in their inner loops by equivalent kernels compiled with this

@@ -1,8 +1,8 @@
-/* Steady rolling: KINSOL on F(y, y' = 0) = 0 (model.md §6). With the scaling r
- * of model.md §4 the residual is piecewise linear in the tractions, and exact
+/* Steady rolling: KINSOL on F(y, y' = 0) = 0 (docs/model.md §6). With the scaling r
+ * of docs/model.md §4 the residual is piecewise linear in the tractions, and exact
  * (semismooth) Newton with the generalized Jacobian settles the active set in a
  * few iterations from p = 0. Plain Newton is tried first, a line search second
- * (model.md §9: the line search backtracks heavily on this non-smooth residual). */
+ * (docs/model.md §9: the line search backtracks heavily on this non-smooth residual). */
 #include <kinsol/kinsol.h>
 #include <math.h>
 #include <nvector/nvector_serial.h>
@@ -82,20 +82,11 @@ static double *rates(rs_steady *s, const double *u)
  *   2-norm while the test measures the max norm; the floor is set on the max norm of F
  *   (eta >= tol / (2 |F|_max)), as if the linear residual's 2-norm to max-norm ratio were
  *   F's. Where it is larger the test fails and Newton takes another iteration, which keeps
- *   the tolerance; the 2-norm floor tol / (2 |F|_2) guaranteed the test but solved the last
- *   linear system some ten times past it (final max norms 4e-12 to 8e-12 against 1e-10).
- *   Measured (GMRES iterations, Newton unchanged everywhere): 44 x 44 plastic creep curve
- *   1611 -> 1557, 128 x 128 3364 -> 3187; 44 x 44 elastic curve 1435 -> 1338;
- *   cases/hertz3d_creep.yaml 2604 -> 2448; a floor of tol / |F|_max gave 1515 / 3069 / 1303
- *   / 2387 GMRES but up to 8 more Newton iterations, 2 tol / |F|_max 19 more at 44 x 44;
+ *   the tolerance; a floor on the 2-norm, tol / (2 |F|_2), guarantees the test but solves
+ *   the last linear system some ten times past it;
  * - alpha = (1 + sqrt 5)/2 (choice 1's) instead of 2.
- * Measured against KINSOL's choice 2 (30-point creep curves of bench/cases, 2-core VM,
- * paired runs): plastic 44 x 44 cells 193 -> 188 Newton and 1800 -> 1630 GMRES iterations,
- * 8 % less time with both, a further 4 % of it from alpha (alpha 2: 190 and 1716); elastic 44 x 44
- * 152 -> 179 Newton (cheap ones: their set-ups are kept, see the reuse below), 1395 -> 1435 GMRES,
- * alpha (1 + sqrt 5)/2 against 2 the same time; plastic 128 x 128 519 -> 528 Newton, 5719 ->
- * 5448 GMRES; elastic 128 x 128 184 -> 204 Newton, 15.9 s against 18.9 s with alpha 2. The
- * results agree to 4e-11 of the forces.
+ * Both save GMRES iterations and time against KINSOL's own choice 2, for the same results
+ * to the Newton tolerance.
  * KINSOL takes the term at the start of an iteration, before the preconditioner's set-up,
  * so it is set here, at each residual of a trial point (the line search's last trial is
  * the iterate). */
@@ -212,18 +203,13 @@ void rs_steady_free(rs_steady *s)
   free(s);
 }
 
-/* AUTO: Newton-Krylov from this many cells, the dense Schur complement below.
- * Measured (bench/RESULTS.md): Carter elastic, one solve from p = 0, dense/Krylov
- * 4.3/7.0 ms at 200 cells, 10.5/9.3 at 300, 21.9/12.9 at 400, 72/26 at 600.
- * Plastic models use it too, with a tight forcing term: with the loose one of the
- * elastic case the inexact solves made semismooth Newton cycle (Carter k_rel = 0.98
- * at 600 cells fell back to pseudo-time stepping for minutes); with 1e-6 the plastic
- * creep curve at 850 cells takes 391 Newton iterations against 345 with the exact
- * dense solves, in 1.0 s against 6.6 s, and Carter k_rel = 0.6 at 1600 cells 0.08 s
- * against 0.31 s (same F_x to 6 digits). */
+/* AUTO: Newton-Krylov from this many cells (where it overtakes the dense solves on
+ * Carter's case), the dense Schur complement below. Plastic models use it too, with a
+ * tight forcing term: with the loose one of the elastic case the inexact solves make
+ * semismooth Newton cycle between active sets. */
 enum { KRYLOV_FROM_CELLS = 300 };
-/* Krylov: near-field half band (cells), GMRES basis size, forcing term (1e-3: fewest
- * GMRES iterations for the elastic creep curve at 850 cells; 1e-6 cost 30 % more). */
+/* Krylov: near-field half band (cells), GMRES basis size, forcing term (1e-3: the fewest
+ * GMRES iterations on the elastic creep curve). */
 enum { KRYLOV_BAND = 16, KRYLOV_MAXL = 60 };
 #define KRYLOV_ETA_PLASTIC 1e-6
 #define KRYLOV_ETA         1e-3
@@ -291,11 +277,8 @@ int rs_steady_create_with(rs_steady **out, const rs_model *m, SUNContext ctx, rs
     /* 3D: a set-up keeps the factored near field while every cell stays on the branches
      * it had then (cj = 0: the ratio is moot), across Newton iterations and continuation
      * points: the near field's values then change only through the disk laws' curvature
-     * and the yield slopes. Measured (30-point creep curves of bench/cases at 44 x 44
-     * cells, paired runs, median of 11): plastic 24 of 188 set-ups kept, GMRES iterations
-     * 1635 -> 1630, 2.1 % less time; elastic 89 of 179 kept, 1438 -> 1435, 10 % less time.
-     * With up to 2 / 5 / 20 cells on other branches: plastic GMRES 1694 / 1798 / 2097
-     * and less gain (1.6 % at 2 cells). */
+     * and the yield slopes, and GMRES's iterations hardly change. Allowing cells on other
+     * branches cost more GMRES iterations than the factorisations it saved. */
     if (three) rs_krylov_set_reuse(&s->kry, 2.0, 0);
   }
 
@@ -325,16 +308,11 @@ int rs_steady_create_with(rs_steady **out, const rs_model *m, SUNContext ctx, rs
     /* 2D: the residual is piecewise linear; once the active set is right, an accurate
      * linear solve ends the iteration (a loose forcing term would add iterations).
      * 3D: the disk projections are curved, Newton needs a few more iterations anyway, and
-     * Eisenstat and Walker's forcing term (choice 2) saves GMRES iterations. Measured
-     * against the constant terms (ellipse of bench/cases, 2-core VM): elastic 128 x 128
-     * cells 19 -> 11 Newton iterations, 512 -> 149 GMRES iterations, 4.5 -> 1.7 s; plastic
-     * (k_rel 0.3) 128 x 128 65 -> 98 Newton, 2042 -> 408 GMRES, 11.7 -> 4.6 s; plastic
-     * 30-point creep curve at 44 x 44 4.9 -> 3.4 s; the same results to 2e-11. Plastic
-     * models with gamma = 0.1 (eta <= 0.1) instead of 0.9: where the residual fell slowly
-     * the default term stayed near 0.9, GMRES did one iteration per Newton step and the
-     * line search stalled (plastic creep curve at 128 x 128: 1668 -> 862 Newton
-     * iterations; at 44 x 44 9 % less time, paired runs). Elastic 256 x 256 was slower
-     * with it (17 -> 23 Newton iterations), so the elastic model keeps 0.9. */
+     * Eisenstat and Walker's forcing term (choice 2) saves GMRES iterations (a third of the
+     * time or more against the constant terms). Plastic models take gamma = 0.1 (eta <=
+     * 0.1) instead of 0.9: where the residual fell slowly the default term stayed near 0.9,
+     * GMRES did one iteration per Newton step and the line search stalled. Elastic models
+     * keep 0.9 (with 0.1 they took more Newton iterations). */
     if (three) {
       RS_SUN_CHECK(KINSetEtaForm(s->kmem, KIN_ETACONSTANT), msg, what);
       s->krylov3d = 1;
@@ -411,8 +389,8 @@ static int newton(rs_steady *s, double *y, int plain_iters, int search_iters, rs
   return RS_OK;
 }
 
-/* Fallback after grid sequencing when Newton cycles between active sets (model.md
- * §9; seen with work hardening, where the trailing end of the plastic zone moves by
+/* Fallback after grid sequencing when Newton cycles between active sets (docs/model.md
+ * §13; seen with work hardening, where the trailing end of the plastic zone moves by
  * about one cell per iteration): pseudo-transient continuation with backward-Euler steps of the
  * rolling transient, F(y, (y - y_prev)/dtau) = 0, each solved by the same exact
  * Newton. The c_j terms keep the active set close to the previous one, so the steps
@@ -463,7 +441,7 @@ static int pseudo_time_steps(rs_steady *s, double *y, rs_stats *stats)
 }
 
 /* Last fallback when Newton cycles between active sets (seen with moderate hardening,
- * model.md §9): pseudo-transient continuation, i.e. roll the material through the
+ * docs/model.md §13): pseudo-transient continuation, i.e. roll the material through the
  * contact at the inputs of the time being solved (all of them held: velocity, creepage,
  * shift, load, prescribed force and the rig memory's inflow), which is the physical
  * transient and settles on the steady state, trying Newton from the rolled state after
@@ -521,7 +499,7 @@ static int pseudo_transient(rs_steady *s, double *y, rs_stats *stats, rs_msg *ms
   return status;
 }
 
-/* Grid sequencing (model.md §9): first for a plastic model from rest, the first
+/* Grid sequencing (docs/model.md §13): first for a plastic model from rest, the first
  * fallback otherwise. The same problem on a grid of half the cells (solved by this
  * same function, so recursively down to a grid where Newton converges), interpolated
  * to this grid, is a start close enough that the active set settles in a few
@@ -601,28 +579,17 @@ static int solve_at(rs_steady *s, double *y, rs_stats *stats, rs_msg *msg)
   const int sequence_first = plastic && cold && can_coarsen(m);
   int status = sequence_first ? grid_sequencing(s, y, 10, stats) : RS_ERR_SOLVER;
   /* Plastic models from a continuation start: plain Newton briefly, then the line
-   * search, which converged in 6-9 iterations where plain Newton cycled (creep curve,
-   * tau_c0 = 200 N/mm^2, k_rel = 0.03, 300 cells). In 3D the line search at once: with
-   * the inexact early steps of the Eisenstat-Walker forcing term plain Newton took more
-   * than 8 (and more than 25) iterations at most points of the plastic creep curve of
-   * bench/cases at 44 x 44 cells, the line search about 10 (30 points: 449 -> 293
-   * iterations, 3.1 -> 2.3 s, the same results to 3e-12). 3D plastic models from rest
-   * too (the coarsest grid of the sequence): plain Newton cycled there (16 x 16 and 22 x 22
-   * cells: 50 iterations without convergence, then 9 and 12 with the line search). Steady
-   * plastic solves of bench/cases from rest at 32 / 44 / 64 / 128 / 256 cells along x: 66 /
-   * 70 / 75 / 102 / 134 -> 16 / 20 / 25 / 52 / 84 Newton iterations. The finer grids' Newton
-   * after sequencing still starts plain (6 iterations at the first point of the 44 x 44
-   * creep curve, 11 with the line search; the line search at once there gives 20 / 21 /
-   * 31 / 48 / 70 from rest). */
+   * search, which converges in a few iterations where plain Newton cycles. In 3D the line
+   * search at once: with the inexact early steps of the Eisenstat-Walker forcing term plain
+   * Newton takes many more iterations at most continuation points; 3D plastic models from
+   * rest too (on the coarsest grid of the sequence plain Newton cycles). The finer grids'
+   * Newton after sequencing still starts plain: from the interpolated coarse solution it
+   * needs fewer iterations than the line search. */
   const int plain = three_plastic ? 0 : !plastic || cold ? 50 : 8;
   /* 3D plastic continuation points on grids that can be coarsened: a stalled line
    * search goes to grid sequencing at once, whose fine-grid Newton then starts with the
-   * line search, as plain Newton from the interpolated coarse solution diverged at most
-   * such points. Measured (30-point plastic creep curve of bench/cases, 128 x 128
-   * cells): the line search stalled at 15 points after 8-26 iterations each, and plain
-   * Newton diverged at 12 of 14 sequenced points (10 iterations lost each); with both
-   * changes 862 -> 676 Newton iterations, 72 -> 54 s, the same results to 1e-12. At
-   * 44 x 44 no point stalls (unchanged). */
+   * line search, as plain Newton from the interpolated coarse solution diverges at most
+   * such points. Coarse grids rarely stall, so this matters on fine ones. */
   if (status == RS_ERR_SOLVER && !s->failed) {
     s->watch = three_plastic && !cold && can_coarsen(m);
     status = newton(s, y, plain, plastic ? 40 : 50, stats, &kin_flag);
@@ -683,8 +650,8 @@ static int solve_at(rs_steady *s, double *y, rs_stats *stats, rs_msg *msg)
  * solutions; a step that fails is halved (down to 1/CONTINUATION_MIN of the creepage). A
  * falling law can have several steady states at one creepage; this follows the branch
  * connected to xi = 0 (the one `rollsim sweep` from a low creepage follows), and Newton
- * from p = 0 at a large creepage failed (plastic Table-1 contact, xi = -1 %); halving let
- * the 1600-cell elastic case converge where its first step of 1/16 failed. */
+ * from p = 0 at a large creepage fails (plastic Table-1 contact, xi = -1 %); halving rescues
+ * a first step that is too long. */
 enum { CONTINUATION_STEPS = 16, CONTINUATION_MIN = 1024 };
 static int continuation(rs_steady *s, double *y, rs_stats *stats, rs_msg *msg)
 {

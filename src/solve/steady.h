@@ -1,4 +1,4 @@
-/* Steady rolling (model.md §6): KINSOL (exact semismooth Newton) on F(y, y' = 0) = 0,
+/* Steady rolling (docs/model.md §6): KINSOL (exact semismooth Newton) on F(y, y' = 0) = 0,
  * with grid sequencing, pseudo-time steps and a pseudo-transient as fallbacks, and a
  * physical check of every result (rs_model_check_steady). */
 #ifndef ROLLSIM_STEADY_H

@@ -1,7 +1,7 @@
 /* Transient rolling: IDA (variable-order, variable-step BDF with error control)
  * on the semi-discrete DAE, each step's nonlinear system solved by KINSOL with
  * the generalized Jacobian, factored by the Schur-complement solver or by KLU
- * (model.md §6). */
+ * (docs/model.md §6). */
 #include <ida/ida.h>
 #include <math.h>
 #include <nvector/nvector_serial.h>
@@ -134,7 +134,7 @@ int rs_transient_create(rs_transient **out, const rs_model *m, SUNContext ctx, d
   memcpy(N_VGetArrayPointer(tr->y), y0, (size_t)neq * sizeof *y0);
   memcpy(N_VGetArrayPointer(tr->yp), yp0, (size_t)neq * sizeof *yp0);
   /* Absolute tolerances: tractions in N/mm^2 as given; plastic displacements in mm,
-   * scaled to the contact size (model.md §9: about 1e-4 rtol a). */
+   * scaled to the contact size (docs/model.md §9: about 1e-4 rtol a). */
   double *at = N_VGetArrayPointer(tr->atol);
   for (int k = 0; k < rs_at_upl(L, 0, 0); k++) at[k] = o->atol;
   for (int k = rs_at_upl(L, 0, 0); k < rs_at_extra(L, 0); k++) at[k] = 1e-4 * o->rtol * m->hertz_a;
@@ -155,47 +155,24 @@ int rs_transient_create(rs_transient **out, const rs_model *m, SUNContext ctx, d
   if (linear == RS_LINEAR_DENSE || linear == RS_LINEAR_AUTO)
     RS_SUN_CHECK(rs_linsys_use_reduced(&tr->ls, m, &tr->work, ctx), msg, what);
   if (krylov) {
-    /* GMRES with classical Gram-Schmidt, as the steady solver's (gmres.h; with SPGMR the
-     * modified Gram-Schmidt's sequential vector sums were 9 % of an elastic start-up at
-     * 44 x 44 cells, classical 5.22 -> 4.98 s, the same GMRES and Newton counts) */
+    /* GMRES with classical Gram-Schmidt, as the steady solver's (gmres.h): modified
+     * Gram-Schmidt's sequential vector sums cost time for the same iteration counts. */
     tr->gmres = rs_gmres_create(&tr->kry, tr->y, 60, 4, ctx);
     RS_SUN_CHECK(tr->gmres == NULL, msg, what);
     RS_SUN_CHECK(rs_krylov_create(&tr->kry, m, RS_KRYLOV_BAND_3D_TRANSIENT, RS_KRYLOV_BAND_3D_Y),
                  msg, what);
     /* The near field is refactored when cj + V/dx moved by a factor 4 or more than two
-     * cells changed branch (linsys_krylov.c), not at every Newton iteration. Measured (bench
-     * plastic start-up, 16 x 16 cells): factorisations 4110 -> 378, GMRES iterations 68176 ->
-     * 68920, CPU time 4.27 -> 3.90 s; ratio 2: 753 factorisations, 8: 239 at the same
-     * GMRES count within 1 %. The two cells: start-ups of bench/cases over 10 contact
-     * lengths at 44 x 44 cells, against 5 % of the cells before: plastic, rtol 3e-3 5759 ->
-     * 4004 GMRES iterations, 15 -> 178 factorisations, 2.63 -> 2.02 s (1 cell: 2.01 s, 0:
-     * 2.20 s, 4 / 8: 2.11 s); rtol 1e-3 4.07 -> 3.29 s; rtol 1e-4 12.1 -> 10.3 s; elastic
-     * (rtol 1e-3) 2.62 s either way; the plastic 16 x 16 start-up and
-     * cases/wheel_rail_3d.yaml (20 x 20) within 1 %. Earlier (16 x 16, ratio 2): refactoring
-     * at any change of branch 1381 factorisations, with 5 % 776, GMRES iterations 48093 and
-     * 47351. */
+     * cells changed branch (linsys_krylov.c), not at every Newton iteration: each changed
+     * cell perturbs the preconditioner, and these limits gave the least time for about the
+     * same GMRES count on the bench's start-ups. */
     rs_krylov_set_reuse(&tr->kry, 4.0, 2);
   }
   tr->cj = 0.0;
   const rs_nls_host host = {.cj_slot = &tr->cj, .inputs_at = host_inputs, .ctx = tr};
   /* Newton-Krylov: the forcing term follows the tolerance, 30 rtol within [1e-3, 0.1]. A
    * loose tolerance's Newton test is loose too, and a tight linear solve there only costs
-   * GMRES iterations. Measured (44 x 44 start-ups over 10 contact lengths, elastic /
-   * plastic, 2-core Intel VM, single runs; the largest deviation of the F_x, F_y, M_z
-   * histories from the rtol 1e-6 run unchanged within 8 % of itself in every case): rtol
-   * 3e-3 forcing 1e-2 / 3e-2 / 5e-2 / 0.1: GMRES 3449 / 3248 / 2902 / 2677 and 4014 / 3712
-   * / 3382 / 3157, Newton 296 / 340 / 345 / 386 and 348 / 390 / 404 / 455, 1.83 / - / 1.59
-   * / 1.52 s and 2.20 / 2.02 / 1.88 / 1.90 s; rtol 1e-4 forcing 1e-3 / 3e-3: GMRES 19990 /
-   * 18220 and 23336 / 20587, 9.50 / 9.16 s and 11.04 / 9.76 s; rtol 1e-3 (plastic) 1e-2 /
-   * 3e-2: 6632 / 6750 GMRES, 545 / 664 Newton, 3.25 / 3.31 s. Before (10 rtol within [1e-3,
-   * 1e-2]), with KINSOL's residual test at tol (nls_kinsol.c), elastic
-   * 44 x 44 start-ups: rtol 1e-6 (the first 2 mm) forcing 1e-4 / 1e-3 / 1e-2 27.3 / 23.8 /
-   * 24.3 s, rtol 1e-4 (10 contact lengths) 1e-3 / 1e-2 8.77 / 9.26 s, rtol 1e-3 1e-2 / 3e-2
-   * 2.58 / 2.63 s (4.55 s with 1e-4 and the residual test at tol / 10); the forces within
-   * 4e-6 of those of the 1e-4 runs (IDA's step sequence). Earlier, with the test at tol / 100
-   * (bench plastic start-up, 16 x 16 cells): 1e-6 68853 GMRES and 4107 Newton iterations,
-   * 1e-4 53602 / 4190, 1e-2 55614 / 7048; Eisenstat-Walker (KINSOL's choices 1 and 2)
-   * 66127 / 12756 and 60625 / 11122. */
+   * GMRES iterations; the force histories stay as close to a tight-tolerance run as with a
+   * tighter term. */
   const double forcing = fmin(0.1, fmax(1e-3, 30.0 * o->rtol));
   tr->nls = rs_nls_kinsol_create(m, &tr->work, &tr->ls, krylov ? &tr->kry : NULL, tr->gmres,
                                  forcing, host, o->max_newton, tr->y, ctx);

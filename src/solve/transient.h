@@ -1,4 +1,4 @@
-/* Transient integration of the rolling-contact DAE (model.md §6): IDA (variable-order
+/* Transient integration of the rolling-contact DAE (docs/model.md §6): IDA (variable-order
  * BDF) whose nonlinear systems are solved by KINSOL through a custom
  * SUNNonlinearSolver, with the generalized Jacobian in a SUNSparseMatrix (CSR) factored
  * by KLU, or with its sparse rows eliminated and the Schur complement of the dense

@@ -1,5 +1,5 @@
 /* Private to the drivers: the twin-disc rig's bookkeeping during a transient run
- * (model.md §8): the circumferential memory of the state leaving the contact, and the
+ * (docs/model.md §8): the circumferential memory of the state leaving the contact, and the
  * time integrals of F_x/F_n and of the slip over each revolution and each protocol
  * step's averaging window (trapezoidal between accepted time steps), written to the
  * output as each completes. */

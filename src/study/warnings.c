@@ -12,7 +12,7 @@
 
 /* Carter's saturation creepage of the elastic 2D contact, mu a/R, with the Hertz
  * half-width a = sqrt(4 q R (1 - nu)/(pi G)) at the largest load of the run
- * (verification.md §2); *a gets a. In 3D a is the Hertz ellipse's semi-axis along the
+ * (docs/verification.md 2); *a gets a. In 3D a is the Hertz ellipse's semi-axis along the
  * rolling direction at the largest load (N), and mu a/R_x the same scale of the
  * creepage of full sliding (Kalker's theory gives it within a factor of order one, by far
  * less than the factor the warning allows). A layer or plasticity move saturation, but
@@ -56,11 +56,9 @@ int rs_warn_creepage(const rs_case *c, double max_abs, const char *where, FILE *
 }
 
 /* 3D softening (k_tau < 0): the steady problem can have several solutions, each stable
- * under rolling, and which one Newton finds depends on its start. Measured on
- * bench/cases/hertz3d.yaml (44 x 44 cells, tau_c0 = 150 N/mm^2, k_rel = -0.3, xi = -0.4 %):
- * the steady solve from rest gives F_x = 848.4 N, a fine sweep from xi = 0 and the
- * transient from rest 902.2 N, and a transient started on either stays there. (2D softening
- * gave one solution by every path on cases/carter_plast.yaml, k_rel = -0.3.) */
+ * under rolling, and which one Newton finds depends on its start (on the bench ellipse at
+ * k_rel = -0.3, xi = -0.4 %, the solve from rest and the transient from rest settle 6 %
+ * apart in F_x; usability_tests.cmake). 2D softening has shown one solution by every path. */
 static int warn_softening(const rs_case *c, FILE *err)
 {
   const int steady = c->mode == RS_MODE_STEADY || c->initial_state == RS_START_STEADY;

@@ -23,7 +23,7 @@ int rs_warn_sweep(const rs_case *base, const rs_sweep *s, FILE *err);
 
 /* Cost of a transient run projected from its first steps. The rate of the first steps
  * (wall time per simulated second: IDA steps per second times the cost of a step, which
- * grows with the cells) is measured over a window that leaves the first half of
+ * grows with the cells) is taken over a window that leaves the first half of
  * RS_COST_PROBE_SECONDS out, from the first output record after half of it to the first
  * after all of it (from the start when no record came in the first half). It holds while the
  * solution changes: for the rest of the run when an input varies, but at constant inputs only until
@@ -32,10 +32,9 @@ int rs_warn_sweep(const rs_case *base, const rs_sweep *s, FILE *err);
  * README), after which IDA's steps grow by orders of magnitude. If the projected rest exceeds
  * RS_COST_WARN_SECONDS, the projection is made once more from a second window, from the end of
  * the first to the next record after RS_COST_CONFIRM_SECONDS (at least one record later): a
- * start-up from rest takes its densest steps first (2D Carter, 400 cells: 31 % of the steps in
- * the first of 25 contact lengths; 3D at 44 x 44 cells: 85 %), so the first window alone
- * over-estimated (twin_disc_crowned.yaml: 200 s projected, 2.5-3.7 s taken; a 44 x 44 3D start-up
- * at rtol 1e-4: 147 s projected, 9-13 s taken). If the second projection exceeds it too: one
+ * start-up from rest takes its densest steps first (in 3D most of its steps fall in the first of
+ * 25 contact lengths), so the first window alone over-estimates such runs by an order of
+ * magnitude. If the second projection exceeds it too: one
  * warning with that estimate (ETA) and a hint. */
 #define RS_COST_PROBE_SECONDS   1.0
 #define RS_COST_CONFIRM_SECONDS 5.0

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Invalid input through the command line (interfaces.md "Command line"): exit code 2,
+"""Invalid input through the command line (exit codes: README): exit code 2,
 one message, nothing run, no output file.
 
 Usage:

@@ -1,6 +1,6 @@
 #!/usr/bin/python3
-"""Crash safety of a real run (interfaces.md: "The file must stay readable, with every
-record written so far, if the process is killed at any moment"): `rollsim run` is killed
+"""Crash safety of a real run (docs/file-format.md: the file stays readable, with every
+record written so far, if the process is killed at any moment): `rollsim run` is killed
 with SIGKILL at random moments; the file left behind must open with netCDF4, say
 status "running", and hold every record up to the last completed output interval, each
 complete (tests/reliability/rs_check.py: check_records).
