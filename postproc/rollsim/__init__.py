@@ -13,8 +13,10 @@ file removed), so results are those of `rollsim run/sweep -o FILE`. Errors raise
 the command line's message (file:line: key ...); `CaseError.status` is the exit status class
 (2 invalid input, 3 solver failure, ...).
 
-The library: $ROLLSIM_LIB if set, else build/librollsim.so of the repository this package sits
-in (after the README's build), else librollsim.so on the loader's path.
+The library: $ROLLSIM_LIB if set, else the librollsim.so installed with this package
+(`cmake --install`, which writes its place into rollsim/_installed.py), else build/librollsim.so
+of the repository this package sits in (after the README's build), else librollsim.so on the
+loader's path.
 """
 import ctypes
 import json
@@ -42,8 +44,14 @@ def library_path():
     if env:
         return env
     here = os.path.dirname(os.path.abspath(__file__))
-    for cand in (os.path.join(here, "..", "..", "build", "librollsim.so"),
-                 os.path.join(here, "librollsim.so")):
+    cands = [os.path.join(here, "..", "..", "build", "librollsim.so"),
+             os.path.join(here, "librollsim.so")]
+    try:  # written by cmake --install: the library relative to this directory
+        from ._installed import LIBRARY
+        cands.insert(0, os.path.join(here, LIBRARY))
+    except ImportError:
+        pass
+    for cand in cands:
         if os.path.exists(cand):
             return os.path.normpath(cand)
     return "librollsim.so"
