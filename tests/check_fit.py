@@ -175,6 +175,15 @@ def interrupt(rollsim, case, work):
               np.all(np.isfinite(fitted)) and np.all(fitted >= ds["lower_bound"][:].data)
               and np.all(fitted <= ds["upper_bound"][:].data), str(fitted))
         check("residual norm recorded", np.isfinite(float(ds.residual_norm)))
+        # No covariance short of convergence: the file's standard errors are NaN, and the
+        # summary's column must say so rather than print a number (it printed 0).
+        se = ds["standard_error"][:].filled(np.nan)
+        names = [bytes(r.compressed()).decode() for r in ds["parameter_name"][:]]
+    check("interrupted: no standard errors in the file", np.all(np.isnan(se)), str(se))
+    for name in names:
+        row = [ln.split() for ln in stdout.splitlines() if ln.split()[:1] == [name]]
+        check(f"interrupted: summary std. error of {name} is n/a",
+              len(row) == 1 and len(row[0]) >= 4 and row[0][3] == "n/a", str(row))
 
 
 def plot(rollsim, case, work):

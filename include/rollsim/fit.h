@@ -63,7 +63,7 @@ typedef struct rs_fit_opts {
 typedef struct rs_fit_result {
   int nparams;
   size_t npoints;
-  double *fitted, *std_error; /* [nparams] */
+  double *fitted, *std_error; /* [nparams]; std_error and covariance NaN unless complete */
   double *covariance;         /* [nparams][nparams] */
   double *simulated;          /* [npoints] at the fitted values */
   double residual_norm;       /* |W (simulated - measured)| */

@@ -617,6 +617,11 @@ int rs_fit_run(const rs_fit_spec *f, const char *case_path, const char *const *s
     status = analyse(&r, res);
     if (status != RS_OK) snprintf(msg->text, sizeof msg->text, "%s", r.msg.text);
   }
+  if (status != RS_OK && res->covariance && res->std_error) /* none short of convergence: NaN */
+    for (int k = 0; k < n * n; k++) {
+      res->covariance[k] = NAN;
+      if (k < n) res->std_error[k] = NAN;
+    }
   res->evaluations = r.e.evaluations;
   if (r.have_best) {
     char why[RS_MSG_LEN + 16];
