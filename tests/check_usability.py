@@ -230,7 +230,9 @@ def case_doc(keys_tsv, doc):
     for key in sorted(values & set(rows)):
         kind, unit, choices = table[key]
         doc_unit = rows[key][1]
-        check(f"{key}: unit", doc_unit == (unit or "—"), f"(doc {doc_unit!r}, table {unit!r})")
+        # a force per width in 2D is a total force in 3D: "N/mm (3D: N)" (rs_case_key_unit_in)
+        want = [unit or "—"] + (["N/mm (3D: N)"] if unit == "N/mm" else [])
+        check(f"{key}: unit", doc_unit in want, f"(doc {doc_unit!r}, table {unit!r})")
         for c in choices:
             check(f"{key}: choice {c} documented", f"`{c}`" in rows[key][0] + rows[key][2])
     for key, (kind, _, _) in table.items():

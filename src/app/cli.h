@@ -16,8 +16,9 @@
 int rs_cli_help(const char *cmd, FILE *out);
 /* 1 if `cmd` is a subcommand rollsim knows. */
 int rs_cli_is_command(const char *cmd);
-/* `check` of a case with a sweep: block: the swept keys, their values and units. */
-void rs_cli_print_sweep(FILE *out, const rs_sweep *s);
+/* `check` of a case with a sweep: block: the swept keys, their values and units (forces in
+ * N for contact.dimension 3, N/mm in 2D). */
+void rs_cli_print_sweep(FILE *out, const rs_sweep *s, int dimension);
 
 /* ---- heap.c: the process's memory ---- */
 
@@ -38,9 +39,11 @@ void rs_cli_heap_setup(void);
 #define RS_WARN_PERCENT           0.05
 #define RS_WARN_SATURATION_FACTOR 10.0
 int rs_warn_creepage(const rs_case *c, double max_abs, const char *where, FILE *err);
-/* The case's own creepage input (nothing with a prescribed tangential force). */
+/* The case's own creepage inputs (nothing with a prescribed tangential force); in 3D the
+ * lateral creepage too, for a percentage. */
 int rs_warn_case(const rs_case *c, FILE *err);
-/* The swept creepages of a sweep (when rolling.creepage is swept). */
+/* The swept creepages of a sweep (where rolling.creepage or rolling.lateral_creepage is
+ * swept), the case's own otherwise. */
 int rs_warn_sweep(const rs_case *base, const rs_sweep *s, FILE *err);
 
 /* Cost of a transient run projected from its first steps. The rate of the first steps

@@ -30,17 +30,21 @@ static double saturation_creepage(const rs_case *c, double *a)
   return c->mu * *a / c->radius;
 }
 
+/* A creepage (symbol xi or eta) that looks like a percentage. */
+static int warn_percent(double max_abs, const char *symbol, const char *where, FILE *err)
+{
+  if (!(max_abs >= RS_WARN_PERCENT) || !isfinite(max_abs)) return 0;
+  fprintf(err,
+          "rollsim: warning: %s reaches |%s| = %.6g, that is %.6g %% creepage: creepage is a "
+          "fraction, not a percentage; did you mean %.6g %% (|%s| = %.6g)?\n",
+          where, symbol, max_abs, 100.0 * max_abs, max_abs, symbol, max_abs / 100.0);
+  return 1;
+}
+
 int rs_warn_creepage(const rs_case *c, double max_abs, const char *where, FILE *err)
 {
-  int count = 0;
   if (!(max_abs > 0.0) || !isfinite(max_abs)) return 0;
-  if (max_abs >= RS_WARN_PERCENT) {
-    fprintf(err,
-            "rollsim: warning: %s reaches |xi| = %.6g, that is %.6g %% creepage: creepage is a "
-            "fraction, not a percentage; did you mean %.6g %% (|xi| = %.6g)?\n",
-            where, max_abs, 100.0 * max_abs, max_abs, max_abs / 100.0);
-    count++;
-  }
+  int count = warn_percent(max_abs, "xi", where, err);
   double a;
   const double xi_sat = saturation_creepage(c, &a);
   if (max_abs > RS_WARN_SATURATION_FACTOR * xi_sat) {
@@ -73,27 +77,54 @@ static int warn_softening(const rs_case *c, FILE *err)
   return 1;
 }
 
-int rs_warn_case(const rs_case *c, FILE *err)
+/* The largest |value| of a history over the run (its start for a steady case). */
+static double history_max_abs(const rs_case *c, const rs_history *h)
+{
+  return c->mode == RS_MODE_STEADY ? fabs(rs_history_eval(h, 0.0))
+                                   : rs_history_max_abs(h, 0.0, c->end_time);
+}
+
+/* The largest |value| of a sweep's axis of `key`; -1 when the key is not swept. */
+static double swept_max_abs(const rs_sweep *s, const char *key)
+{
+  for (int a = 0; a < s->naxes; a++) {
+    if (strcmp(s->axes[a].key, key)) continue;
+    double max_abs = 0.0;
+    for (int k = 0; k < s->axes[a].n; k++) max_abs = fmax(max_abs, fabs(s->axes[a].values[k]));
+    return max_abs;
+  }
+  return -1.0;
+}
+
+/* The lateral creepage eta of a 3D case (a percentage only: its saturation scale is not
+ * Carter's mu a/R). */
+static int warn_lateral(const rs_case *c, const rs_sweep *s, FILE *err)
+{
+  if (c->dimension != 3 || c->force_control || c->rig.on) return 0;
+  const double swept = s ? swept_max_abs(s, "rolling.lateral_creepage") : -1.0;
+  return swept >= 0.0 ? warn_percent(swept, "eta", "sweep: rolling.lateral_creepage", err)
+                      : warn_percent(history_max_abs(c, &c->lateral_creepage), "eta",
+                                     "rolling.lateral_creepage", err);
+}
+
+/* The case's creepages, or the swept values of a sweep `s` (NULL: none) where it sweeps one. */
+static int warn_inputs(const rs_case *c, const rs_sweep *s, FILE *err)
 {
   const int soft = warn_softening(c, err);
   if (c->force_control) return soft;
-  const double max_abs = c->mode == RS_MODE_STEADY
-                             ? fabs(rs_history_eval(&c->creepage, 0.0))
-                             : rs_history_max_abs(&c->creepage, 0.0, c->end_time);
-  return soft +
-         rs_warn_creepage(c, max_abs, c->rig.on ? "the twin-disc slip" : "rolling.creepage", err);
+  const double swept = s ? swept_max_abs(s, "rolling.creepage") : -1.0;
+  return soft + warn_lateral(c, s, err) +
+         (swept >= 0.0
+              ? rs_warn_creepage(c, swept, "sweep: rolling.creepage", err)
+              : rs_warn_creepage(c, history_max_abs(c, &c->creepage),
+                                 c->rig.on ? "the twin-disc slip" : "rolling.creepage", err));
 }
+
+int rs_warn_case(const rs_case *c, FILE *err) { return warn_inputs(c, NULL, err); }
 
 int rs_warn_sweep(const rs_case *base, const rs_sweep *s, FILE *err)
 {
-  for (int a = 0; a < s->naxes; a++) {
-    if (strcmp(s->axes[a].key, "rolling.creepage")) continue;
-    double max_abs = 0.0;
-    for (int k = 0; k < s->axes[a].n; k++) max_abs = fmax(max_abs, fabs(s->axes[a].values[k]));
-    return warn_softening(base, err) +
-           rs_warn_creepage(base, max_abs, "sweep: rolling.creepage", err);
-  }
-  return rs_warn_case(base, err);
+  return warn_inputs(base, s, err);
 }
 
 void rs_cost_watch_init(rs_cost_watch *w, const rs_case *c, int cells, double t0, double started)
