@@ -197,6 +197,31 @@ def plot(rollsim, case, work):
     print(p.stdout + p.stderr)
     check("rollsim_post.py fit: exit 0", p.returncode == 0, str(p.returncode))
     check("figure written", os.path.getsize(png) > 10000)
+    # The axes name their units: the measured output and the residual in those of
+    # traction_coefficient (a ratio, 1, as the file says), the abscissa in the input key's.
+    with netCDF4.Dataset(out) as ds:
+        check("FIT.nc: measured and simulated carry units 1",
+              ds["measured"].units == "1" and ds["simulated"].units == "1")
+        check("FIT.nc: the input column carries its key's units",
+              getattr(ds["creepage"], "units", None) == "1")
+    os.environ["MPLCONFIGDIR"] = env["MPLCONFIGDIR"]
+    import matplotlib
+    matplotlib.use("Agg")
+    from matplotlib.figure import Figure
+    sys.path.insert(0, os.path.join(HERE, "..", "postproc"))
+    from rollsim_post import fitplot
+    from rollsim_post.record import Recorder
+    labels = []
+    savefig = Figure.savefig
+
+    def spy(fig, *args, **kw):
+        labels.append([ax.get_ylabel() for ax in fig.axes] + [fig.axes[-1].get_xlabel()])
+        return savefig(fig, *args, **kw)
+
+    Figure.savefig = spy
+    fitplot.plot_fit(fitplot.read_fit(out), "units", os.path.join(work, "units.png"), Recorder())
+    check("fit figure: y axes and x axis with units",
+          labels == [["traction_coefficient [1]", "residual [1]", "creepage [1]"]], str(labels))
     import csv as csvmod
     rows = list(csvmod.DictReader(open(csv)))
     with netCDF4.Dataset(out) as ds:

@@ -5,6 +5,7 @@ x, y (cell centres, mm) and fields over (time, y, x): px, py, pn, slip_x, slip_y
 ustar, tauc, regime. A 3D sweep file with output.fields holds them over (swept keys..., y, x).
 Where a record index is taken, a sweep.Point (one sweep point) may be given instead. Nothing here draws; plots.py draws what these functions return.
 """
+import dataclasses
 import math
 from dataclasses import dataclass
 
@@ -251,6 +252,7 @@ class CreepPanel:
     units: str      # of var
     key_units: str  # of the key
     series: list    # extract.CreepSeries: x = the key's values, y = var
+    series_units: dict = dataclasses.field(default_factory=dict)  # units of the keys labelling the series
 
 
 MIN_CURVE_POINTS = 3
@@ -285,9 +287,11 @@ def creep3d_panels(run, names=("Fx", "Fy", "Mz"), x_keys=None):
                  if len(run.ds.dimensions[dims[canonical.index(k)]]) >= MIN_CURVE_POINTS]
         swept = long_ or swept
     panels = []
+    units = {k: run.units(d) for k, d in zip(canonical, dims)}
+    units.update({k: run.units(d) for k, d in zip(keys, dims)})
     for key in swept:
         dim = dims[canonical.index(key)]
         for name in names:
             series = sweep_series(run, var=name, x_key=key)
-            panels.append(CreepPanel(key, name, run.units(name), run.units(dim), series))
+            panels.append(CreepPanel(key, name, run.units(name), run.units(dim), series, units))
     return panels

@@ -271,7 +271,8 @@ static int write_file(fit_run *r, const char *status, const double *fitted, cons
                              .simulated = sim,
                              .residual_norm = norm,
                              .evaluations = r->e.evaluations,
-                             .keep_old = !r->written};
+                             .keep_old = !r->written,
+                             .dimension = r->base->dimension};
   const int s = rs_fit_output_write(&out, r->backup, sizeof r->backup, msg);
   free(start);
   if (s == RS_OK) r->written = 1;
