@@ -51,3 +51,9 @@ edge_expect(help_overview --stdout "2D line contact and 3D elliptic" --no-stdout
   "--stdout=^ +rollsim sweep CASE.yaml .*\\[--part K/N\\]" -- ${RS_BIN} --help)
 edge_expect(help_sweep_part "--stdout=^usage: rollsim sweep CASE.yaml .*\\[--part K/N\\]"
   -- ${RS_BIN} sweep --help)
+
+# h. 3D files carry Hertz's semi-axes (run: attributes; sweep: per point), equal to what
+#    rollsim check derives; postproc's map draws them (pp_3d_real).
+add_test(NAME edge_hertz_in_files
+  COMMAND ${SYSTEM_PYTHON3} ${RS_TESTS}/check_hertz_files.py ${RS_BIN}
+          ${PROJECT_SOURCE_DIR}/postproc/tests/small3d.yaml ${CMAKE_CURRENT_BINARY_DIR}/edge_hertz)

@@ -38,6 +38,9 @@ typedef struct rs_output_spec {
    * output_fields lists the requested ones. */
   unsigned requested_fields;
   const rs_output_rig *rig; /* twin-disc summaries, or NULL */
+  /* 3D: the Hertz semi-axes (mm) at the load hertz_load (N, the run's largest), written as
+   * the global attributes hertz_a, hertz_b, hertz_load (0: none written). */
+  double hertz_a, hertz_b, hertz_load;
 } rs_output_spec;
 
 /* One record. Scalars per model.md §7; field arrays have n = nx (3D: nx ny, y slowest)
@@ -125,6 +128,7 @@ typedef struct rs_sweep_output_spec {
 typedef struct rs_sweep_point {
   double Fx, Fn, creepage, velocity;
   double Fy, Mz, lateral_creepage, spin; /* 3D only (not written in 2D) */
+  double hertz_a, hertz_b;               /* 3D only: Hertz semi-axes at the point's load, mm */
   int n_exterior, n_adhesion, n_slip, n_plastic;
   double frictional_power, plastic_power, elastic_energy;
   int converged;

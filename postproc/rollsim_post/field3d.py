@@ -128,13 +128,28 @@ def fit_ellipse(x, y, contact):
     return Ellipse(xc, yc, a, b, "fitted")
 
 
-def hertz_ellipse(run):
-    """Hertz semi-axes from the global attributes hertz_a, hertz_b (mm), if the file has them."""
-    a, b = run.attr("hertz_a"), run.attr("hertz_b")
-    if a is None or b is None:
-        return None
+def hertz_ellipse(run, index=None):
+    """Hertz's ellipse of a record or sweep point, if the file says it: a sweep point's
+    variables hertz_a, hertz_b (mm); else the global attributes hertz_a, hertz_b at the load
+    hertz_load, scaled to the record's F_n as F^(1/3) (a and b grow so at fixed curvatures and
+    materials; files without hertz_load: as they are)."""
     try:
-        return Ellipse(0.0, 0.0, float(np.ravel(a)[0]), float(np.ravel(b)[0]), "Hertz")
+        if index is not None and not isinstance(index, (int, np.integer)) and \
+                run.has("hertz_a") and run.has("hertz_b"):
+            _, idx = _leading(index)
+            a, b = (float(_filled(run.variable(v)[idx])) for v in ("hertz_a", "hertz_b"))
+            return Ellipse(0.0, 0.0, a, b, "Hertz") if a > 0 and b > 0 else None
+        a, b = run.attr("hertz_a"), run.attr("hertz_b")
+        if a is None or b is None:
+            return None
+        a, b = float(np.ravel(a)[0]), float(np.ravel(b)[0])
+        load = run.attr("hertz_load")
+        if load is not None and isinstance(index, (int, np.integer)) and run.has("Fn"):
+            fn = float(_filled(run.variable("Fn")[int(index)]))
+            scale = (fn / float(np.ravel(load)[0])) ** (1.0 / 3.0)
+            if np.isfinite(scale) and scale > 0:
+                a, b = a * scale, b * scale
+        return Ellipse(0.0, 0.0, a, b, "Hertz")
     except (TypeError, ValueError, IndexError):
         return None
 
@@ -189,7 +204,7 @@ def field_map(run, field, index):
         m.units = ""
     if arrows:
         m.vx, m.vy = comps[0], comps[1]
-    m.ellipse = hertz_ellipse(run) or fit_ellipse(x, y, contact)
+    m.ellipse = hertz_ellipse(run, index) or fit_ellipse(x, y, contact)
     return m
 
 

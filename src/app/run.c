@@ -346,7 +346,10 @@ int rs_run(const rs_case *c, const rs_run_opts *o, rs_run_result *res, rs_msg *m
                          .y = s.m.grid.y,
                          .fields = fields,
                          .requested_fields = asked | (fields & RS_FIELD_MU),
-                         .rig = rig ? &rig_spec : NULL};
+                         .rig = rig ? &rig_spec : NULL,
+                         .hertz_a = s.m.hertz_a,
+                         .hertz_b = s.m.hertz_b,
+                         .hertz_load = s.m.normal_load};
   if (o->no_output)
     status = RS_OK;
   else if (o->append)

@@ -324,6 +324,11 @@ static int define_file(rs_output *out, const rs_output_spec *spec, const char **
     const int dim = 3;
     if ((err = nc_put_att_int(ncid, NC_GLOBAL, "dimension", NC_INT, 1, &dim))) return err;
   }
+  if (three_d && spec->hertz_a > 0.0 &&
+      ((err = nc_put_att_double(ncid, NC_GLOBAL, "hertz_a", NC_DOUBLE, 1, &spec->hertz_a)) ||
+       (err = nc_put_att_double(ncid, NC_GLOBAL, "hertz_b", NC_DOUBLE, 1, &spec->hertz_b)) ||
+       (err = nc_put_att_double(ncid, NC_GLOBAL, "hertz_load", NC_DOUBLE, 1, &spec->hertz_load))))
+    return err;
 
   *what = "defining coordinate variables";
   if ((err = nc_def_var(ncid, "time", NC_DOUBLE, 1, &time_dim, &out->time_id)) ||

@@ -47,8 +47,10 @@ static const sweep_var sweep_vars_3d[] = {
     {"Mz", "spin moment on body 1 about the contact centre", "E", SW_DOUBLE},
     {"lateral_creepage", "lateral creepage", "1", SW_DOUBLE},
     {"spin", "spin creepage", "1/mm", SW_DOUBLE},
+    {"hertz_a", "Hertz semi-axis along x (rolling direction) at the point's load", "mm", SW_DOUBLE},
+    {"hertz_b", "Hertz semi-axis along y at the point's load", "mm", SW_DOUBLE},
 };
-#define N_SWEEP_VARS_3D 4
+#define N_SWEEP_VARS_3D 6
 #define N_SWEEP_VARS    (sizeof sweep_vars / sizeof sweep_vars[0])
 #define CONVERGED_VAR   (N_SWEEP_VARS - 1)
 
@@ -311,7 +313,8 @@ int rs_sweep_output_write(rs_sweep_output *o, size_t index, const rs_sweep_point
   for (size_t v = 0; v < N_SWEEP_VARS && !err; v++)
     err = sweep_vars[v].type == SW_INT ? nc_put_var1_int(o->ncid, o->varid[v], start, &iv[v])
                                        : nc_put_var1_double(o->ncid, o->varid[v], start, &dv[v]);
-  const double d3[N_SWEEP_VARS_3D] = {pt->Fy, pt->Mz, pt->lateral_creepage, pt->spin};
+  const double d3[N_SWEEP_VARS_3D] = {pt->Fy,   pt->Mz,      pt->lateral_creepage,
+                                      pt->spin, pt->hertz_a, pt->hertz_b};
   for (int v = 0; v < N_SWEEP_VARS_3D && !err; v++)
     if (o->varid3[v] >= 0) err = nc_put_var1_double(o->ncid, o->varid3[v], start, &d3[v]);
   if (!err && o->nx) err = write_fields(o, start, pt);
