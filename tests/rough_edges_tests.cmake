@@ -57,3 +57,16 @@ edge_expect(help_sweep_part "--stdout=^usage: rollsim sweep CASE.yaml .*\\[--par
 add_test(NAME edge_hertz_in_files
   COMMAND ${SYSTEM_PYTHON3} ${RS_TESTS}/check_hertz_files.py ${RS_BIN}
           ${PROJECT_SOURCE_DIR}/postproc/tests/small3d.yaml ${CMAKE_CURRENT_BINARY_DIR}/edge_hertz)
+
+# k. The rig file's energy dissipated per revolution equals the time integral of the dissipated
+#    power of its time series (within the records' quadrature error) and is never negative; the
+#    exit u* per revolution likewise (2D: tests/cases/twin_disc_small.yaml, ~1 s; 3D: the
+#    crowned discs of cases/twin_disc_crowned.yaml with a held step and a ramp, ~2 s).
+add_test(NAME edge_rig_energy_2d
+  COMMAND ${SYSTEM_PYTHON3} ${RS_TESTS}/check_rig_energy.py ${RS_BIN}
+          ${RS_TESTS}/cases/twin_disc_small.yaml ${CMAKE_CURRENT_BINARY_DIR}/edge_rig_2d)
+add_test(NAME edge_rig_energy_3d
+  COMMAND ${SYSTEM_PYTHON3} ${RS_TESTS}/check_rig_energy.py ${RS_BIN}
+          ${RS_CASES}/twin_disc_crowned.yaml ${CMAKE_CURRENT_BINARY_DIR}/edge_rig_3d
+          "--set=output.fields=[px, pn, ustar, regime]"
+          "--set=twin_disc.protocol=[{slip: 0.005, revolutions: 2}, {ramp_to: 0.01, revolutions: 2}]")

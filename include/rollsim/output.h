@@ -88,6 +88,10 @@ int rs_output_put_step(rs_output *out, size_t i, double traction_coefficient, do
                        rs_msg *msg);
 int rs_output_put_revolution(rs_output *out, size_t i, double traction_coefficient, double slip,
                              rs_msg *msg);
+/* Revolution i: the energy dissipated over it (N mm/mm in 2D, N mm in 3D) and the u* of
+ * the surface leaving the contact, its mean over the revolution and its largest value (mm). */
+int rs_output_put_revolution_energy(rs_output *out, size_t i, double energy, double ustar_mean,
+                                    double ustar_max, rs_msg *msg);
 /* Number of records written so far. */
 size_t rs_output_records(const rs_output *out);
 /* The status attribute is stored NUL-padded to this fixed length (longer texts are

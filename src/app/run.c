@@ -124,7 +124,7 @@ static int run_transient(run_state *s, const rs_run_opts *o, rs_run_result *res,
     topts.step_hook = rs_rig_run_step;
     topts.hook_ctx = rig;
     topts.max_step = rs_rig_memory_max_step(&rig->mem);
-    int status = rs_rig_run_step(rig, t0, s->y); /* the state at the start */
+    int status = rs_rig_run_step(rig, t0, s->y, s->yp); /* the state at the start */
     if (status != RS_OK) return rs_msg_set(msg, status, "%s", rig->msg.text);
   }
   rs_transient *tr = NULL;
