@@ -1,6 +1,6 @@
-# Rough edges of the command line (issue 41, item 7): units of 3D forces, null for keys with an
-# alternative, the lateral creepage given in percent, the overview's help. Each test states
-# what a user must see. Included from tests/CMakeLists.txt (RS_BIN, RS_CASES, RS_TESTS).
+# Rough edges of the command line and its files: units of 3D forces, null for keys with an
+# alternative, the lateral creepage given in percent, the overview's help, Hertz's ellipse in 3D
+# files, the twin-disc rig's energy per revolution. Each test states what a user must see. Included from tests/CMakeLists.txt (RS_BIN, RS_CASES, RS_TESTS).
 set(RS_EDGE_EXPECT ${SYSTEM_PYTHON3} ${RS_TESTS}/cli_expect.py)
 function(edge_expect name)
   add_test(NAME edge_${name} COMMAND ${RS_EDGE_EXPECT} ${ARGN})
