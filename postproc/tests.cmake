@@ -287,6 +287,15 @@ set_tests_properties(pp_run_3d_sweep PROPERTIES FIXTURES_SETUP pp_3d_sweep)
 add_test(NAME pp_3d_real_sweep COMMAND ${PP_NUM3D} realsweep ${PP_3D_SWEEP} ${PP_OUT}/3d_real_sweep)
 set_tests_properties(pp_3d_real_sweep PROPERTIES FIXTURES_REQUIRED pp_3d_sweep
   ENVIRONMENT "${PP_ENV}")
+# The same over xi (3) x spin (2): the two curves are labelled by phi, in 1/mm.
+set(PP_3D_SWEEP_SPIN ${CMAKE_CURRENT_BINARY_DIR}/pp_3d_sweep_spin.nc)
+add_test(NAME pp_run_3d_sweep_spin COMMAND ${RS_BIN} sweep ${PP_3D_CASE} -o ${PP_3D_SWEEP_SPIN}
+  --quiet "--set=output.fields=[]" "--set=sweep.rolling.creepage=[0.0,-0.0005,-0.001]"
+  "--set=sweep.rolling.spin=[0.0,0.0002]")
+set_tests_properties(pp_run_3d_sweep_spin PROPERTIES FIXTURES_SETUP pp_3d_sweep_spin)
+add_test(NAME pp_3d_legend_units COMMAND ${PP_NUM3D} legend ${PP_3D_SWEEP_SPIN} ${PP_OUT}/3d_legend)
+set_tests_properties(pp_3d_legend_units PROPERTIES FIXTURES_REQUIRED pp_3d_sweep_spin
+  ENVIRONMENT "${PP_ENV}")
 
 # The friction figure of a 3D run (velocity-dependent law, tests/cases/falling_friction_3d.yaml,
 # 30 x 30 cells, about 1 s): mu over the patch and mu against |v_s| of every contact cell,

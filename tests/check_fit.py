@@ -175,6 +175,15 @@ def interrupt(rollsim, case, work):
               np.all(np.isfinite(fitted)) and np.all(fitted >= ds["lower_bound"][:].data)
               and np.all(fitted <= ds["upper_bound"][:].data), str(fitted))
         check("residual norm recorded", np.isfinite(float(ds.residual_norm)))
+        # No covariance short of convergence: the file's standard errors are NaN, and the
+        # summary's column must say so rather than print a number (it printed 0).
+        se = ds["standard_error"][:].filled(np.nan)
+        names = [bytes(r.compressed()).decode() for r in ds["parameter_name"][:]]
+    check("interrupted: no standard errors in the file", np.all(np.isnan(se)), str(se))
+    for name in names:
+        row = [ln.split() for ln in stdout.splitlines() if ln.split()[:1] == [name]]
+        check(f"interrupted: summary std. error of {name} is n/a",
+              len(row) == 1 and len(row[0]) >= 4 and row[0][3] == "n/a", str(row))
 
 
 def plot(rollsim, case, work):
@@ -188,6 +197,31 @@ def plot(rollsim, case, work):
     print(p.stdout + p.stderr)
     check("rollsim_post.py fit: exit 0", p.returncode == 0, str(p.returncode))
     check("figure written", os.path.getsize(png) > 10000)
+    # The axes name their units: the measured output and the residual in those of
+    # traction_coefficient (a ratio, 1, as the file says), the abscissa in the input key's.
+    with netCDF4.Dataset(out) as ds:
+        check("FIT.nc: measured and simulated carry units 1",
+              ds["measured"].units == "1" and ds["simulated"].units == "1")
+        check("FIT.nc: the input column carries its key's units",
+              getattr(ds["creepage"], "units", None) == "1")
+    os.environ["MPLCONFIGDIR"] = env["MPLCONFIGDIR"]
+    import matplotlib
+    matplotlib.use("Agg")
+    from matplotlib.figure import Figure
+    sys.path.insert(0, os.path.join(HERE, "..", "postproc"))
+    from rollsim_post import fitplot
+    from rollsim_post.record import Recorder
+    labels = []
+    savefig = Figure.savefig
+
+    def spy(fig, *args, **kw):
+        labels.append([ax.get_ylabel() for ax in fig.axes] + [fig.axes[-1].get_xlabel()])
+        return savefig(fig, *args, **kw)
+
+    Figure.savefig = spy
+    fitplot.plot_fit(fitplot.read_fit(out), "units", os.path.join(work, "units.png"), Recorder())
+    check("fit figure: y axes and x axis with units",
+          labels == [["traction_coefficient [1]", "residual [1]", "creepage [1]"]], str(labels))
     import csv as csvmod
     rows = list(csvmod.DictReader(open(csv)))
     with netCDF4.Dataset(out) as ds:

@@ -87,7 +87,7 @@ us_expect(warn_cost_none --quiet-stderr -- ${RS_BIN} run ${RS_CASES}/default.yam
 add_executable(test_cost_watch ${RS_TESTS}/test_cost_watch.c)
 target_link_libraries(test_cost_watch PRIVATE rollsim_lib)
 target_include_directories(test_cost_watch PRIVATE ${PROJECT_SOURCE_DIR}/src)
-add_test(NAME us_warn_cost_rule COMMAND test_cost_watch ${RS_CASES}/default.yaml)
+add_test(NAME us_warn_cost_rule COMMAND test_cost_watch ${RS_CASES})
 
 # ---- check: sweep block, no time axis for steady cases, overrides under the title -----------
 us_expect(check_sweep --stdout "^# sweep: 820 points \\(4 x 5 x 41"

@@ -7,8 +7,9 @@
 
 A case is a path to a YAML file, YAML text, or a dict (written as YAML; relative paths inside a
 text or dict case, e.g. history tables, are relative to the current directory). `set` maps dotted
-keys to values, as `--set KEY=VALUE` on the command line. Each call writes the command line's
-netCDF file to a temporary path and loads it with xarray (the data are read into memory and the
+keys to values, as `--set KEY=VALUE` on the command line, or is a list of "KEY=VALUE" strings
+(set=["rolling.creepage=-3e-4", "grid.cells=200"], values read as YAML there too). Each call
+writes the command line's netCDF file to a temporary path and loads it with xarray (the data are read into memory and the
 file removed), so results are those of `rollsim run/sweep -o FILE`. Errors raise CaseError with
 the command line's message (file:line: key ...); `CaseError.status` is the exit status class
 (2 invalid input, 3 solver failure, ...).
@@ -23,6 +24,7 @@ import json
 import os
 import shutil
 import tempfile
+from collections.abc import Mapping
 
 __all__ = ["run", "sweep", "check", "CaseError", "library_path", "version"]
 
@@ -102,7 +104,21 @@ def _yaml_value(v):
 
 
 def _sets(set):
-    items = [f"{k}={_yaml_value(v)}" for k, v in (set or {}).items()]
+    """The --set arguments of `set`: a mapping {dotted key: value}, or a list (tuple) of
+    "KEY=VALUE" strings (a single string is one of them)."""
+    if set is None:
+        items = []
+    elif isinstance(set, Mapping):
+        items = [f"{k}={_yaml_value(v)}" for k, v in set.items()]
+    elif isinstance(set, (str, list, tuple)):
+        items = [set] if isinstance(set, str) else list(set)
+        for s in items:
+            if not isinstance(s, str) or "=" not in s or s.startswith("="):
+                raise TypeError(f"set=: a list item must be a 'KEY=VALUE' string (as --set "
+                                f"KEY=VALUE), got {s!r}")
+    else:
+        raise TypeError("set= takes a dict {dotted key: value} or a list of 'KEY=VALUE' "
+                        f"strings, got {type(set).__name__}")
     arr = (ctypes.c_char_p * max(1, len(items)))(*[s.encode() for s in items])
     return arr, len(items)
 

@@ -5,6 +5,7 @@ x, y (cell centres, mm) and fields over (time, y, x): px, py, pn, slip_x, slip_y
 ustar, tauc, regime. A 3D sweep file with output.fields holds them over (swept keys..., y, x).
 Where a record index is taken, a sweep.Point (one sweep point) may be given instead. Nothing here draws; plots.py draws what these functions return.
 """
+import dataclasses
 import math
 from dataclasses import dataclass
 
@@ -127,13 +128,28 @@ def fit_ellipse(x, y, contact):
     return Ellipse(xc, yc, a, b, "fitted")
 
 
-def hertz_ellipse(run):
-    """Hertz semi-axes from the global attributes hertz_a, hertz_b (mm), if the file has them."""
-    a, b = run.attr("hertz_a"), run.attr("hertz_b")
-    if a is None or b is None:
-        return None
+def hertz_ellipse(run, index=None):
+    """Hertz's ellipse of a record or sweep point, if the file says it: a sweep point's
+    variables hertz_a, hertz_b (mm); else the global attributes hertz_a, hertz_b at the load
+    hertz_load, scaled to the record's F_n as F^(1/3) (a and b grow so at fixed curvatures and
+    materials; files without hertz_load: as they are)."""
     try:
-        return Ellipse(0.0, 0.0, float(np.ravel(a)[0]), float(np.ravel(b)[0]), "Hertz")
+        if index is not None and not isinstance(index, (int, np.integer)) and \
+                run.has("hertz_a") and run.has("hertz_b"):
+            _, idx = _leading(index)
+            a, b = (float(_filled(run.variable(v)[idx])) for v in ("hertz_a", "hertz_b"))
+            return Ellipse(0.0, 0.0, a, b, "Hertz") if a > 0 and b > 0 else None
+        a, b = run.attr("hertz_a"), run.attr("hertz_b")
+        if a is None or b is None:
+            return None
+        a, b = float(np.ravel(a)[0]), float(np.ravel(b)[0])
+        load = run.attr("hertz_load")
+        if load is not None and isinstance(index, (int, np.integer)) and run.has("Fn"):
+            fn = float(_filled(run.variable("Fn")[int(index)]))
+            scale = (fn / float(np.ravel(load)[0])) ** (1.0 / 3.0)
+            if np.isfinite(scale) and scale > 0:
+                a, b = a * scale, b * scale
+        return Ellipse(0.0, 0.0, a, b, "Hertz")
     except (TypeError, ValueError, IndexError):
         return None
 
@@ -188,7 +204,7 @@ def field_map(run, field, index):
         m.units = ""
     if arrows:
         m.vx, m.vy = comps[0], comps[1]
-    m.ellipse = hertz_ellipse(run) or fit_ellipse(x, y, contact)
+    m.ellipse = hertz_ellipse(run, index) or fit_ellipse(x, y, contact)
     return m
 
 
@@ -251,6 +267,7 @@ class CreepPanel:
     units: str      # of var
     key_units: str  # of the key
     series: list    # extract.CreepSeries: x = the key's values, y = var
+    series_units: dict = dataclasses.field(default_factory=dict)  # units of the keys labelling the series
 
 
 MIN_CURVE_POINTS = 3
@@ -285,9 +302,11 @@ def creep3d_panels(run, names=("Fx", "Fy", "Mz"), x_keys=None):
                  if len(run.ds.dimensions[dims[canonical.index(k)]]) >= MIN_CURVE_POINTS]
         swept = long_ or swept
     panels = []
+    units = {k: run.units(d) for k, d in zip(canonical, dims)}
+    units.update({k: run.units(d) for k, d in zip(keys, dims)})
     for key in swept:
         dim = dims[canonical.index(key)]
         for name in names:
             series = sweep_series(run, var=name, x_key=key)
-            panels.append(CreepPanel(key, name, run.units(name), run.units(dim), series))
+            panels.append(CreepPanel(key, name, run.units(name), run.units(dim), series, units))
     return panels

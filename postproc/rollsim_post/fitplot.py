@@ -39,8 +39,26 @@ def read_fit(path):
             "measured": np.array(ds["measured"][:], dtype=float),
             "simulated": np.array(ds["simulated"][:], dtype=float),
             "measured_name": getattr(ds, "measured", "measured"),
+            "measured_units": _units(ds["measured"], getattr(ds, "measured", "")),
+            "x_units": getattr(x, "units", None),
             "residual_norm": float(getattr(ds, "residual_norm", np.nan)),
         }
+
+
+def _units(var, name):
+    """The measured output's units: the variable's attribute (files since the attribute was
+    written), else what the name implies (traction_coefficient is a ratio; a force's units
+    depend on the dimension, unknown here)."""
+    if "units" in var.ncattrs():
+        return var.units
+    return "1" if name == "traction_coefficient" else None
+
+
+def _axis_label(name, units):
+    """'name [units]', units as the other figures write them; the name alone if unknown."""
+    if units is None:
+        return name
+    return f"{name} [{units.replace('^2', '²')}]"
 
 
 def _fmt(value, se, unit):
@@ -65,15 +83,15 @@ def plot_fit(fit, title, out, rec):
         f"{n.split('.')[-1]} = {_fmt(v, s, u)}"
         for n, v, s, u in zip(fit["names"], fit["fitted"], fit["se"], fit["units"]))
     rec.line(top, 0, x, sim, "-", series=label, quantity=fit["measured_name"])
-    top.set_ylabel(fit["measured_name"])
+    top.set_ylabel(_axis_label(fit["measured_name"], fit.get("measured_units")))
     top.set_title(title, fontsize=9)
     top.legend(fontsize=8)
     top.grid(True, alpha=0.3)
     rec.line(bottom, 1, x, meas - sim, "o", series="measured - simulated", quantity="residual",
              ms=3)
     bottom.axhline(0.0, color="k", lw=0.8)
-    bottom.set_ylabel("residual")
-    bottom.set_xlabel(fit["x_name"])
+    bottom.set_ylabel(_axis_label("residual", fit.get("measured_units")))
+    bottom.set_xlabel(_axis_label(fit["x_name"], fit.get("x_units")))
     bottom.grid(True, alpha=0.3)
     fig.tight_layout()
     fig.savefig(out)

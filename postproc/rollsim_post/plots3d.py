@@ -122,6 +122,14 @@ def plot_map(maps, title, out, rec=None, max_arrows=25):
     save(fig, out)
 
 
+def _value_label(key, value, units):
+    """'η = 0.001', 'φ = 0.0002 1/mm': a swept key's value with its units (from the file)."""
+    if key not in CREEP_SYMBOLS:
+        return describe(key, value, units)
+    unit = "" if units in ("", "1", None) else " " + pretty_units(units)
+    return f"{CREEP_SYMBOLS[key]} = {value:.6g}{unit}"
+
+
 def _key_label(key, units):
     sym = CREEP_SYMBOLS.get(key, key)
     unit = units if units and units != "1" else "1"
@@ -143,8 +151,8 @@ def plot_creep3d(panels, title, out, rec=None):
         colours = {}
         for s in p.series:
             if s.values:
-                s.label = ", ".join(f"{CREEP_SYMBOLS[k]} = {v:.6g}" if k in CREEP_SYMBOLS
-                                    else describe(k, v) for k, v in s.values.items())
+                s.label = ", ".join(_value_label(k, v, p.series_units.get(k, ""))
+                                    for k, v in s.values.items())
             c = colours.setdefault(s.label, SERIES_COLOURS[len(colours) % len(SERIES_COLOURS)])
             style = dict(ELASTIC_STYLE) if len(p.series) == 1 else dict(color=c, lw=1.4)
             style["color"] = "black" if len(p.series) == 1 else c

@@ -42,6 +42,8 @@ KEY_NAMES = {
 def describe(key, value, units=""):
     """'ξ = -0.3 %', 'k_rel = 0.6', or 'KEY = value UNITS' for keys without a symbol."""
     name, unit, factor = KEY_NAMES.get(key, (key, "" if units in ("", "1") else units, 1.0))
+    if key == "contact.normal_load" and units == "N":  # a 3D load: the total force
+        name, unit = "F_n", "N"
     return f"{name} = {value * factor:.6g}{' ' + unit if unit else ''}"
 
 

@@ -16,8 +16,9 @@
 int rs_cli_help(const char *cmd, FILE *out);
 /* 1 if `cmd` is a subcommand rollsim knows. */
 int rs_cli_is_command(const char *cmd);
-/* `check` of a case with a sweep: block: the swept keys, their values and units. */
-void rs_cli_print_sweep(FILE *out, const rs_sweep *s);
+/* `check` of a case with a sweep: block: the swept keys, their values and units (forces in
+ * N for contact.dimension 3, N/mm in 2D). */
+void rs_cli_print_sweep(FILE *out, const rs_sweep *s, int dimension);
 
 /* ---- heap.c: the process's memory ---- */
 

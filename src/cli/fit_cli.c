@@ -18,8 +18,10 @@ static void print_summary(const rs_fit_spec *f, const rs_fit_result *r, int stat
   printf("  %-24s %14s %14s %14s   %s\n", "parameter", "start", "fitted", "std. error", "bounds");
   for (int k = 0; k < n; k++) {
     const rs_fit_param *q = &f->params[k];
-    printf("  %-24s %14.8g %14.8g %14.4g   [%g, %g] %s\n", q->key, q->start, r->fitted[k],
-           r->std_error[k], q->lo, q->hi, q->unit);
+    char se[32] = "n/a"; /* a fit stopped short of convergence has no covariance */
+    if (isfinite(r->std_error[k])) snprintf(se, sizeof se, "%.4g", r->std_error[k]);
+    printf("  %-24s %14.8g %14.8g %14s   [%g, %g] %s\n", q->key, q->start, r->fitted[k], se, q->lo,
+           q->hi, q->unit);
   }
   if (status == RS_OK && n > 1) {
     printf("  correlation matrix:\n");

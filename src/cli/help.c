@@ -46,8 +46,9 @@ static const rs_command_help commands[] = {
      "  -q, --quiet        no progress bar (warnings are still printed)\n"
      "\n"
      "Warnings on stderr (the run goes on, the exit code is unchanged): a creepage that looks\n"
-     "like a percentage (|xi| >= 0.05) or lies far beyond full sliding (> 10 mu a/R); a\n"
-     "transient whose first second of steps projects more than 2 minutes (ETA and a hint).\n"},
+     "like a percentage (|xi|, in 3D also |eta|, >= 0.05) or a longitudinal creepage far\n"
+     "beyond full sliding (> 10 mu a/R); a transient projected to take more than 2 minutes\n"
+     "(ETA and a hint).\n"},
     {"check", "check CASE.yaml [--set KEY=VALUE]...",
      "validate a case, print every resolved and derived parameter; run nothing",
      "Validates the case file and prints every key with its resolved value and unit\n"
@@ -56,7 +57,7 @@ static const rs_command_help commands[] = {
      "discrete normal solution, the rolled distance of a transient. A case with a sweep:\n"
      "block also gets its swept keys, values, units and number of points. Exit code 2 and\n"
      "a message naming file, line and key for an invalid case; warnings as for run.\n"},
-    {"sweep", "sweep CASE.yaml [-o OUT.nc] [--set KEY=VALUE]... [--quiet]",
+    {"sweep", "sweep CASE.yaml [-o OUT.nc] [--set KEY=VALUE]... [--part K/N] [--quiet]",
      "run every point of the case's sweep: block into one netCDF file",
      "Runs every combination of the values in the case's sweep: block (dotted keys mapped\n"
      "to lists or {linspace: [from, to, count]}; the last key varies fastest; steady points\n"
@@ -121,9 +122,11 @@ int rs_cli_help(const char *cmd, FILE *out)
   if (!cmd || !*cmd) {
     for (size_t i = 0; i < N_COMMANDS; i++)
       fprintf(out, "%s rollsim %s\n", i ? "      " : "usage:", commands[i].synopsis);
-    fprintf(out, "       rollsim --help | --version\n\n"
-                 "2D wheel-rail rolling contact with local plasticity (Kalker's theory extended\n"
-                 "with a yield limit; SUNDIALS IDA/KINSOL, KLU, netCDF output).\n\n");
+    fprintf(out,
+            "       rollsim --help | --version\n\n"
+            "Wheel-rail rolling contact with local plasticity, 2D line contact and 3D elliptic\n"
+            "point contact (Kalker's theory extended with a yield limit; twin-disc rigs;\n"
+            "SUNDIALS IDA/KINSOL, KLU, FFTW, netCDF output).\n\n");
     for (size_t i = 0; i < N_COMMANDS; i++)
       fprintf(out, "  %-6s %s\n", commands[i].name, commands[i].summary);
     fprintf(out, "\n'rollsim COMMAND --help' describes a command and its options. The case file:\n"
@@ -151,7 +154,7 @@ static void print_values(FILE *out, const rs_sweep_axis *ax)
   fputc(']', out);
 }
 
-void rs_cli_print_sweep(FILE *out, const rs_sweep *s)
+void rs_cli_print_sweep(FILE *out, const rs_sweep *s, int dimension)
 {
   fprintf(out, "# sweep: %zu points (", s->npoints);
   for (int a = 0; a < s->naxes; a++) fprintf(out, "%s%d", a ? " x " : "", s->axes[a].n);
@@ -161,6 +164,7 @@ void rs_cli_print_sweep(FILE *out, const rs_sweep *s)
     fprintf(out, "sweep.%s: ", ax->key);
     print_values(out, ax);
     const char *unit = rs_case_key_units(ax->key), *note = rs_case_key_unit_note(ax->key);
+    if (unit && dimension == 3 && !strcmp(unit, "N/mm")) unit = "N"; /* a total force in 3D */
     fprintf(out, "  # %s%s%s, %d value%s\n",
             *note  ? note
             : unit ? unit

@@ -72,18 +72,23 @@ static const yaml_node_t *given(const resolver *r, const char *path)
   return i < 0 ? NULL : r->where[i];
 }
 
-/* Range of a history's values over the simulated interval [0, end_time]. */
-static int check_history(const resolver *r, const char *path, const rs_history *h, double end_time)
+/* Range of a history's values over the simulated interval [0, end_time]; forces in the
+ * dimension's unit. */
+static int check_history(const resolver *r, const char *path, const rs_history *h, const rs_case *c)
 {
-  const rs_case_key *spec = &rs_case_keys[rs_case_key_index(path)];
+  const double end_time = c->end_time;
+  rs_case_key spec_dim = rs_case_keys[rs_case_key_index(path)];
+  const rs_case_key *spec = &spec_dim;
+  spec_dim.unit = rs_case_key_unit_in(spec->unit, c->dimension);
   const yaml_node_t *n = given(r, path);
   double lo = rs_history_min(h, 0.0, end_time), big = rs_history_max_abs(h, 0.0, end_time);
   const char *sp = *spec->unit ? " " : "";
+  const int open = spec->flags & RS_KEY_LO_OPEN;
   if (h->kind == RS_HISTORY_CONSTANT) return rs_case_check_range(r->d, n, spec, path, h->value);
-  if (lo < spec->lo)
+  if (open ? !(lo > spec->lo) : lo < spec->lo)
     return rs_case_error(r->d, n, path,
-                         "must be >= %g%s%s at all times in [0, %g] s, reaches %g%s%s", spec->lo,
-                         sp, spec->unit, end_time, lo, sp, spec->unit);
+                         "must be %s %g%s%s at all times in [0, %g] s, reaches %g%s%s",
+                         open ? ">" : ">=", spec->lo, sp, spec->unit, end_time, lo, sp, spec->unit);
   if (big > spec->hi)
     return rs_case_error(r->d, n, path, "reaches %g%s%s in [0, %g] s: unreasonably large (a typo?)",
                          big, sp, spec->unit, end_time);
@@ -287,9 +292,9 @@ static int resolve_force(const resolver *r, rs_case *c)
     return rs_case_error(r->d, force, "rolling.tangential_force",
                          "give rolling.creepage or rolling.tangential_force, not both (with a "
                          "prescribed force the creepage is computed)");
-  int status = check_history(r, "rolling.tangential_force", &c->tangential_force, c->end_time);
+  int status = check_history(r, "rolling.tangential_force", &c->tangential_force, c);
   if (status == RS_OK && c->dimension == 3)
-    status = check_history(r, "rolling.tangential_force", &c->tangential_force_y, c->end_time);
+    status = check_history(r, "rolling.tangential_force", &c->tangential_force_y, c);
   if (status != RS_OK) return status;
   const char *unit = c->dimension == 3 ? "N" : "N/mm";
   double fmax = rs_history_max_abs(&c->tangential_force, 0.0, c->end_time), f0 = 0.0;
@@ -544,13 +549,7 @@ static int resolve(const rs_case_doc *d, rs_case_input *in, const yaml_node_t **
   const char *names[] = {"contact.normal_load",    "rolling.velocity",         "rolling.creepage",
                          "rolling.shift_velocity", "rolling.lateral_creepage", "rolling.spin"};
   for (int i = 0; i < 6; i++)
-    if ((status = check_history(&r, names[i], hs[i], c->end_time)) != RS_OK) return status;
-  if (!(rs_history_min(&c->normal_load, 0.0, c->end_time) > 0))
-    return rs_case_error(d, given(&r, "contact.normal_load"), "contact.normal_load",
-                         c->normal_load.kind == RS_HISTORY_CONSTANT
-                             ? "must be > 0 N/mm, got %g"
-                             : "must stay > 0 N/mm over the run, reaches %g N/mm",
-                         rs_history_min(&c->normal_load, 0.0, c->end_time));
+    if ((status = check_history(&r, names[i], hs[i], c)) != RS_OK) return status;
   if ((status = resolve_friction(&r, in)) != RS_OK || (status = resolve_force(&r, c)) != RS_OK ||
       (status = resolve_grid(&r, c)) != RS_OK)
     return status;
@@ -835,7 +834,7 @@ void rs_case_print(const rs_case *c, FILE *out)
     default: break;
     }
     if (*k->unit)
-      fprintf(out, "  # %s", k->unit);
+      fprintf(out, "  # %s", rs_case_key_unit_in(k->unit, c->dimension));
     else if (k->kind == RS_KEY_NUMBER || k->kind == RS_KEY_HISTORY)
       fprintf(out, "  # 1");
     if (k->flags & RS_KEY_DERIVED) fprintf(out, " (= k_tau/(G + k_tau))");

@@ -126,6 +126,9 @@ extern const char *const rs_case_field_names[]; /* bit i of the mask, NULL-termi
 int rs_case_parse(rs_case_doc *d, rs_case_input *in, const yaml_node_t **where);
 /* Index of a key in rs_case_keys, or -1. */
 int rs_case_key_index(const char *path);
+/* A key's unit in a contact of `dimension`: forces given per width in 2D ("N/mm") are
+ * totals in 3D ("N"); other units as they are. */
+const char *rs_case_key_unit_in(const char *unit, int dimension);
 /* Check a number against the key's range (message with the key and unit). */
 int rs_case_check_range(const rs_case_doc *d, const yaml_node_t *n, const rs_case_key *spec,
                         const char *key, double x);

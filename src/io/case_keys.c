@@ -31,10 +31,10 @@ const rs_case_key rs_case_keys[] = {
 
     {"contact", RS_KEY_SECTION, 0, "", 0, 0, 0, NULL},
     {"contact.dimension", RS_KEY_INTEGER, F(c.dimension), "", 2, 3, 0, NULL},
-    {"contact.normal_load", RS_KEY_HISTORY, F(c.normal_load), "N/mm", 0, BIG, RS_KEY_HI_ABSURD,
-     NULL},
-    {"contact.radius", RS_KEY_VECTOR, F(radius), "mm", 0, 1e9, RS_KEY_LO_OPEN | RS_KEY_HI_ABSURD,
-     NULL},
+    {"contact.normal_load", RS_KEY_HISTORY, F(c.normal_load), "N/mm", 0, BIG,
+     RS_KEY_LO_OPEN | RS_KEY_HI_ABSURD, NULL},
+    {"contact.radius", RS_KEY_VECTOR, F(radius), "mm", 0, 1e9,
+     RS_KEY_LO_OPEN | RS_KEY_HI_ABSURD | RS_KEY_NULLABLE, NULL},
     {"contact.curvature", RS_KEY_VECTOR, F(curvature), "1/mm", 0, 1e9,
      RS_KEY_LO_OPEN | RS_KEY_HI_ABSURD | RS_KEY_NULLABLE, NULL},
     {"contact.normal_solution", RS_KEY_CHOICE, F(c.normal_solution), "", 0, 0, 0,
@@ -44,9 +44,12 @@ const rs_case_key rs_case_keys[] = {
 
     {"grid", RS_KEY_SECTION, 0, "", 0, 0, 0, NULL},
     {"grid.cells", RS_KEY_VECTOR, F(cells), "", 2, 100000, RS_KEY_WHOLE, NULL},
-    {"grid.extent", RS_KEY_VECTOR, F(extent), "Hertz semi-axes", 1, 1000, RS_KEY_HI_ABSURD, NULL},
-    {"grid.x_range", RS_KEY_RANGE, F(c.x_range), "mm", -1e9, 1e9, RS_KEY_HI_ABSURD, NULL},
-    {"grid.y_range", RS_KEY_RANGE, F(c.y_range), "mm", -1e9, 1e9, RS_KEY_HI_ABSURD, NULL},
+    {"grid.extent", RS_KEY_VECTOR, F(extent), "Hertz semi-axes", 1, 1000,
+     RS_KEY_HI_ABSURD | RS_KEY_NULLABLE, NULL},
+    {"grid.x_range", RS_KEY_RANGE, F(c.x_range), "mm", -1e9, 1e9,
+     RS_KEY_HI_ABSURD | RS_KEY_NULLABLE, NULL},
+    {"grid.y_range", RS_KEY_RANGE, F(c.y_range), "mm", -1e9, 1e9,
+     RS_KEY_HI_ABSURD | RS_KEY_NULLABLE, NULL},
 
     {"material", RS_KEY_SECTION, 0, "", 0, 0, 0, NULL},
     {"material.shear_modulus", RS_KEY_NUMBER, F(c.shear_modulus), "N/mm^2", 0, BIG,
@@ -82,9 +85,10 @@ const rs_case_key rs_case_keys[] = {
     {"plasticity", RS_KEY_SECTION, 0, "", 0, 0, 0, NULL},
     {"plasticity.tau_c0", RS_KEY_NUMBER, F(c.tau_c0), "N/mm^2", 0, BIG,
      RS_KEY_LO_OPEN | RS_KEY_HI_ABSURD, NULL},
-    {"plasticity.k_tau", RS_KEY_NUMBER, F(c.k_tau), "N/mm^3", -1e15, 1e15, RS_KEY_HI_ABSURD, NULL},
-    {"plasticity.k_rel", RS_KEY_NUMBER, F(k_rel), "", -1e6, 1, RS_KEY_HI_OPEN | RS_KEY_DERIVED,
-     NULL},
+    {"plasticity.k_tau", RS_KEY_NUMBER, F(c.k_tau), "N/mm^3", -1e15, 1e15,
+     RS_KEY_HI_ABSURD | RS_KEY_NULLABLE, NULL},
+    {"plasticity.k_rel", RS_KEY_NUMBER, F(k_rel), "", -1e6, 1,
+     RS_KEY_HI_OPEN | RS_KEY_DERIVED | RS_KEY_NULLABLE, NULL},
     {"plasticity.tau_c_min", RS_KEY_NUMBER, F(c.tau_c_min), "N/mm^2", 0, BIG,
      RS_KEY_LO_OPEN | RS_KEY_HI_ABSURD | RS_KEY_NULLABLE, NULL},
 
@@ -161,6 +165,11 @@ int rs_case_key_index(const char *path)
   for (size_t i = 0; i < rs_case_nkeys; i++)
     if (!strcmp(rs_case_keys[i].path, path)) return (int)i;
   return -1;
+}
+
+const char *rs_case_key_unit_in(const char *unit, int dimension)
+{
+  return dimension == 3 && !strcmp(unit, "N/mm") ? "N" : unit;
 }
 
 int rs_case_check_range(const rs_case_doc *d, const yaml_node_t *n, const rs_case_key *spec,

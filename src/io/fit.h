@@ -63,7 +63,7 @@ typedef struct rs_fit_opts {
 typedef struct rs_fit_result {
   int nparams;
   size_t npoints;
-  double *fitted, *std_error; /* [nparams] */
+  double *fitted, *std_error; /* [nparams]; std_error and covariance NaN unless complete */
   double *covariance;         /* [nparams][nparams] */
   double *simulated;          /* [npoints] at the fitted values */
   double residual_norm;       /* |W (simulated - measured)| */
@@ -91,7 +91,8 @@ typedef struct rs_fit_output {
   const double *start, *fitted, *std_error, *covariance, *simulated;
   double residual_norm;
   long evaluations;
-  int keep_old; /* rename an existing file to PATH~ first */
+  int keep_old;  /* rename an existing file to PATH~ first */
+  int dimension; /* contact.dimension of the case: units of forces (N/mm in 2D, N in 3D) */
 } rs_fit_output;
 int rs_fit_output_write(const rs_fit_output *o, char *backup, size_t backup_len, rs_msg *msg);
 

@@ -155,6 +155,16 @@ static int define_rig(rs_output *out, const rs_output_rig *rig)
       {"revolution_traction_coefficient", rdim, "1", "mean F_x/F_n over the revolution",
        &out->rev_mu_id},
       {"revolution_slip", rdim, "1", "mean rig slip over the revolution", &out->rev_slip_id},
+      {"revolution_dissipated_energy", rdim, out->three_d ? "N mm" : "N mm/mm",
+       "energy dissipated in the contact over the revolution: the time integral of "
+       "frictional_power + plastic_power",
+       &out->rev_energy_id},
+      {"revolution_ustar_exit_mean", rdim, "mm",
+       "accumulated plastic deformation u* of the surface leaving the contact (the trailing "
+       "cells), mean over the revolution (and across y in 3D)",
+       &out->rev_ustar_id},
+      {"revolution_ustar_exit_max", rdim, "mm",
+       "largest u* of the surface leaving the contact over the revolution", &out->rev_ustar_max_id},
   };
   for (size_t i = 0; i < sizeof vars / sizeof *vars; i++)
     if ((err = def_rig_var(ncid, vars[i].name, vars[i].dim, vars[i].units, vars[i].long_name,
@@ -186,8 +196,9 @@ static int write_rig_meta(rs_output *out, const rs_output_rig *rig)
     buf[i] = fmin((double)(i + 1) * rig->revolution_time, t_end);
   err = nc_put_var_double(ncid, out->rig_meta_id[5], buf);
   for (size_t i = 0; i < nmax; i++) buf[i] = NAN;
-  const int ids[4] = {out->step_mu_id, out->step_slip_id, out->rev_mu_id, out->rev_slip_id};
-  for (int k = 0; k < 4 && !err; k++) err = nc_put_var_double(ncid, ids[k], buf);
+  const int ids[7] = {out->step_mu_id,    out->step_slip_id, out->rev_mu_id,       out->rev_slip_id,
+                      out->rev_energy_id, out->rev_ustar_id, out->rev_ustar_max_id};
+  for (int k = 0; k < 7 && !err; k++) err = nc_put_var_double(ncid, ids[k], buf);
   free(buf);
   return err;
 }
@@ -213,6 +224,18 @@ int rs_output_put_revolution(rs_output *out, size_t i, double traction_coefficie
                              rs_msg *msg)
 {
   return put_pair(out, out->rev_mu_id, out->rev_slip_id, i, traction_coefficient, slip, msg);
+}
+
+int rs_output_put_revolution_energy(rs_output *out, size_t i, double energy, double ustar_mean,
+                                    double ustar_max, rs_msg *msg)
+{
+  int status = put_pair(out, out->rev_energy_id, out->rev_ustar_id, i, energy, ustar_mean, msg);
+  int err;
+  if (status == RS_OK &&
+      ((err = nc_put_var1_double(out->ncid, out->rev_ustar_max_id, &i, &ustar_max)) ||
+       (err = nc_sync(out->ncid))))
+    status = rs_output_nc_failure(msg, out->path, "writing a twin-disc summary", err);
+  return status;
 }
 
 int rs_output_nc_failure(rs_msg *msg, const char *path, const char *what, int err)
@@ -324,6 +347,11 @@ static int define_file(rs_output *out, const rs_output_spec *spec, const char **
     const int dim = 3;
     if ((err = nc_put_att_int(ncid, NC_GLOBAL, "dimension", NC_INT, 1, &dim))) return err;
   }
+  if (three_d && spec->hertz_a > 0.0 &&
+      ((err = nc_put_att_double(ncid, NC_GLOBAL, "hertz_a", NC_DOUBLE, 1, &spec->hertz_a)) ||
+       (err = nc_put_att_double(ncid, NC_GLOBAL, "hertz_b", NC_DOUBLE, 1, &spec->hertz_b)) ||
+       (err = nc_put_att_double(ncid, NC_GLOBAL, "hertz_load", NC_DOUBLE, 1, &spec->hertz_load))))
+    return err;
 
   *what = "defining coordinate variables";
   if ((err = nc_def_var(ncid, "time", NC_DOUBLE, 1, &time_dim, &out->time_id)) ||

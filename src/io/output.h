@@ -38,6 +38,9 @@ typedef struct rs_output_spec {
    * output_fields lists the requested ones. */
   unsigned requested_fields;
   const rs_output_rig *rig; /* twin-disc summaries, or NULL */
+  /* 3D: the Hertz semi-axes (mm) at the load hertz_load (N, the run's largest), written as
+   * the global attributes hertz_a, hertz_b, hertz_load (0: none written). */
+  double hertz_a, hertz_b, hertz_load;
 } rs_output_spec;
 
 /* One record. Scalars per docs/model.md §7; field arrays have n = nx (3D: nx ny, y slowest)
@@ -85,6 +88,10 @@ int rs_output_put_step(rs_output *out, size_t i, double traction_coefficient, do
                        rs_msg *msg);
 int rs_output_put_revolution(rs_output *out, size_t i, double traction_coefficient, double slip,
                              rs_msg *msg);
+/* Revolution i: the energy dissipated over it (N mm/mm in 2D, N mm in 3D) and the u* of
+ * the surface leaving the contact, its mean over the revolution and its largest value (mm). */
+int rs_output_put_revolution_energy(rs_output *out, size_t i, double energy, double ustar_mean,
+                                    double ustar_max, rs_msg *msg);
 /* Number of records written so far. */
 size_t rs_output_records(const rs_output *out);
 /* The status attribute is stored NUL-padded to this fixed length (longer texts are
@@ -125,6 +132,7 @@ typedef struct rs_sweep_output_spec {
 typedef struct rs_sweep_point {
   double Fx, Fn, creepage, velocity;
   double Fy, Mz, lateral_creepage, spin; /* 3D only (not written in 2D) */
+  double hertz_a, hertz_b;               /* 3D only: Hertz semi-axes at the point's load, mm */
   int n_exterior, n_adhesion, n_slip, n_plastic;
   double frictional_power, plastic_power, elastic_energy;
   int converged;

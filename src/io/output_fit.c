@@ -13,6 +13,7 @@
 #include <string.h>
 
 #include "io/output_internal.h"
+#include "io/case.h"
 #include "io/fit.h"
 
 #define NAME_LEN 64
@@ -106,9 +107,16 @@ int rs_fit_output_write(const rs_fit_output *o, char *backup, size_t backup_len,
                                                             : "input");
     if (!err && f->input_keys && f->input_keys[j])
       err = put_att_text(ncid, col_id[j], "key", f->input_keys[j]);
+    const char *key_units =
+        f->input_keys && f->input_keys[j] ? rs_case_key_units(f->input_keys[j]) : NULL;
+    if (!err && key_units)
+      err = put_att_text(ncid, col_id[j], "units",
+                         o->dimension == 3 && !strcmp(key_units, "N/mm") ? "N" : key_units);
   }
-  if (!err) err = def_double(ncid, "measured", 1, &dpt, NULL, f->measured, &v_meas);
-  if (!err) err = def_double(ncid, "simulated", 1, &dpt, NULL, f->measured, &v_sim);
+  /* the measured output: traction_coefficient (1) or Fx (a force, per width in 2D) */
+  const char *measured_units = strcmp(f->measured, "Fx") ? "1" : o->dimension == 3 ? "N" : "N/mm";
+  if (!err) err = def_double(ncid, "measured", 1, &dpt, measured_units, f->measured, &v_meas);
+  if (!err) err = def_double(ncid, "simulated", 1, &dpt, measured_units, f->measured, &v_sim);
   if (!err) err = put_att_text(ncid, v_sim, "comment", "at the fitted parameters");
   if (!err) err = def_double(ncid, "weight", 1, &dpt, NULL, "weight (1/sigma, relative)", &v_w);
   char source[64];

@@ -59,6 +59,7 @@ struct rs_output {
   int has_rig;
   int rig_meta_id[6];
   int step_mu_id, step_slip_id, rev_mu_id, rev_slip_id; /* twin-disc summaries */
+  int rev_energy_id, rev_ustar_id, rev_ustar_max_id;    /* per revolution: wear inputs */
   char backup[1040]; /* where an older file of the same name was kept, or "" */
 };
 

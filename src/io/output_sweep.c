@@ -47,8 +47,10 @@ static const sweep_var sweep_vars_3d[] = {
     {"Mz", "spin moment on body 1 about the contact centre", "E", SW_DOUBLE},
     {"lateral_creepage", "lateral creepage", "1", SW_DOUBLE},
     {"spin", "spin creepage", "1/mm", SW_DOUBLE},
+    {"hertz_a", "Hertz semi-axis along x (rolling direction) at the point's load", "mm", SW_DOUBLE},
+    {"hertz_b", "Hertz semi-axis along y at the point's load", "mm", SW_DOUBLE},
 };
-#define N_SWEEP_VARS_3D 4
+#define N_SWEEP_VARS_3D 6
 #define N_SWEEP_VARS    (sizeof sweep_vars / sizeof sweep_vars[0])
 #define CONVERGED_VAR   (N_SWEEP_VARS - 1)
 
@@ -74,14 +76,16 @@ static const char *unit_of(const sweep_var *v, int dimension)
   return v->units;
 }
 
-/* The coordinate variable of one swept key. */
-static int define_axis(int ncid, const char *key, size_t size, int *dim, int *coord)
+/* The coordinate variable of one swept key; a force given per width in 2D (N/mm) is a total
+ * force (N) in 3D. */
+static int define_axis(int ncid, const char *key, size_t size, int dimension, int *dim, int *coord)
 {
   char name[NC_MAX_NAME + 1], long_name[NC_MAX_NAME + 64];
   snprintf(name, sizeof name, "%s", key);
   for (char *p = name; *p; p++)
     if (*p == '.') *p = '_';
   const char *units = rs_case_key_units(key), *note = rs_case_key_unit_note(key);
+  if (units && dimension == 3 && !strcmp(units, "N/mm")) units = "N";
   snprintf(long_name, sizeof long_name, "%s%s%s%s", key, *note ? " (" : "", note, *note ? ")" : "");
   int err = nc_def_dim(ncid, name, size, dim);
   if (!err) err = nc_def_var(ncid, name, NC_DOUBLE, 1, dim, coord);
@@ -178,7 +182,7 @@ int rs_sweep_output_create(rs_sweep_output **outp, const rs_sweep_output_spec *s
   int dims[NC_MAX_VAR_DIMS], coord[NC_MAX_VAR_DIMS], x_id = -1;
   for (int a = 0; a < spec->naxes && !err; a++) {
     o->sizes[a] = (size_t)spec->sizes[a];
-    err = define_axis(o->ncid, spec->keys[a], o->sizes[a], &dims[a], &coord[a]);
+    err = define_axis(o->ncid, spec->keys[a], o->sizes[a], spec->dimension, &dims[a], &coord[a]);
   }
   for (size_t v = 0; v < N_SWEEP_VARS && !err; v++) {
     const int is_int = sweep_vars[v].type == SW_INT;
@@ -309,7 +313,8 @@ int rs_sweep_output_write(rs_sweep_output *o, size_t index, const rs_sweep_point
   for (size_t v = 0; v < N_SWEEP_VARS && !err; v++)
     err = sweep_vars[v].type == SW_INT ? nc_put_var1_int(o->ncid, o->varid[v], start, &iv[v])
                                        : nc_put_var1_double(o->ncid, o->varid[v], start, &dv[v]);
-  const double d3[N_SWEEP_VARS_3D] = {pt->Fy, pt->Mz, pt->lateral_creepage, pt->spin};
+  const double d3[N_SWEEP_VARS_3D] = {pt->Fy,   pt->Mz,      pt->lateral_creepage,
+                                      pt->spin, pt->hertz_a, pt->hertz_b};
   for (int v = 0; v < N_SWEEP_VARS_3D && !err; v++)
     if (o->varid3[v] >= 0) err = nc_put_var1_double(o->ncid, o->varid3[v], start, &d3[v]);
   if (!err && o->nx) err = write_fields(o, start, pt);

@@ -236,10 +236,13 @@ int rs_sweep_merge(const char *out_path, const char *const *paths, int nparts, c
         }
       }
     }
-    /* 3D: the lateral force, spin moment and the two creepages (absent in 2D files) */
-    static const char *const names3d[4] = {"Fy", "Mz", "lateral_creepage", "spin"};
-    double *dst3[4] = {&pt.Fy, &pt.Mz, &pt.lateral_creepage, &pt.spin};
-    for (int v = 0; v < 4 && !err; v++) {
+    /* 3D: the lateral force, spin moment, the two creepages and the Hertz semi-axes
+     * (absent in 2D files; the semi-axes NaN from parts written without them) */
+    static const char *const names3d[6] = {"Fy",   "Mz",      "lateral_creepage",
+                                           "spin", "hertz_a", "hertz_b"};
+    double *dst3[6] = {&pt.Fy, &pt.Mz, &pt.lateral_creepage, &pt.spin, &pt.hertz_a, &pt.hertz_b};
+    pt.hertz_a = pt.hertz_b = NAN;
+    for (int v = 0; v < 6 && !err; v++) {
       int vid;
       if (nc_inq_varid(id, names3d[v], &vid) == NC_NOERR)
         err = nc_get_var1_double(id, vid, start, dst3[v]);

@@ -272,6 +272,7 @@ typedef struct rs_diag {
   double Fy, Mz, lateral_creepage, spin; /* 3D (0 in 2D) */
   int count[4];                          /* by rs_regime */
   double frictional_power, plastic_power, elastic_energy, rigid_slip_power;
+  double hertz_a, hertz_b; /* 3D: Hertz semi-axes (mm) at the inputs' load (0 in 2D) */
 } rs_diag;
 
 /* slip: ncomp blocks of one value per cell (relative slip v_s/V, or v_s when V = 0). */

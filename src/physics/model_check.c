@@ -31,6 +31,13 @@ void rs_model_diagnostics_of(const rs_model *m, const rs_work *w, const rs_input
   d->lateral_creepage = eta;
   d->spin = phi;
   d->velocity = V;
+  if (nc > 1 && m->normal_load > 0.0 && in->load > 0.0) {
+    /* at fixed curvatures and materials a and b grow as F^(1/3) (the ellipse's shape does
+     * not depend on the load): from the model's semi-axes at its largest load */
+    const double s = in->load == m->normal_load ? 1.0 : cbrt(in->load / m->normal_load);
+    d->hertz_a = m->hertz_a * s;
+    d->hertz_b = m->hertz_b * s;
+  }
   for (int i = 0; i < n; i++) {
     const int ix = i % g->nx, iy = i / g->nx;
     rs_regime reg = RS_ADHESION;

@@ -30,7 +30,7 @@ struct rs_transient {
   const rs_inputs *frozen; /* NULL, or the inputs held whatever the time */
   rs_inputs in;            /* the inputs of the last evaluation */
   volatile sig_atomic_t *interrupt;
-  int (*step_hook)(void *ctx, double t, const double *y);
+  int (*step_hook)(void *ctx, double t, const double *y, const double *yp);
   void *hook_ctx;
   rs_stats before_restart; /* IDA's counters of the segments before the last IDAReInit */
 };
@@ -222,7 +222,8 @@ static int advance_by_steps(rs_transient *tr, double tout, sunrealtype *tret, in
     flag = IDASolve(tr->ida, tout, tret, tr->y, tr->yp, IDA_ONE_STEP);
     if (flag < 0) return flag;
     tn = *tret;
-    *hook_status = tr->step_hook(tr->hook_ctx, tn, N_VGetArrayPointer(tr->y));
+    *hook_status =
+        tr->step_hook(tr->hook_ctx, tn, N_VGetArrayPointer(tr->y), N_VGetArrayPointer(tr->yp));
     if (*hook_status != RS_OK) return flag;
     if (flag == IDA_TSTOP_RETURN) break;
   }

@@ -53,7 +53,7 @@ typedef struct rs_transient_opts {
   double max_step;                  /* s, 0: no limit */
   /* Called after every accepted time step with the solution there (may be NULL);
    * a status other than RS_OK stops the integration with that status. */
-  int (*step_hook)(void *ctx, double t, const double *y);
+  int (*step_hook)(void *ctx, double t, const double *y, const double *yp);
   void *hook_ctx;
   /* Linear algebra of the Newton iterations: KLU, or the dense Schur complement for
    * AUTO (0), DENSE and KRYLOV alike (Newton-Krylov with the near-field preconditioner

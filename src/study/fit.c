@@ -271,7 +271,8 @@ static int write_file(fit_run *r, const char *status, const double *fitted, cons
                              .simulated = sim,
                              .residual_norm = norm,
                              .evaluations = r->e.evaluations,
-                             .keep_old = !r->written};
+                             .keep_old = !r->written,
+                             .dimension = r->base->dimension};
   const int s = rs_fit_output_write(&out, r->backup, sizeof r->backup, msg);
   free(start);
   if (s == RS_OK) r->written = 1;
@@ -617,6 +618,11 @@ int rs_fit_run(const rs_fit_spec *f, const char *case_path, const char *const *s
     status = analyse(&r, res);
     if (status != RS_OK) snprintf(msg->text, sizeof msg->text, "%s", r.msg.text);
   }
+  if (status != RS_OK && res->covariance && res->std_error) /* none short of convergence: NaN */
+    for (int k = 0; k < n * n; k++) {
+      res->covariance[k] = NAN;
+      if (k < n) res->std_error[k] = NAN;
+    }
   res->evaluations = r.e.evaluations;
   if (r.have_best) {
     char why[RS_MSG_LEN + 16];

@@ -14,6 +14,7 @@ void rs_rig_run_free(rs_rig_run *r)
   free(r->time_start);
   free(r->time_end);
   free(r->exit_buf);
+  rs_work_free(&r->w);
   memset(r, 0, sizeof *r);
 }
 
@@ -70,6 +71,10 @@ int rs_rig_run_create(rs_rig_run *r, const rs_case *c, const rs_model *m, rs_run
   }
   res->rig_nrev = r->nrev;
   for (size_t k = 0; k < r->nrev; k++) res->rig_rev_mu[k] = NAN;
+  if (rs_work_create(&r->w, m) != RS_OK) {
+    rs_rig_run_free(r);
+    return rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory (twin-disc power)");
+  }
   return RS_OK;
 }
 
@@ -96,7 +101,7 @@ static double overlap_integral(double t0, double f0, double t1, double f1, doubl
   return 0.5 * (flo + fhi) * (hi - lo);
 }
 
-int rs_rig_run_step(void *ctx, double t, const double *y)
+int rs_rig_run_step(void *ctx, double t, const double *y, const double *yp)
 {
   rs_rig_run *r = ctx;
   const rs_model *m = r->m;
@@ -119,22 +124,44 @@ int rs_rig_run_step(void *ctx, double t, const double *y)
   rs_model_inputs_at(m, nextafter(t, -INFINITY), &before);
   const double mu = fx / m->normal_load, slip_next = -rs_model_creepage(m, &in, y);
   const double slip = r->started ? -rs_model_creepage(m, &before, y) : slip_next;
+  /* the dissipated power (frictional + plastic) and the u* leaving the contact (mean and
+   * largest over the rows). At a held step's start the power at t is its left limit, for the
+   * segment ending there as for the next one (whose first step, after IDA's restart, is
+   * short): the state's rates after the jump are not known here. */
+  rs_diag d;
+  if ((status = rs_model_diagnostics(m, &r->w, r->started ? &before : &in, y, yp, &d, NULL, NULL,
+                                     NULL)) != RS_OK)
+    return rs_msg_set(&r->msg, status, "twin-disc: the dissipated power at t = %g s", t);
+  const double power = d.frictional_power + d.plastic_power;
+  double ustar = 0.0, ustar_max = 0.0;
+  for (int iy = 0; iy < ny; iy++) {
+    ustar += exit_state[iy * (nc + 1) + nc] / ny;
+    ustar_max = fmax(ustar_max, exit_state[iy * (nc + 1) + nc]);
+  }
   if (!r->started) {
     r->started = 1;
+    r->rev_ustar_max = ustar_max;
   } else {
     const double t0 = r->t_prev, T = r->c->rig.revolution_time, t_end = r->c->end_time;
     while (r->rev < r->nrev) {
       const double a = r->rev * T, b = fmin((r->rev + 1) * T, t_end);
       r->rev_mu += overlap_integral(t0, r->mu_prev, t, mu, a, b);
       r->rev_slip += overlap_integral(t0, r->slip_prev, t, slip, a, b);
+      r->rev_energy += overlap_integral(t0, r->power_prev, t, power, a, b);
+      r->rev_ustar += overlap_integral(t0, r->ustar_prev, t, ustar, a, b);
+      if (t > a) r->rev_ustar_max = fmax(r->rev_ustar_max, ustar_max);
       if (t < b * (1.0 - 1e-12)) break;
-      if (r->out && (status = rs_output_put_revolution(r->out, r->rev, r->rev_mu / (b - a),
-                                                       r->rev_slip / (b - a), &r->msg)) != RS_OK)
+      if (r->out && ((status = rs_output_put_revolution(r->out, r->rev, r->rev_mu / (b - a),
+                                                        r->rev_slip / (b - a), &r->msg)) != RS_OK ||
+                     (status = rs_output_put_revolution_energy(
+                          r->out, r->rev, r->rev_energy, r->rev_ustar / (b - a), r->rev_ustar_max,
+                          &r->msg)) != RS_OK))
         return status;
       r->res->rig_revolutions = (double)(r->rev + 1);
       r->res->rig_rev_mu[r->rev] = r->rev_mu / (b - a);
       r->rev++;
-      r->rev_mu = r->rev_slip = 0.0;
+      r->rev_mu = r->rev_slip = r->rev_energy = r->rev_ustar = 0.0;
+      r->rev_ustar_max = ustar_max; /* the state at the boundary belongs to both */
     }
     while (r->step < r->c->rig.nsteps) {
       const size_t j = r->step;
@@ -154,5 +181,7 @@ int rs_rig_run_step(void *ctx, double t, const double *y)
   r->t_prev = t;
   r->mu_prev = mu;
   r->slip_prev = slip_next;
+  r->power_prev = power;
+  r->ustar_prev = ustar;
   return RS_OK;
 }

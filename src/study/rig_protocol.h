@@ -2,7 +2,9 @@
  * (docs/model.md §8): the circumferential memory of the state leaving the contact, and the
  * time integrals of F_x/F_n and of the slip over each revolution and each protocol
  * step's averaging window (trapezoidal between accepted time steps), written to the
- * output as each completes. */
+ * output as each completes; per revolution also the energy dissipated (frictional plus
+ * plastic power integrated over it) and the u* of the surface leaving the contact (its
+ * mean over the revolution and its largest value). */
 #ifndef ROLLSIM_RIG_PROTOCOL_H
 #define ROLLSIM_RIG_PROTOCOL_H
 
@@ -19,8 +21,10 @@ typedef struct rs_rig_run {
   double *window_start, *slip_start, *slip_end, *time_start, *time_end; /* per step */
   double *exit_buf;       /* 3D: the exit state of every row (memory width values) */
   size_t nrev, rev, step; /* revolutions, current revolution, current step */
-  double t_prev, mu_prev, slip_prev;
+  double t_prev, mu_prev, slip_prev, power_prev, ustar_prev;
   double rev_mu, rev_slip, step_mu, step_slip; /* integrals so far */
+  double rev_energy, rev_ustar, rev_ustar_max; /* of the current revolution so far */
+  rs_work w;                                   /* the dissipated power's evaluation */
   int started;
   rs_msg msg;
 } rs_rig_run;
@@ -32,7 +36,7 @@ int rs_rig_run_create(rs_rig_run *r, const rs_case *c, const rs_model *m, rs_run
 void rs_rig_run_free(rs_rig_run *r);
 /* After every accepted time step (rs_transient_opts.step_hook): record the exit state,
  * integrate, write completed revolutions and steps. */
-int rs_rig_run_step(void *rig, double t, const double *y);
+int rs_rig_run_step(void *rig, double t, const double *y, const double *yp);
 /* The output file's description of the protocol (its arrays point into r). */
 rs_output_rig rs_rig_run_output(const rs_rig_run *r);
 

@@ -125,7 +125,7 @@ static int run_transient(run_state *s, const rs_run_opts *o, rs_run_result *res,
     topts.step_hook = rs_rig_run_step;
     topts.hook_ctx = rig;
     topts.max_step = rs_rig_memory_max_step(&rig->mem);
-    int status = rs_rig_run_step(rig, t0, s->y); /* the state at the start */
+    int status = rs_rig_run_step(rig, t0, s->y, s->yp); /* the state at the start */
     if (status != RS_OK) return rs_msg_set(msg, status, "%s", rig->msg.text);
   }
   rs_transient *tr = NULL;
@@ -347,7 +347,10 @@ int rs_run(const rs_case *c, const rs_run_opts *o, rs_run_result *res, rs_msg *m
                          .y = s.m.grid.y,
                          .fields = fields,
                          .requested_fields = asked | (fields & RS_FIELD_MU),
-                         .rig = rig ? &rig_spec : NULL};
+                         .rig = rig ? &rig_spec : NULL,
+                         .hertz_a = s.m.hertz_a,
+                         .hertz_b = s.m.hertz_b,
+                         .hertz_load = s.m.normal_load};
   if (o->no_output)
     status = RS_OK;
   else if (o->append)

@@ -30,6 +30,8 @@ static void fill_point(rs_sweep_point *pt, const rs_diag *d)
   pt->Mz = d->Mz;
   pt->lateral_creepage = d->lateral_creepage;
   pt->spin = d->spin;
+  pt->hertz_a = d->hertz_a;
+  pt->hertz_b = d->hertz_b;
   pt->velocity = d->velocity;
   pt->n_exterior = d->count[RS_EXTERIOR];
   pt->n_adhesion = d->count[RS_ADHESION];
@@ -348,7 +350,7 @@ static int record_point(sweep_writer *w, size_t p, int ps, const rs_diag *d, con
     res->points_done++;
   } else {
     pt.Fx = pt.Fn = pt.creepage = pt.velocity = NAN;
-    pt.Fy = pt.Mz = pt.lateral_creepage = pt.spin = NAN;
+    pt.Fy = pt.Mz = pt.lateral_creepage = pt.spin = pt.hertz_a = pt.hertz_b = NAN;
     pt.frictional_power = pt.plastic_power = pt.elastic_energy = NAN;
     pt.n_exterior = pt.n_adhesion = pt.n_slip = pt.n_plastic = -1;
     res->points_failed++;

@@ -22,7 +22,7 @@
 
 enum { TAG_REQUEST = 1, TAG_POINT = 2, TAG_LINE = 3 };
 /* A point message: line, j, status, 11 scalars, newton, has_fields, then 7 nx values. */
-enum { PT_HEAD = 20 }; /* m[16..19]: F_y, M_z, eta, phi (3D; 0 in 2D) */
+enum { PT_HEAD = 22 }; /* m[16..21]: F_y, M_z, eta, phi, Hertz a, b (3D; 0 in 2D) */
 
 typedef struct dist_run {
   const rs_sweep *s;
@@ -75,8 +75,8 @@ static void pack(dist_run *r, size_t line, size_t j, int status, const rs_diag *
   for (int k = 0; k < 11; k++) m[3 + k] = ok ? v[k] : NAN;
   m[14] = (double)newton;
   m[15] = ok && r->with_fields;
-  const double v3[4] = {d->Fy, d->Mz, d->lateral_creepage, d->spin};
-  for (int k = 0; k < 4; k++) m[16 + k] = ok ? v3[k] : NAN;
+  const double v3[6] = {d->Fy, d->Mz, d->lateral_creepage, d->spin, d->hertz_a, d->hertz_b};
+  for (int k = 0; k < 6; k++) m[16 + k] = ok ? v3[k] : NAN;
   if (ok && r->with_fields) {
     const double *rows[6] = {r->buf.px,  r->buf.pn,    r->buf.slip,
                              r->buf.upl, r->buf.ustar, r->buf.tauc};
@@ -110,6 +110,8 @@ static int write_point(dist_run *r, const double *m, int rank)
     pt.Mz = m[17];
     pt.lateral_creepage = m[18];
     pt.spin = m[19];
+    pt.hertz_a = m[20];
+    pt.hertz_b = m[21];
     pt.converged = 1;
     if (m[15] != 0) {
       const double *f = m + PT_HEAD;
@@ -128,7 +130,7 @@ static int write_point(dist_run *r, const double *m, int rank)
     r->res->points_done++;
   } else {
     pt.Fx = pt.Fn = pt.creepage = pt.velocity = NAN;
-    pt.Fy = pt.Mz = pt.lateral_creepage = pt.spin = NAN;
+    pt.Fy = pt.Mz = pt.lateral_creepage = pt.spin = pt.hertz_a = pt.hertz_b = NAN;
     pt.frictional_power = pt.plastic_power = pt.elastic_energy = NAN;
     pt.n_exterior = pt.n_adhesion = pt.n_slip = pt.n_plastic = -1;
     r->res->points_failed++;
