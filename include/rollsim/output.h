@@ -1,4 +1,4 @@
-/* netCDF output (interfaces.md "Output file"): CF-1.10, dimension time (unlimited)
+/* netCDF output (docs/file-format.md): CF-1.10, dimension time (unlimited)
  * and x, one record per output time, synced to disk after every record so that the
  * file stays readable with every record written so far if the process dies.
  * The output module knows nothing of the solver: it writes what it is given. */
@@ -40,7 +40,7 @@ typedef struct rs_output_spec {
   const rs_output_rig *rig; /* twin-disc summaries, or NULL */
 } rs_output_spec;
 
-/* One record. Scalars per model.md §7; field arrays have n = nx (3D: nx ny, y slowest)
+/* One record. Scalars per docs/model.md §7; field arrays have n = nx (3D: nx ny, y slowest)
  * entries (NULL allowed for fields not in the mask). In 3D px, slip and upl hold both
  * components, the x one in the first n entries and the y one in the next n; they are
  * written as px/py, slip_x/slip_y and upl_x/upl_y. */
@@ -140,8 +140,14 @@ typedef struct rs_sweep_point {
  * integers; doubles have _FillValue NaN. */
 int rs_sweep_output_create(rs_sweep_output **out, const rs_sweep_output_spec *spec, rs_msg *msg);
 const char *rs_sweep_output_backup(const rs_sweep_output *out);
-/* Write the point at flat index (row-major over the axes, last fastest) and sync. */
+/* Give the point at flat index (row-major over the axes, last fastest). Points are written
+ * (and synced) in batches: when one arrives RS_SWEEP_FLUSH_SECONDS or more after the last
+ * write, when the batch's memory is full, and at close. A killed process leaves a readable
+ * file holding every point but those given less than RS_SWEEP_FLUSH_SECONDS after the last
+ * write (io/output_sweep.c). */
+#define RS_SWEEP_FLUSH_SECONDS 0.5
 int rs_sweep_output_write(rs_sweep_output *out, size_t index, const rs_sweep_point *pt,
                           rs_msg *msg);
+/* Write the points not yet written, set the status attribute and close. */
 int rs_sweep_output_close(rs_sweep_output *out, const char *status, rs_msg *msg);
 #endif

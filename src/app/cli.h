@@ -48,17 +48,14 @@ int rs_warn_sweep(const rs_case *base, const rs_sweep *s, FILE *err);
  * grows with the cells) is measured over a window that leaves the first half of
  * RS_COST_PROBE_SECONDS out, from the first output record after half of it to the first
  * after all of it (from the start when no record came in the first half). It holds while the
- * solution changes: for the rest of the run when an input varies, but at constant inputs only until
- * the run has settled to steady rolling (RS_COST_SETTLE_LENGTHS contact lengths 2a after its start:
- * a start-up from rest is within 1e-4 of steady after 11.5-25 contact lengths for L = 20-2000 mm,
- * README), after which IDA's steps grow by orders of magnitude. If the projected rest exceeds
- * RS_COST_WARN_SECONDS, the projection is made once more from a second window, from the end of
- * the first to the next record after RS_COST_CONFIRM_SECONDS (at least one record later): a
- * start-up from rest takes its densest steps first (2D Carter, 400 cells: 31 % of the steps in
- * the first of 25 contact lengths; 3D at 44 x 44 cells: 85 %), so the first window alone
- * over-estimated (twin_disc_crowned.yaml: 200 s projected, 2.5-3.7 s taken; a 44 x 44 3D start-up
- * at rtol 1e-4: 147 s projected, 9-13 s taken). If the second projection exceeds it too: one
- * warning with that estimate (ETA) and a hint. */
+ * solution changes: for the rest of the run when an input varies, but at constant inputs only
+ * until the run has settled to steady rolling (RS_COST_SETTLE_LENGTHS contact lengths 2a after
+ * its start, by when a start-up from rest is steady), after which IDA's steps grow by orders of
+ * magnitude. If the projected rest exceeds RS_COST_WARN_SECONDS, the projection is made once
+ * more from a second window, from the end of the first to the next record after
+ * RS_COST_CONFIRM_SECONDS (at least one record later): a start-up from rest takes its densest
+ * steps first, so the first window alone over-estimates. If the second projection exceeds it
+ * too: one warning with that estimate (ETA) and a hint. */
 #define RS_COST_PROBE_SECONDS   1.0
 #define RS_COST_CONFIRM_SECONDS 5.0
 #define RS_COST_WARN_SECONDS    120.0
@@ -89,20 +86,19 @@ void rs_fields_copy(rs_fields *f, int n, const double *y, const double *pn, cons
  * and counts; a warning says so on stderr when `warn` and fields were asked for). */
 unsigned rs_sweep_profile_fields(const rs_case *c, int warn);
 
-/* Whether every point of the sweep has the grid of the base case (*common; the profiles
- * then share one x axis): the model of the base case and of each swept value (the other
- * keys at the base case's values) are compared. Common: x (malloc'ed) and n hold the
- * grid; else why says which key changes it. Returns a status (case or model errors). */
-int rs_sweep_common_grid(const rs_sweep *s, const char *case_path, const char *const *sets,
-                         int nsets, int *common, double **x, int *n, char *why, size_t why_len,
-                         rs_msg *msg);
+/* Whether every point of the sweep has the grid of the loaded case c (*common; the
+ * profiles then share one x axis): the model of c and of each swept value (the other keys
+ * at c's values) are compared; a rolling input under a constant normal load leaves the grid
+ * as it is and is not built. Common: x (malloc'ed) and n hold the grid; else why says which
+ * key changes it. Returns a status (case or model errors). */
+int rs_sweep_common_grid(const rs_sweep *s, const rs_case *c, int *common, double **x, int *n,
+                         char *why, size_t why_len, rs_msg *msg);
 
 /* ---- merge_cli.c: rollsim merge OUT.nc PART.nc... (args after "merge"); a status ---- */
 int rs_cli_merge(int argc, char **argv);
 
 /* ---- fit_cli.c: rollsim fit ---- */
 struct rs_fit_opts;
-int rs_cli_fit(const rs_case *c, const char *case_path, const char *const *sets, int nsets,
-               const struct rs_fit_opts *o);
+int rs_cli_fit(const rs_case *c, const struct rs_fit_opts *o);
 
 #endif

@@ -71,7 +71,23 @@ static int parser_error(const yaml_parser_t *p, const char *where, const char *t
                     p->problem_mark.line + 1, problem);
 }
 
+int rs_case_doc_read(const char *path, char **text, size_t *len, rs_msg *msg)
+{
+  return read_whole_file(path, text, len, msg);
+}
+
 int rs_case_doc_load(rs_case_doc *d, const char *path, rs_msg *msg)
+{
+  char *text = NULL;
+  size_t len = 0;
+  memset(d, 0, sizeof *d);
+  int status = read_whole_file(path, &text, &len, msg);
+  if (status == RS_OK) status = rs_case_doc_parse(d, path, text, len, msg);
+  free(text);
+  return status;
+}
+
+int rs_case_doc_parse(rs_case_doc *d, const char *path, const char *text, size_t len, rs_msg *msg)
 {
   memset(d, 0, sizeof *d);
   d->path = path;
@@ -80,16 +96,10 @@ int rs_case_doc_load(rs_case_doc *d, const char *path, rs_msg *msg)
   d->dir = slash ? strndup(path, (size_t)(slash - path) + 1) : strdup("");
   if (!d->dir) return rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory");
 
-  char *text = NULL;
-  size_t len = 0;
-  int status = read_whole_file(path, &text, &len, msg);
-  if (status != RS_OK) return status;
-
+  int status = RS_OK;
   yaml_parser_t parser;
-  if (!yaml_parser_initialize(&parser)) {
-    free(text);
+  if (!yaml_parser_initialize(&parser))
     return rs_msg_set(msg, RS_ERR_INTERNAL, "cannot initialize the YAML parser");
-  }
   yaml_parser_set_input_string(&parser, (const unsigned char *)text, len);
   if (!yaml_parser_load(&parser, &d->doc)) {
     status = parser_error(&parser, path, text, len, msg);
@@ -120,7 +130,6 @@ int rs_case_doc_load(rs_case_doc *d, const char *path, rs_msg *msg)
     }
   }
   yaml_parser_delete(&parser);
-  free(text);
   return status;
 }
 
