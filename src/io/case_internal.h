@@ -1,10 +1,10 @@
 /* Internal to the case-file module: the YAML document with the origin of every
  * node (file line or --set), typed values read from nodes, and the key table.
- *   case_yaml.c     load the file, apply --set, emit the document as run
+ *   case_yaml.c     read and parse the file, apply --set, emit the document as run
  *   case_values.c   node -> number/text/choice with file:line messages
  *   case_keys.c     the table of keys and the walk that fills an rs_case
  *   case_history.c  history values (number, ramp, steps, sine, CSV table)
- *   case.c          rs_case_load/free/print, cross-key rules, derived values */
+ *   case.c          rs_case_load/derive/free/print, cross-key rules, derived values */
 #ifndef ROLLSIM_CASE_INTERNAL_H
 #define ROLLSIM_CASE_INTERNAL_H
 
@@ -40,7 +40,6 @@ typedef struct rs_case_doc {
   rs_msg *msg;
 } rs_case_doc;
 
-int rs_case_doc_load(rs_case_doc *d, const char *path, rs_msg *msg);
 /* The case file's text (NUL-terminated), and the document parsed from it. */
 int rs_case_doc_read(const char *path, char **text, size_t *len, rs_msg *msg);
 int rs_case_doc_parse(rs_case_doc *d, const char *path, const char *text, size_t len, rs_msg *msg);

@@ -192,13 +192,14 @@ int rs_case_check_range(const rs_case_doc *d, const yaml_node_t *n, const rs_cas
 {
   const char *sp = *spec->unit ? " " : "";
   char got[32];
-  rs_case_fmt(x, got, sizeof got);
   if (spec->flags & RS_KEY_LO_OPEN ? !(x > spec->lo) : !(x >= spec->lo))
     return rs_case_error(d, n, key, "must be %s %g%s%s, got %s",
-                         spec->flags & RS_KEY_LO_OPEN ? ">" : ">=", spec->lo, sp, spec->unit, got);
+                         spec->flags & RS_KEY_LO_OPEN ? ">" : ">=", spec->lo, sp, spec->unit,
+                         rs_case_fmt(x, got, sizeof got));
   if (spec->flags & RS_KEY_HI_OPEN ? !(x < spec->hi) : !(x <= spec->hi))
     return rs_case_error(d, n, key, "must be %s %g%s%s, got %s%s",
-                         spec->flags & RS_KEY_HI_OPEN ? "<" : "<=", spec->hi, sp, spec->unit, got,
+                         spec->flags & RS_KEY_HI_OPEN ? "<" : "<=", spec->hi, sp, spec->unit,
+                         rs_case_fmt(x, got, sizeof got),
                          spec->flags & RS_KEY_HI_ABSURD ? " (unreasonably large: a typo?)" : "");
   return RS_OK;
 }

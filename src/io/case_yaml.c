@@ -1,4 +1,4 @@
-/* The case file as a YAML document (libyaml's document API): loading with
+/* The case file as a YAML document (libyaml's document API): parsing with
  * file:line for every node, --set KEY=VALUE edits (each remembers the nodes it
  * created, so messages can point at the --set), and emission of the document
  * as run (the netCDF `case` attribute). */
@@ -12,7 +12,7 @@
 
 /* ---------------------------------------------------------------- loading */
 
-static int read_whole_file(const char *path, char **buf, size_t *len, rs_msg *msg)
+int rs_case_doc_read(const char *path, char **buf, size_t *len, rs_msg *msg)
 {
   FILE *f = fopen(path, "rb");
   if (!f)
@@ -69,22 +69,6 @@ static int parser_error(const yaml_parser_t *p, const char *where, const char *t
                       p->problem_mark.line + 1, problem, p->context, p->context_mark.line + 1);
   return rs_msg_set(msg, RS_ERR_INPUT, "%s:%zu: YAML syntax error: %s", where,
                     p->problem_mark.line + 1, problem);
-}
-
-int rs_case_doc_read(const char *path, char **text, size_t *len, rs_msg *msg)
-{
-  return read_whole_file(path, text, len, msg);
-}
-
-int rs_case_doc_load(rs_case_doc *d, const char *path, rs_msg *msg)
-{
-  char *text = NULL;
-  size_t len = 0;
-  memset(d, 0, sizeof *d);
-  int status = read_whole_file(path, &text, &len, msg);
-  if (status == RS_OK) status = rs_case_doc_parse(d, path, text, len, msg);
-  free(text);
-  return status;
 }
 
 int rs_case_doc_parse(rs_case_doc *d, const char *path, const char *text, size_t len, rs_msg *msg)
