@@ -441,9 +441,6 @@ static int line_in_two(const rs_sweep_line *line, rs_msg *msg)
  * along its last axis, with the same models, warm starts and continuation. */
 int rs_sweep_line_eval(const rs_sweep_line *line, rs_msg *msg)
 {
-#ifdef _OPENMP
-  if (line->in_two_known) return line_in_two(line, msg);
-#endif
   rs_case_override *ov = calloc((size_t)line->nfixed + 1, sizeof *ov);
   if (!ov) return rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory");
   int far = 0;

@@ -39,7 +39,6 @@ typedef struct rs_sweep_line {
   long *refined;                         /* continuation steps halved added, or NULL */
   long *midpoints;                       /* approximate midpoints tried added, or NULL */
   long *in_two;                          /* 1 added when solved in two parts, or NULL */
-  int in_two_known; /* 1: the caller found rs_sweep_line_in_two true (not checked again) */
 } rs_sweep_line;
 
 /* Solve the points key = values[j], j = 0..n-1, each warm-started from the one solved
