@@ -28,9 +28,9 @@ static const rs_command_help commands[] = {
      "run CASE.yaml [-o OUT.nc] [--set KEY=VALUE]... [--restart OLD.nc [--append]] [--quiet]",
      "solve one case, write its netCDF file, print a summary",
      "Solves the case (simulation.mode: transient from rest or from steady rolling, or\n"
-     "steady) and writes the netCDF file given by -o or output.file (interfaces.md\n"
-     "\"Output file\"); prints F_x/(mu F_n), the cell counts E/H/S/P, solver statistics and\n"
-     "the wall time.\n"
+     "steady) and writes the netCDF file given by -o or output.file\n"
+     "(docs/file-format.md); prints F_x/(mu F_n), the cell counts E/H/S/P, solver statistics\n"
+     "and the wall time.\n"
      "\n"
      "  -o, --output FILE  the output file (default: output.file of the case, else\n"
      "                     results/CASE.nc). An existing file of that name is kept as FILE~.\n"
