@@ -210,6 +210,7 @@ static int compute_line(dist_run *r, size_t line)
                            .in_two = &r->in_two};
   rs_msg m = {{0}};
   const int st = rs_sweep_line_eval(&L, &m);
+  if (st == RS_ERR_INTERRUPTED) r->interrupted = 1; /* also inside a transient point */
   if (st != RS_OK && st != RS_ERR_INTERRUPTED && !r->msg.text[0])
     snprintf(r->msg.text, sizeof r->msg.text, "%s", m.text);
   return st;
