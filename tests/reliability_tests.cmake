@@ -41,6 +41,12 @@ add_test(NAME reliability_kill9
           ${RS_REL_OUT}/kill9 24)
 set_tests_properties(reliability_signals PROPERTIES TIMEOUT 60)
 set_tests_properties(reliability_kill9 PROPERTIES TIMEOUT 120)
+# A sweep's points are written in batches: SIGKILL at random moments leaves a readable file
+# with every point given 0.5 s before a later one (README "Sweep files").
+add_test(NAME reliability_sweep_kill9
+  COMMAND ${SYSTEM_PYTHON3} ${RS_REL}/check_sweep_kill9.py ${RS_BIN}
+          ${PROJECT_SOURCE_DIR}/bench/cases/creep_curve.yaml ${RS_REL_OUT}/sweep_kill9 4)
+set_tests_properties(reliability_sweep_kill9 PROPERTIES TIMEOUT 120)
 
 # 4. Output problems: unwritable paths; a full (and a read-only) disk, on small tmpfs
 #    mounts (skipped, exit 77, without mount rights).

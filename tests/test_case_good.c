@@ -1,6 +1,7 @@
 /* Valid case files: every key read as written, defaults filled in, k_rel
- * converted, --set overrides (also creating keys), the resolved print-out, and
- * yaml_text that loads back to the same case.
+ * converted, --set overrides (also creating keys), the resolved print-out,
+ * yaml_text that loads back to the same case, and cases derived with typed overrides
+ * equal to the cases loaded with the same --set (values, print-out and messages).
  *
  * Usage: test_case_good GOOD_INPUTS_DIR WORK_DIR   (WORK_DIR: scratch files) */
 #define _POSIX_C_SOURCE 200809L
@@ -344,6 +345,100 @@ static void round_trip(const char *name, const char *const *sets, int nsets)
   rs_case_free(&b);
 }
 
+/* rs_case_print of a case, malloc'ed. */
+static char *printed(const rs_case *c)
+{
+  char *text = NULL;
+  size_t len = 0;
+  FILE *out = open_memstream(&text, &len);
+  if (!out) return NULL;
+  rs_case_print(c, out);
+  fclose(out);
+  return text;
+}
+
+/* The case file `name` with `sets`, then the overrides given two ways: as one more --set
+ * KEY=%.17g each (the document path) and as typed overrides of the loaded case
+ * (rs_case_derive): the same status, the same message on error, else the same values and
+ * the same print-out but for the --set line, which lists the overrides in both. */
+static void expect_derived(const char *name, const char *const *sets, int nsets,
+                           const char *const *keys, const double *values, int nov)
+{
+  char path[1024], assign[8][128];
+  const char *all[16];
+  rs_case_override ov[8];
+  for (int i = 0; i < nsets; i++) all[i] = sets[i];
+  for (int i = 0; i < nov; i++) {
+    snprintf(assign[i], sizeof assign[i], "%s=%.17g", keys[i], values[i]);
+    all[nsets + i] = assign[i];
+    ov[i] = (rs_case_override){rs_case_key_index(keys[i]), values[i]};
+    CHECK(ov[i].key >= 0 && rs_case_key_numeric(ov[i].key));
+  }
+  in_dir(good_dir, name, path, sizeof path);
+  rs_case want, base, got;
+  rs_msg mw = {{0}}, mb = {{0}}, mg = {{0}};
+  const int sw = rs_case_load(&want, path, all, nsets + nov, &mw);
+  if (rs_case_load(&base, path, sets, nsets, &mb) != RS_OK) {
+    printf("FAIL loading %s: %s\n", name, mb.text);
+    failures++;
+    if (sw == RS_OK) rs_case_free(&want);
+    return;
+  }
+  const int sg = rs_case_derive(&base, ov, nov, &got, &mg);
+  if (sg != sw || (sw != RS_OK && strcmp(mw.text, mg.text))) {
+    printf("FAIL %s with %s...: --set gives %d \"%s\", the typed override %d \"%s\"\n", name,
+           assign[0], sw, mw.text, sg, mg.text);
+    failures++;
+  } else if (sw == RS_OK) {
+    char *a = printed(&want), *b = printed(&got);
+    CHECK(same_case(&want, &got) && got.source == NULL && got.yaml_text == NULL);
+    CHECK(!strcmp(want.source_path, got.source_path));
+    /* the --set line: "KEY=%.17g" against the override's shortest text, both read back the
+     * same; the rest of the print-out is the same text */
+    const char *la = a ? strstr(a, "# changed with --set") : NULL;
+    const char *lb = b ? strstr(b, "# changed with --set") : NULL;
+    CHECK(a && b && (la != NULL) == (lb != NULL));
+    if (a && b && la && lb) {
+      CHECK(la - a == lb - b && !strncmp(a, b, (size_t)(la - a)));
+      CHECK(!strcmp(strchr(la, '\n'), strchr(lb, '\n')));
+    } else if (a && b) {
+      CHECK(!strcmp(a, b));
+    }
+    free(a);
+    free(b);
+  }
+  if (sw == RS_OK) rs_case_free(&want);
+  if (sg == RS_OK) rs_case_free(&got);
+  rs_case_free(&base);
+}
+
+static void test_derive(void)
+{
+  const char *creep[] = {"rolling.creepage"};
+  expect_derived("minimal.yaml", NULL, 0, creep, (const double[]){-0.003}, 1);
+  expect_derived("full.yaml", NULL, 0, creep, (const double[]){-2.0020020020020022e-05}, 1);
+  const char *tau[] = {"plasticity.tau_c0"};
+  expect_derived("full.yaml", NULL, 0, tau, (const double[]){50.0}, 1);
+  /* a key under a missing section creates it, as --set does: then the hardening is missing */
+  expect_derived("minimal.yaml", NULL, 0, tau, (const double[]){50.0}, 1);
+  const char *nu[] = {"material.poisson_ratio"};
+  expect_derived("full.yaml", NULL, 0, nu, (const double[]){0.6}, 1);
+  expect_derived("full.yaml", NULL, 0, nu, (const double[]){0.30000000000000004}, 1);
+  const char *order[] = {"solver.max_order"}, *steps[] = {"solver.max_steps"};
+  expect_derived("full.yaml", NULL, 0, order, (const double[]){2.5}, 1);
+  expect_derived("full.yaml", NULL, 0, order, (const double[]){3.0}, 1);
+  expect_derived("full.yaml", NULL, 0, steps, (const double[]){77.0}, 1);
+  /* a history replaced by a number; the tau_c_min rule against a new tau_c0 */
+  const char *load[] = {"contact.normal_load"};
+  expect_derived("histories.yaml", NULL, 0, load, (const double[]){150.0}, 1);
+  expect_derived("full.yaml", NULL, 0, tau, (const double[]){2.0}, 1);
+  /* several overrides after --set assignments; the last of a key twice wins */
+  const char *sets[] = {"simulation.end_time=null", "simulation.rolled_distance=3"};
+  const char *two[] = {"rolling.velocity", "contact.normal_load", "rolling.velocity"};
+  expect_derived("full.yaml", sets, 2, two, (const double[]){20000.0, 160.0, 15000.0}, 3);
+  expect_derived("full.yaml", sets, 2, two, (const double[]){20000.0, -1.0, 15000.0}, 3);
+}
+
 int main(int argc, char **argv)
 {
   if (argc != 3) {
@@ -360,6 +455,7 @@ int main(int argc, char **argv)
   test_set_errors();
   test_file_errors();
   test_print();
+  test_derive();
   round_trip("full.yaml", NULL, 0);
   const char *sets[] = {"grid.cells=64",
                         "rolling.creepage={steps: [[0, -0.001], [0.0001, -0.002]]}",

@@ -23,4 +23,9 @@ typedef struct rs_msg {
 /* printf-style: set the message (overwrites) and return status. */
 int rs_msg_set(rs_msg *msg, int status, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
 
+/* The status attribute of a finished output file: "complete" (RS_OK), "interrupted"
+ * (RS_ERR_INTERRUPTED) or "failed: <msg>". Returns buf. */
+#define RS_FINAL_STATUS_LEN (RS_MSG_LEN + 16)
+const char *rs_final_status(int status, const rs_msg *msg, char buf[RS_FINAL_STATUS_LEN]);
+
 #endif

@@ -34,7 +34,6 @@ int rs_cli_merge(int argc, char **argv);
 
 /* ---- fit_cli.c: rollsim fit ---- */
 struct rs_fit_opts;
-int rs_cli_fit(const rs_case *c, const char *case_path, const char *const *sets, int nsets,
-               const struct rs_fit_opts *o);
+int rs_cli_fit(const rs_case *c, const struct rs_fit_opts *o);
 
 #endif

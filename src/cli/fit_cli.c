@@ -50,18 +50,18 @@ static void print_summary(const rs_fit_spec *f, const rs_fit_result *r, int stat
          r->backup, *r->backup ? ")" : "");
 }
 
-int rs_cli_fit(const rs_case *c, const char *case_path, const char *const *sets, int nsets,
-               const rs_fit_opts *o)
+int rs_cli_fit(const rs_case *c, const rs_fit_opts *o)
 {
   rs_msg msg = {{0}};
   rs_fit_spec f;
-  int status = rs_fit_load(&f, case_path, sets, nsets, &msg);
+  const char *case_path = c->source_path;
+  int status = rs_fit_load(&f, c, &msg);
   if (status != RS_OK) {
     fprintf(stderr, "%s\n", msg.text);
     return status;
   }
   if (o->mpi_rank > 0) { /* an MPI worker: Jacobian columns for rank 0 */
-    status = rs_fit_serve(&f, case_path, sets, nsets, o, &msg);
+    status = rs_fit_serve(&f, c, o, &msg);
     rs_fit_free(&f);
     return status;
   }
@@ -71,7 +71,7 @@ int rs_cli_fit(const rs_case *c, const char *case_path, const char *const *sets,
            o->mpi_size);
   if (c->overrides) printf("  with --set %s\n", c->overrides);
   rs_fit_result r;
-  status = rs_fit_run(&f, case_path, sets, nsets, o, &r, &msg);
+  status = rs_fit_run(&f, c, o, &r, &msg);
   if (status != RS_OK) fprintf(stderr, "rollsim fit: %s: %s\n", case_path, msg.text);
   if (r.fitted) print_summary(&f, &r, status);
   rs_fit_result_free(&r);

@@ -65,6 +65,9 @@ static const rs_command_help commands[] = {
      "dimension per swept key (coordinate variables with the key's unit), the scalar\n"
      "results over them and, with output.fields, every point's profiles over (keys..., x)\n"
      "for rollsim_post.py traction/regimes/plastic (output.fields: [] for scalars only).\n"
+     "Points go to the file in batches: when a point finishes half a second or more after\n"
+     "the last write, and at the end. A killed sweep's file holds every point but those\n"
+     "that finished less than half a second after the last write.\n"
      "\n"
      "  -o, --output FILE  the output file (default as for run; an existing one is kept as\n"
      "                     FILE~)\n"
@@ -76,7 +79,7 @@ static const rs_command_help commands[] = {
      "                     joins the parts\n"
      "\n"
      "Under MPI (mpirun -n N rollsim sweep ...) the continuation lines are farmed out to the\n"
-     "ranks (rank 0 computes too and writes every point as it arrives); the file has the\n"
+     "ranks (rank 0 computes too and writes the points as they arrive); the file has the\n"
      "serial sweep's numbers plus the per-point variable rank and the attribute ranks.\n"
      "A point that fails is NaN in the file (counts -1, converged 0) and the exit code is 3.\n"},
     {"fit", "fit CASE.yaml [-o FIT.nc] [--set KEY=VALUE]... [--quiet]",

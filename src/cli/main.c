@@ -174,18 +174,15 @@ static int cmd_check(const rs_case *c, const cli_args *a, const rs_sweep *sw)
 static int cmd_sweep(const rs_case *c, const cli_args *a, const rs_sweep *sw, const rs_run_opts *o)
 {
   rs_msg msg = {{0}};
-  const int dist = a->parts > 0 || a->mpi->size > 1;
   if (a->mpi->rank > 0) { /* an MPI worker: compute, print nothing */
     const rs_sweep_dist d = {.mpi = a->mpi};
     rs_sweep_result sres;
-    return rs_sweep_run_dist(sw, a->case_path, a->sets, a->nsets, o, &d, &sres, &msg);
+    return rs_sweep_run_dist(sw, c, o, &d, &sres, &msg);
   }
   print_title(c, a->case_path);
   rs_sweep_result sres;
   const rs_sweep_dist d = {.mpi = a->mpi, .part = a->part, .parts = a->parts};
-  const int status =
-      dist ? rs_sweep_run_dist(sw, a->case_path, a->sets, a->nsets, o, &d, &sres, &msg)
-           : rs_sweep_run(sw, a->case_path, a->sets, a->nsets, o, &sres, &msg);
+  const int status = rs_sweep_run_dist(sw, c, o, &d, &sres, &msg);
   if (status != RS_OK) fprintf(stderr, "rollsim: %s: %s\n", a->case_path, msg.text);
   if (a->mpi->size > 1)
     printf("sweep on %d MPI ranks (task farm over continuation lines; the solver statistics below "
@@ -388,8 +385,7 @@ static int run_command(int argc, char **argv, cli_args *ap)
   }
   if (c.has_sweep && strcmp(a.cmd, "run") &&
       strcmp(a.cmd, "fit")) { /* check and sweep: the sweep block is input too */
-    if ((status = rs_sweep_load(&sw, a.case_path, a.sets, a.nsets, &msg)) != RS_OK)
-      fprintf(stderr, "%s\n", msg.text);
+    if ((status = rs_sweep_load(&sw, &c, &msg)) != RS_OK) fprintf(stderr, "%s\n", msg.text);
   } else if (!strcmp(a.cmd, "sweep")) {
     fprintf(stderr, "%s: the case has no sweep: block (use rollsim run)\n", a.case_path);
     status = RS_ERR_INPUT;
@@ -420,7 +416,7 @@ static int run_command(int argc, char **argv, cli_args *ap)
                             .mpi_rank = a.mpi->rank,
                             .mpi_size = a.mpi->size};
     status = !strcmp(a.cmd, "sweep") ? cmd_sweep(&c, &a, &sw, &o)
-             : !strcmp(a.cmd, "fit") ? rs_cli_fit(&c, a.case_path, a.sets, a.nsets, &fo)
+             : !strcmp(a.cmd, "fit") ? rs_cli_fit(&c, &fo)
                                      : cmd_run(&c, &a, &o);
   }
   rs_sweep_free(&sw);

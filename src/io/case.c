@@ -63,12 +63,29 @@ static void set_defaults(rs_case_input *in)
 typedef struct resolver {
   const rs_case_doc *d;
   const yaml_node_t **where;
+  const int *sorted; /* the key table's indices by path (binary search) */
 } resolver;
+
+/* Index of a key in the table (all paths given here are keys). */
+static int key_of(const resolver *r, const char *path)
+{
+  size_t lo = 0, hi = rs_case_nkeys;
+  while (lo < hi) {
+    const size_t mid = lo + (hi - lo) / 2;
+    const int cmp = strcmp(rs_case_keys[r->sorted[mid]].path, path);
+    if (cmp == 0) return r->sorted[mid];
+    if (cmp < 0)
+      lo = mid + 1;
+    else
+      hi = mid;
+  }
+  return -1;
+}
 
 /* The value node of a key (NULL when not given). */
 static const yaml_node_t *given(const resolver *r, const char *path)
 {
-  int i = rs_case_key_index(path);
+  const int i = key_of(r, path);
   return i < 0 ? NULL : r->where[i];
 }
 
@@ -77,7 +94,7 @@ static const yaml_node_t *given(const resolver *r, const char *path)
 static int check_history(const resolver *r, const char *path, const rs_history *h, const rs_case *c)
 {
   const double end_time = c->end_time;
-  rs_case_key spec_dim = rs_case_keys[rs_case_key_index(path)];
+  rs_case_key spec_dim = rs_case_keys[key_of(r, path)];
   const rs_case_key *spec = &spec_dim;
   spec_dim.unit = rs_case_key_unit_in(spec->unit, c->dimension);
   const yaml_node_t *n = given(r, path);
@@ -155,7 +172,7 @@ static int resolve_time(const resolver *r, rs_case *c)
   return RS_OK;
 }
 
-/* The twin_disc: block sets the contact and rolling inputs (model.md §8): line load
+/* The twin_disc: block sets the contact and rolling inputs (docs/model.md §8): line load
  * q = F/b, R = (1/R1 + 1/R2)^-1, V = 2 pi rpm/60 R1 (or the mean surface speed of
  * the two discs), creepage = -slip of the protocol (a table with a jump at the start
  * of each held step), end time = revolutions x 2 pi R1/V. */
@@ -281,7 +298,7 @@ static int resolve_twin_disc(const resolver *r, rs_case *c)
   return RS_OK;
 }
 
-/* Prescribed tangential force instead of creepage (model.md §6): exactly one of the
+/* Prescribed tangential force instead of creepage (docs/model.md §6): exactly one of the
  * two; below full sliding; from rest it must start at zero (no traction at rest). */
 static int resolve_force(const resolver *r, rs_case *c)
 {
@@ -385,7 +402,7 @@ static int check_count(const resolver *r, const char *key, const rs_case_vec *v,
                                    "contact.dimension: 3");
 }
 
-/* The keys whose form depends on contact.dimension (interfaces.md v2): radius or
+/* The keys whose form depends on contact.dimension (docs/case-file.md): radius or
  * curvature, cells, extent, ranges, the lateral creepage and spin, the force pair. */
 static int resolve_dimension(const resolver *r, rs_case_input *in)
 {
@@ -458,7 +475,7 @@ static char *default_output_file(const char *path)
   return file;
 }
 
-/* The friction law (interfaces.md "Friction laws"): each law's own keys, none of another
+/* The friction law (docs/case-file.md): each law's own keys, none of another
  * law's; lists of one or two terms of equal length; a positive coefficient at rest. Stored
  * in c->friction; c->mu becomes mu(0) for the velocity-dependent laws (the coefficient at
  * rest: warnings, the summary's F_x/(mu F_n)). */
@@ -535,9 +552,10 @@ static int resolve_friction(const resolver *r, rs_case_input *in)
   return RS_OK;
 }
 
-static int resolve(const rs_case_doc *d, rs_case_input *in, const yaml_node_t **where)
+static int resolve(const rs_case_doc *d, rs_case_input *in, const yaml_node_t **where,
+                   const int *sorted)
 {
-  resolver r = {d, where};
+  resolver r = {d, where, sorted};
   rs_case *c = &in->c;
   int status;
   if ((status = resolve_dimension(&r, in)) != RS_OK) return status;
@@ -567,45 +585,217 @@ static int resolve(const rs_case_doc *d, rs_case_input *in, const yaml_node_t **
   return RS_OK;
 }
 
-/* "KEY=VALUE, KEY=VALUE" of the --set assignments. */
-static char *join_sets(const char *const *sets, int nsets)
+/* "KEY=VALUE, KEY=VALUE" of the --set assignments, then the typed overrides (their keys
+ * and values as text). */
+static char *join_sets(char *const *sets, int nsets, const rs_case_override *ov,
+                       const char (*values)[32], int nov)
 {
   size_t len = 1;
   for (int i = 0; i < nsets; i++) len += strlen(sets[i]) + 2;
+  for (int i = 0; i < nov; i++) len += strlen(rs_case_keys[ov[i].key].path) + strlen(values[i]) + 3;
   char *text = malloc(len);
   if (!text) return NULL;
+  size_t used = 0;
   text[0] = '\0';
-  for (int i = 0; i < nsets; i++) strcat(strcat(text, i ? ", " : ""), sets[i]);
+  for (int i = 0; i < nsets; i++)
+    used += (size_t)snprintf(text + used, len - used, "%s%s", i ? ", " : "", sets[i]);
+  for (int i = 0; i < nov; i++)
+    used += (size_t)snprintf(text + used, len - used, "%s%s=%s", used ? ", " : "",
+                             rs_case_keys[ov[i].key].path, values[i]);
   return text;
 }
 
-int rs_case_load(rs_case *c, const char *path, const char *const *sets, int nsets, rs_msg *msg)
+/* Deep copy of the parsed keys (before the cross-key rules, which change them). */
+static int input_copy(rs_case_input *dst, const rs_case_input *src)
+{
+  *dst = *src;
+  rs_case *c = &dst->c;
+  const rs_case *s = &src->c;
+  c->title = c->output_file = NULL;
+  c->normal_load = c->velocity = c->creepage = c->tangential_force = c->tangential_force_y =
+      c->lateral_creepage = c->spin = c->shift_velocity = (rs_history){0};
+  c->rig.steps = NULL;
+  int ok = (!s->title || (c->title = strdup(s->title))) &&
+           (!s->output_file || (c->output_file = strdup(s->output_file)));
+  ok = ok && rs_history_copy(&c->normal_load, &s->normal_load) == RS_OK &&
+       rs_history_copy(&c->velocity, &s->velocity) == RS_OK &&
+       rs_history_copy(&c->creepage, &s->creepage) == RS_OK &&
+       rs_history_copy(&c->tangential_force, &s->tangential_force) == RS_OK &&
+       rs_history_copy(&c->tangential_force_y, &s->tangential_force_y) == RS_OK &&
+       rs_history_copy(&c->lateral_creepage, &s->lateral_creepage) == RS_OK &&
+       rs_history_copy(&c->spin, &s->spin) == RS_OK &&
+       rs_history_copy(&c->shift_velocity, &s->shift_velocity) == RS_OK;
+  if (ok && s->rig.nsteps > 0) {
+    c->rig.steps = malloc(s->rig.nsteps * sizeof *c->rig.steps);
+    ok = c->rig.steps != NULL;
+    if (ok) memcpy(c->rig.steps, s->rig.steps, s->rig.nsteps * sizeof *c->rig.steps);
+  }
+  if (!ok) rs_case_free(c);
+  return ok ? RS_OK : RS_ERR_INTERNAL;
+}
+
+static void source_free(struct rs_case_source *src)
+{
+  if (!src) return;
+  rs_case_doc_free(&src->doc);
+  rs_case_free(&src->in.c);
+  free(src->where);
+  free(src->sorted);
+  for (int i = 0; i < src->nsets; i++) free(src->sets[i]);
+  free(src->sets);
+  free(src->text);
+  free(src->path);
+  free(src);
+}
+
+/* The case file read and parsed, the --set assignments applied to the document. */
+static int source_load(struct rs_case_source **out, const char *path, const char *const *sets,
+                       int nsets, rs_msg *msg)
+{
+  *out = NULL;
+  struct rs_case_source *src = calloc(1, sizeof *src);
+  if (!src) return rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory");
+  src->where = calloc(rs_case_nkeys, sizeof *src->where);
+  src->sorted = malloc(rs_case_nkeys * sizeof *src->sorted);
+  src->path = strdup(path);
+  src->sets = calloc((size_t)(nsets > 0 ? nsets : 1), sizeof *src->sets);
+  int status = src->where && src->sorted && src->path && src->sets
+                   ? RS_OK
+                   : rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory");
+  for (size_t i = 0; status == RS_OK && i < rs_case_nkeys; i++) { /* insertion sort by path */
+    size_t k = i;
+    while (k > 0 && strcmp(rs_case_keys[src->sorted[k - 1]].path, rs_case_keys[i].path) > 0) {
+      src->sorted[k] = src->sorted[k - 1];
+      k--;
+    }
+    src->sorted[k] = (int)i;
+  }
+  for (int i = 0; status == RS_OK && i < nsets; i++, src->nsets++)
+    if (!(src->sets[i] = strdup(sets[i])))
+      status = rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory");
+  set_defaults(&src->in);
+  if (status == RS_OK) status = rs_case_doc_read(src->path, &src->text, &src->len, msg);
+  if (status == RS_OK) status = rs_case_doc_parse(&src->doc, src->path, src->text, src->len, msg);
+  for (int i = 0; status == RS_OK && i < nsets; i++) status = rs_case_doc_set(&src->doc, sets[i]);
+  if (status == RS_OK) status = rs_case_parse(&src->doc, &src->in, src->where);
+  src->doc.msg = NULL;
+  if (status != RS_OK) {
+    source_free(src);
+    return status;
+  }
+  *out = src;
+  return RS_OK;
+}
+
+rs_case_doc rs_case_source_doc(const rs_case *c, rs_msg *msg)
+{
+  rs_case_doc d = c->source->doc;
+  d.msg = msg;
+  return d;
+}
+
+/* The case of `src` with typed overrides: each value as a plain scalar node outside the
+ * document (its text reads back to the same double), parsed as the key's value from the
+ * file would be, its node (and that of a section it creates) named "--set KEY" in
+ * messages; then the cross-key rules. */
+static int source_case(const struct rs_case_source *src, const rs_case_override *ov, int nov,
+                       rs_case *c, rs_msg *msg)
 {
   memset(c, 0, sizeof *c);
-  if (!path) return rs_msg_set(msg, RS_ERR_INPUT, "no case file given");
   rs_case_input in;
-  memset(&in, 0, sizeof in);
-  set_defaults(&in);
-  const yaml_node_t **where = calloc(rs_case_nkeys, sizeof *where);
-  rs_case_doc d;
-  int status =
-      where ? rs_case_doc_load(&d, path, msg) : rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory");
-  for (int i = 0; status == RS_OK && i < nsets; i++) status = rs_case_doc_set(&d, sets[i]);
-  if (status == RS_OK) status = rs_case_parse(&d, &in, where);
-  if (status == RS_OK) status = resolve(&d, &in, where);
-  if (status == RS_OK && !(in.c.source_path = strdup(path)))
+  const yaml_node_t **where = malloc(rs_case_nkeys * sizeof *where);
+  yaml_node_t *nodes = nov > 0 ? calloc(2 * (size_t)nov, sizeof *nodes) : NULL;
+  rs_case_override_origin *origins = nov > 0 ? calloc(2 * (size_t)nov, sizeof *origins) : NULL;
+  char(*texts)[32] = nov > 0 ? calloc((size_t)nov, sizeof *texts) : NULL;
+  int status = RS_OK;
+  if (!where || (nov > 0 && (!nodes || !origins || !texts)) || input_copy(&in, &src->in) != RS_OK) {
+    free(where);
+    free(nodes);
+    free(origins);
+    free(texts);
+    return rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory");
+  }
+  memcpy(where, src->where, rs_case_nkeys * sizeof *where);
+  rs_case_doc d = src->doc;
+  d.msg = msg;
+  d.overrides = origins;
+  d.noverrides = 0;
+  for (int i = 0; status == RS_OK && i < nov; i++) {
+    const int k = ov[i].key;
+    if (!rs_case_key_numeric(k)) {
+      status = rs_msg_set(msg, RS_ERR_INTERNAL, "%s: not a numeric case key", rs_case_key_name(k));
+      break;
+    }
+    const rs_case_key *spec = &rs_case_keys[k];
+    yaml_node_t *n = &nodes[2 * i];
+    rs_case_fmt(ov[i].value, texts[i], sizeof texts[i]);
+    n->type = YAML_SCALAR_NODE;
+    n->data.scalar.value = (yaml_char_t *)texts[i];
+    n->data.scalar.length = strlen(texts[i]);
+    n->data.scalar.style = YAML_PLAIN_SCALAR_STYLE;
+    origins[d.noverrides++] = (rs_case_override_origin){n, spec->path};
+    /* a key under a section that is not given creates it, as --set does */
+    int section = k;
+    while (section > 0 && rs_case_keys[section].kind != RS_KEY_SECTION) section--;
+    if (strchr(spec->path, '.') && rs_case_keys[section].kind == RS_KEY_SECTION &&
+        !where[section]) {
+      yaml_node_t *m = &nodes[2 * i + 1];
+      m->type = YAML_MAPPING_NODE;
+      origins[d.noverrides++] = (rs_case_override_origin){m, spec->path};
+      where[section] = m;
+    }
+    where[k] = n;
+    status = rs_case_parse_value(&d, spec, n, &in);
+  }
+  if (status == RS_OK) status = resolve(&d, &in, where, src->sorted);
+  if (status == RS_OK && !(in.c.source_path = strdup(src->path)))
     status = rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory");
-  if (status == RS_OK && nsets > 0 && !(in.c.overrides = join_sets(sets, nsets)))
+  if (status == RS_OK && src->nsets + nov > 0 &&
+      !(in.c.overrides = join_sets(src->sets, src->nsets, ov, (const char(*)[32])texts, nov)))
     status = rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory");
-  if (status == RS_OK) status = rs_case_doc_emit(&d, &in.c.yaml_text);
-  if (where) rs_case_doc_free(&d);
   free(where);
+  free(nodes);
+  free(origins);
+  free(texts);
   if (status != RS_OK) {
     rs_case_free(&in.c);
     return status;
   }
   *c = in.c;
   return RS_OK;
+}
+
+int rs_case_load(rs_case *c, const char *path, const char *const *sets, int nsets, rs_msg *msg)
+{
+  memset(c, 0, sizeof *c);
+  if (!path) return rs_msg_set(msg, RS_ERR_INPUT, "no case file given");
+  struct rs_case_source *src;
+  int status = source_load(&src, path, sets, nsets, msg);
+  if (status != RS_OK) return status;
+  status = source_case(src, NULL, 0, c, msg);
+  /* The YAML as run: the document emitted (which consumes it) from a second parse. */
+  rs_case_doc d;
+  memset(&d, 0, sizeof d);
+  if (status == RS_OK) status = rs_case_doc_parse(&d, src->path, src->text, src->len, msg);
+  for (int i = 0; status == RS_OK && i < nsets; i++) status = rs_case_doc_set(&d, sets[i]);
+  if (status == RS_OK) status = rs_case_doc_emit(&d, &c->yaml_text);
+  rs_case_doc_free(&d);
+  if (status != RS_OK) {
+    rs_case_free(c);
+    source_free(src);
+    return status;
+  }
+  c->source = src;
+  return RS_OK;
+}
+
+int rs_case_derive(const rs_case *base, const rs_case_override *ov, int nov, rs_case *c,
+                   rs_msg *msg)
+{
+  memset(c, 0, sizeof *c);
+  if (!base->source)
+    return rs_msg_set(msg, RS_ERR_INTERNAL, "rs_case_derive: the base case was not loaded");
+  return source_case(base->source, ov, nov, c, msg);
 }
 
 void rs_case_free(rs_case *c)
@@ -625,6 +815,7 @@ void rs_case_free(rs_case *c)
   rs_history_free(&c->spin);
   free(c->rig.steps);
   rs_history_free(&c->shift_velocity);
+  source_free(c->source);
   memset(c, 0, sizeof *c);
 }
 

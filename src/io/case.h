@@ -1,5 +1,5 @@
-/* A rollsim case: every key of interfaces.md "Case file (YAML)", resolved and
- * validated, with defaults filled in. Units: mm, N, s, N/mm^2 (model.md §1). */
+/* A rollsim case: every key of the case file (docs/case-file.md), resolved and
+ * validated, with defaults filled in. Units: mm, N, s, N/mm^2 (docs/model.md §1). */
 #ifndef ROLLSIM_CASE_H
 #define ROLLSIM_CASE_H
 
@@ -31,7 +31,7 @@ typedef struct rs_rig_step {
   double revolutions;          /* of disc 1 */
 } rs_rig_step;
 
-/* twin_disc: block (model.md §8). When present it sets contact.normal_load (F/width),
+/* twin_disc: block (docs/model.md §8). When present it sets contact.normal_load (F/width),
  * contact.radius, rolling.velocity, rolling.creepage and simulation.end_time. */
 typedef struct rs_twin_disc {
   int on;
@@ -124,6 +124,10 @@ typedef struct rs_case {
 
   /* sweep: */
   int has_sweep; /* the case has a sweep: block (study/sweep.h) */
+
+  /* The case file as loaded (rs_case_load; owned, NULL in derived cases): what
+   * rs_case_derive builds cases from, and where the sweep: and fit: blocks are read. */
+  struct rs_case_source *source;
 } rs_case;
 
 /* Load and validate a case file. `sets` are the --set KEY=VALUE strings, applied
@@ -133,6 +137,42 @@ typedef struct rs_case {
  * and leaves *c freed/zeroed. */
 int rs_case_load(rs_case *c, const char *path, const char *const *sets, int nsets, rs_msg *msg);
 void rs_case_free(rs_case *c);
+
+/* Index of a dotted key in the key table (docs/case-file.md), or -1; its name. */
+int rs_case_key_index(const char *path);
+const char *rs_case_key_name(int key);
+/* 1 if a key takes a number: a number, whole-number or history key (a history given
+ * as a number is constant). Sweeps and fits set only such keys. */
+int rs_case_key_numeric(int key);
+
+/* A typed override: a numeric key of the key table and its value. Sweep values, fit
+ * parameters and fit inputs are applied to a loaded case as these, without reading or
+ * parsing the case file again. */
+typedef struct rs_case_override {
+  int key; /* rs_case_key_index */
+  double value;
+} rs_case_override;
+
+/* The case `base` (from rs_case_load) with the overrides applied in order, as if each were
+ * one more --set KEY=VALUE after the command's: the same values, the same checks, and the
+ * same messages ("--set KEY: ..."). The derived case has no yaml_text and no source (the
+ * YAML as run is the base's); free it with rs_case_free. Safe to call from several threads
+ * on one base. */
+int rs_case_derive(const rs_case *base, const rs_case_override *ov, int nov, rs_case *c,
+                   rs_msg *msg);
+
+/* The rolling inputs along which a steady sweep continues from one point to the next (a
+ * change of one of them leaves the rest of the model as it is). */
+typedef enum rs_rolling_input {
+  RS_ROLLING_NONE = 0,
+  RS_ROLLING_CREEPAGE,
+  RS_ROLLING_VELOCITY,
+  RS_ROLLING_SHIFT_VELOCITY,
+  RS_ROLLING_LATERAL_CREEPAGE,
+  RS_ROLLING_SPIN
+} rs_rolling_input;
+/* The rolling input a key sets, or RS_ROLLING_NONE. */
+rs_rolling_input rs_case_key_rolling(int key);
 
 /* Print every resolved parameter, one "key: value  # unit" line each (for `rollsim check`).
  * Steady cases leave out the keys of the time axis (end time, rolled distance, output

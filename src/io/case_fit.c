@@ -3,7 +3,7 @@
  * bounds), the measurements' CSV (header row of column names; lines starting with '#'
  * are comments), the measured output and optional weights. Every error names
  * case.yaml:line: fit.KEY or data.csv:line: column; nothing is run before all is
- * checked (each data row and the start values are loaded as a case once). */
+ * checked (the case is derived once with each data row and the start values). */
 #include <ctype.h>
 #include <errno.h>
 #include <math.h>
@@ -305,56 +305,44 @@ static int assign_columns(rs_fit_spec *f, const rs_case *c, rs_msg *msg)
 }
 
 /* Every data row (steady inputs) and the start values give a valid case. */
-static int check_cases(const rs_fit_spec *f, const char *case_path, const char *const *sets,
-                       int nsets, rs_msg *msg)
+static int check_cases(const rs_fit_spec *f, const rs_case *base, rs_msg *msg)
 {
-  const int nall = nsets + f->nparams + f->ncols;
-  const char **all = calloc((size_t)nall, sizeof *all);
-  char(*assign)[320] = calloc((size_t)(f->nparams + f->ncols), sizeof *assign);
-  int status = all && assign ? RS_OK : rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory");
-  for (int i = 0; status == RS_OK && i < nsets; i++) all[i] = sets[i];
-  char num[64];
-  for (int k = 0; status == RS_OK && k < f->nparams; k++) {
-    snprintf(assign[k], sizeof assign[k], "%s=%s", f->params[k].key,
-             rs_case_fmt(f->params[k].start, num, sizeof num));
-    all[nsets + k] = assign[k];
-  }
+  rs_case_override *ov = calloc((size_t)(f->nparams + f->ncols), sizeof *ov);
+  int status = ov ? RS_OK : rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory");
+  for (int k = 0; status == RS_OK && k < f->nparams; k++)
+    ov[k] = (rs_case_override){rs_case_key_index(f->params[k].key), f->params[k].start};
   const size_t rows = f->kind == RS_FIT_STEADY ? f->npoints : 1;
   for (size_t i = 0; status == RS_OK && i < rows; i++) {
-    int n = nsets + f->nparams;
+    int n = f->nparams;
     for (int j = 0; f->kind == RS_FIT_STEADY && j < f->ncols; j++)
-      if (f->input_keys[j]) {
-        snprintf(assign[f->nparams + j], sizeof assign[0], "%s=%s", f->input_keys[j],
-                 rs_case_fmt(f->table[i * (size_t)f->ncols + (size_t)j], num, sizeof num));
-        all[n++] = assign[f->nparams + j];
-      }
+      if (f->input_keys[j])
+        ov[n++] = (rs_case_override){rs_case_key_index(f->input_keys[j]),
+                                     f->table[i * (size_t)f->ncols + (size_t)j]};
     rs_case c;
     rs_msg inner;
-    status = rs_case_load(&c, case_path, all, n, &inner);
+    status = rs_case_derive(base, ov, n, &c, &inner);
     if (status == RS_OK)
       rs_case_free(&c);
     else if (f->kind == RS_FIT_STEADY)
       rs_msg_set(msg, status, "%s:%d: (with the start values): %s", f->data_path, f->row_line[i],
                  inner.text);
     else
-      rs_msg_set(msg, status, "%s: fit: with the start values: %s", case_path, inner.text);
+      rs_msg_set(msg, status, "%s: fit: with the start values: %s", base->source->path, inner.text);
   }
-  free(all);
-  free(assign);
+  free(ov);
   return status;
 }
 
-int rs_fit_load(rs_fit_spec *f, const char *case_path, const char *const *sets, int nsets,
-                rs_msg *msg)
+int rs_fit_load(rs_fit_spec *f, const rs_case *c, rs_msg *msg)
 {
   memset(f, 0, sizeof *f);
-  rs_case_doc d;
-  memset(&d, 0, sizeof d);
-  int status = rs_case_doc_load(&d, case_path, msg);
-  for (int i = 0; status == RS_OK && i < nsets; i++) status = rs_case_doc_set(&d, sets[i]);
-  const yaml_node_t *root = status == RS_OK ? rs_case_doc_root(&d) : NULL;
+  if (!c->source) return rs_msg_set(msg, RS_ERR_INTERNAL, "rs_fit_load: the case was not loaded");
+  const char *case_path = c->source->path;
+  rs_case_doc d = rs_case_source_doc(c, msg);
+  int status = RS_OK;
+  const yaml_node_t *root = rs_case_doc_root(&d);
   const yaml_node_t *fit = root ? rs_case_lookup(&d, root, "fit") : NULL;
-  if (status == RS_OK && (!fit || rs_case_is_null(fit)))
+  if (!fit || rs_case_is_null(fit))
     status = rs_msg_set(msg, RS_ERR_INPUT, "%s: the case has no fit: block", case_path);
   static const char *const allowed[] = {"parameters", "data", "measured", "weights", NULL};
   if (status == RS_OK && fit->type != YAML_MAPPING_NODE)
@@ -407,20 +395,14 @@ int rs_fit_load(rs_fit_spec *f, const char *case_path, const char *const *sets, 
       snprintf(f->data_path, len, "%s%s", data_name[0] == '/' ? "" : d.dir, data_name);
   }
   free(data_name);
-  rs_case_doc_free(&d);
   if (status == RS_OK) status = read_csv(f, f->data_path, msg);
-  rs_case c;
-  int have_case = 0;
-  if (status == RS_OK && (status = rs_case_load(&c, case_path, sets, nsets, msg)) == RS_OK)
-    have_case = 1;
-  if (status == RS_OK) status = assign_columns(f, &c, msg);
-  if (have_case) rs_case_free(&c);
+  if (status == RS_OK) status = assign_columns(f, c, msg);
   if (status == RS_OK && f->npoints <= (size_t)f->nparams)
     status = rs_msg_set(msg, RS_ERR_INPUT,
                         "%s: %zu data points for %d parameters: a fit needs more points than "
                         "parameters",
                         f->data_path, f->npoints, f->nparams);
-  if (status == RS_OK) status = check_cases(f, case_path, sets, nsets, msg);
+  if (status == RS_OK) status = check_cases(f, c, msg);
   if (status != RS_OK) rs_fit_free(f);
   return status;
 }

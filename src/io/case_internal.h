@@ -1,10 +1,10 @@
 /* Internal to the case-file module: the YAML document with the origin of every
  * node (file line or --set), typed values read from nodes, and the key table.
- *   case_yaml.c     load the file, apply --set, emit the document as run
+ *   case_yaml.c     read and parse the file, apply --set, emit the document as run
  *   case_values.c   node -> number/text/choice with file:line messages
  *   case_keys.c     the table of keys and the walk that fills an rs_case
  *   case_history.c  history values (number, ramp, steps, sine, CSV table)
- *   case.c          rs_case_load/free/print, cross-key rules, derived values */
+ *   case.c          rs_case_load/derive/free/print, cross-key rules, derived values */
 #ifndef ROLLSIM_CASE_INTERNAL_H
 #define ROLLSIM_CASE_INTERNAL_H
 
@@ -20,6 +20,13 @@ typedef struct rs_case_set_origin {
   char *key;                /* its dotted key */
 } rs_case_set_origin;
 
+/* A node standing for a typed override (rs_case_derive): not in the document; messages
+ * about it read "--set KEY: ...". */
+typedef struct rs_case_override_origin {
+  const yaml_node_t *node;
+  const char *key;
+} rs_case_override_origin;
+
 typedef struct rs_case_doc {
   yaml_document_t doc;
   int has_doc;
@@ -27,11 +34,15 @@ typedef struct rs_case_doc {
   char *dir;        /* its directory (tables are relative to it), "" for the cwd */
   rs_case_set_origin *sets;
   int nsets;
+  const rs_case_override_origin *overrides; /* typed overrides being applied, or NULL */
+  int noverrides;
   int sweep_node; /* scratch of rs_case_doc_set: the sweep: mapping while walking a key */
   rs_msg *msg;
 } rs_case_doc;
 
-int rs_case_doc_load(rs_case_doc *d, const char *path, rs_msg *msg);
+/* The case file's text (NUL-terminated), and the document parsed from it. */
+int rs_case_doc_read(const char *path, char **text, size_t *len, rs_msg *msg);
+int rs_case_doc_parse(rs_case_doc *d, const char *path, const char *text, size_t len, rs_msg *msg);
 /* Apply one --set KEY=VALUE (VALUE parsed as YAML), creating missing parent mappings. */
 int rs_case_doc_set(rs_case_doc *d, const char *assignment);
 /* Emit the (modified) document as YAML text. Consumes the document. */
@@ -124,14 +135,36 @@ extern const char *const rs_case_field_names[]; /* bit i of the mask, NULL-termi
 /* Parse the document into `in` (defaults already set); where[i] is the value node of
  * rs_case_keys[i] when given (NULL otherwise). */
 int rs_case_parse(rs_case_doc *d, rs_case_input *in, const yaml_node_t **where);
-/* Index of a key in rs_case_keys, or -1. */
-int rs_case_key_index(const char *path);
 /* A key's unit in a contact of `dimension`: forces given per width in 2D ("N/mm") are
  * totals in 3D ("N"); other units as they are. */
 const char *rs_case_key_unit_in(const char *unit, int dimension);
+/* Parse the value node n of key `spec` into `in` (as rs_case_parse does for each key). */
+int rs_case_parse_value(const rs_case_doc *d, const rs_case_key *spec, const yaml_node_t *n,
+                        rs_case_input *in);
 /* Check a number against the key's range (message with the key and unit). */
 int rs_case_check_range(const rs_case_doc *d, const yaml_node_t *n, const rs_case_key *spec,
                         const char *key, double x);
+
+/* ---- case.c: a loaded case file, the source of derived cases ---- */
+
+/* What rs_case_load keeps in the case (rs_case.source): the document after --set (for
+ * messages and the sweep: and fit: blocks) and the keys parsed from it before the
+ * cross-key rules, to which rs_case_derive applies typed overrides. Read-only once
+ * loaded: cases are derived from it on several threads at once. */
+struct rs_case_source {
+  char *path; /* the case file as given */
+  char *text; /* its text */
+  size_t len;
+  char **sets; /* the --set assignments [nsets] */
+  int nsets;
+  rs_case_doc doc;           /* the document after --set (doc.msg unused: each use sets its own) */
+  rs_case_input in;          /* the keys as parsed, before the cross-key rules */
+  const yaml_node_t **where; /* [rs_case_nkeys] value nodes of the given keys */
+  int *sorted;               /* [rs_case_nkeys] the key table's indices by path */
+};
+
+/* The document of a loaded case for reading, its messages into msg. */
+rs_case_doc rs_case_source_doc(const rs_case *c, rs_msg *msg);
 
 /* ---- case_history.c: a history node (number, ramp, steps, sine, table) ---- */
 int rs_case_history(const rs_case_doc *d, const yaml_node_t *n, const char *key, const char *unit,

@@ -1,7 +1,6 @@
-/* The case-file keys (interfaces.md "Case file (YAML)" plus solver.scaling,
- * solver.max_steps, simulation.rolled_distance, sweep:): one table giving each
- * key's type, field, unit and allowed range, and the walk of the document that
- * fills an rs_case from it. Cross-key rules and derived values are in case.c. */
+/* The case-file keys (docs/case-file.md): one table giving each key's type, field, unit
+ * and allowed range, and the walk of the document that fills an rs_case from it.
+ * Cross-key rules and derived values are in case.c. */
 #include "io/case_internal.h"
 
 #include <math.h>
@@ -172,18 +171,44 @@ const char *rs_case_key_unit_in(const char *unit, int dimension)
   return dimension == 3 && !strcmp(unit, "N/mm") ? "N" : unit;
 }
 
+const char *rs_case_key_name(int key)
+{
+  return key >= 0 && (size_t)key < rs_case_nkeys ? rs_case_keys[key].path : "";
+}
+
+int rs_case_key_numeric(int key)
+{
+  if (key < 0 || (size_t)key >= rs_case_nkeys) return 0;
+  const rs_case_key_kind k = rs_case_keys[key].kind;
+  return k == RS_KEY_NUMBER || k == RS_KEY_INTEGER || k == RS_KEY_LONG || k == RS_KEY_HISTORY;
+}
+
+rs_rolling_input rs_case_key_rolling(int key)
+{
+  if (key < 0 || (size_t)key >= rs_case_nkeys || rs_case_keys[key].kind != RS_KEY_HISTORY)
+    return RS_ROLLING_NONE;
+  const size_t at = rs_case_keys[key].offset;
+  return at == F(c.creepage)           ? RS_ROLLING_CREEPAGE
+         : at == F(c.velocity)         ? RS_ROLLING_VELOCITY
+         : at == F(c.shift_velocity)   ? RS_ROLLING_SHIFT_VELOCITY
+         : at == F(c.lateral_creepage) ? RS_ROLLING_LATERAL_CREEPAGE
+         : at == F(c.spin)             ? RS_ROLLING_SPIN
+                                       : RS_ROLLING_NONE;
+}
+
 int rs_case_check_range(const rs_case_doc *d, const yaml_node_t *n, const rs_case_key *spec,
                         const char *key, double x)
 {
   const char *sp = *spec->unit ? " " : "";
   char got[32];
-  rs_case_fmt(x, got, sizeof got);
   if (spec->flags & RS_KEY_LO_OPEN ? !(x > spec->lo) : !(x >= spec->lo))
     return rs_case_error(d, n, key, "must be %s %g%s%s, got %s",
-                         spec->flags & RS_KEY_LO_OPEN ? ">" : ">=", spec->lo, sp, spec->unit, got);
+                         spec->flags & RS_KEY_LO_OPEN ? ">" : ">=", spec->lo, sp, spec->unit,
+                         rs_case_fmt(x, got, sizeof got));
   if (spec->flags & RS_KEY_HI_OPEN ? !(x < spec->hi) : !(x <= spec->hi))
     return rs_case_error(d, n, key, "must be %s %g%s%s, got %s%s",
-                         spec->flags & RS_KEY_HI_OPEN ? "<" : "<=", spec->hi, sp, spec->unit, got,
+                         spec->flags & RS_KEY_HI_OPEN ? "<" : "<=", spec->hi, sp, spec->unit,
+                         rs_case_fmt(x, got, sizeof got),
                          spec->flags & RS_KEY_HI_ABSURD ? " (unreasonably large: a typo?)" : "");
   return RS_OK;
 }
@@ -294,9 +319,8 @@ static int parse_history_xy(const rs_case_doc *d, const yaml_node_t *n, const rs
   return RS_OK;
 }
 
-/* Parse the value of key `spec` into `in`. */
-static int parse_value(const rs_case_doc *d, const rs_case_key *spec, const yaml_node_t *n,
-                       rs_case_input *in)
+int rs_case_parse_value(const rs_case_doc *d, const rs_case_key *spec, const yaml_node_t *n,
+                        rs_case_input *in)
 {
   void *field = spec->offset == RS_KEY_NO_FIELD ? NULL : (char *)in + spec->offset;
   double x = 0;
@@ -387,7 +411,7 @@ static int parse_mapping(rs_case_doc *d, const char *section, const yaml_node_t 
     default:
       if ((spec->flags & RS_KEY_NULLABLE) && rs_case_is_null(n)) continue; /* null: the default */
       where[i] = n;
-      if ((status = parse_value(d, spec, n, in)) != RS_OK) return status;
+      if ((status = rs_case_parse_value(d, spec, n, in)) != RS_OK) return status;
     }
   }
   return RS_OK;

@@ -1,6 +1,6 @@
 #define _POSIX_C_SOURCE 200809L
 /* The sweep: block of a case file (study/sweep.h): dotted keys mapped to value
- * lists or {linspace: [from, to, n]}, checked against the key table and by loading
+ * lists or {linspace: [from, to, n]}, checked against the key table and by deriving
  * the case with each value. */
 #include <math.h>
 #include <stdio.h>
@@ -63,16 +63,16 @@ static int read_values(const rs_case_doc *d, const yaml_node_t *v, const char *k
   return RS_OK;
 }
 
-int rs_sweep_load(rs_sweep *s, const char *path, const char *const *sets, int nsets, rs_msg *msg)
+int rs_sweep_load(rs_sweep *s, const rs_case *c, rs_msg *msg)
 {
   memset(s, 0, sizeof *s);
-  rs_case_doc d;
-  memset(&d, 0, sizeof d);
-  int status = rs_case_doc_load(&d, path, msg);
-  for (int i = 0; status == RS_OK && i < nsets; i++) status = rs_case_doc_set(&d, sets[i]);
-  const yaml_node_t *root = status == RS_OK ? rs_case_doc_root(&d) : NULL;
+  if (!c->source) return rs_msg_set(msg, RS_ERR_INTERNAL, "rs_sweep_load: the case was not loaded");
+  const char *path = c->source->path;
+  rs_case_doc d = rs_case_source_doc(c, msg);
+  int status = RS_OK;
+  const yaml_node_t *root = rs_case_doc_root(&d);
   const yaml_node_t *sw = root ? rs_case_lookup(&d, root, "sweep") : NULL;
-  if (status == RS_OK && (!sw || rs_case_is_null(sw)))
+  if (!sw || rs_case_is_null(sw))
     status =
         rs_msg_set(msg, RS_ERR_INPUT, "%s: the case has no sweep: block (use rollsim run)", path);
   if (status == RS_OK && sw->type != YAML_MAPPING_NODE)
@@ -95,18 +95,17 @@ int rs_sweep_load(rs_sweep *s, const char *path, const char *const *sets, int ns
       if (rs_case_is_null(v)) /* KEY: null (e.g. --set sweep.KEY=null): not swept */
         continue;
       const int idx = rs_case_key_index(key);
-      if (idx < 0 ||
-          (rs_case_keys[idx].kind != RS_KEY_NUMBER && rs_case_keys[idx].kind != RS_KEY_INTEGER &&
-           rs_case_keys[idx].kind != RS_KEY_HISTORY && rs_case_keys[idx].kind != RS_KEY_LONG)) {
+      if (!rs_case_key_numeric(idx)) {
         status = rs_case_error(&d, k, "sweep", "%s is not a numeric case key", key);
         break;
       }
       for (int j = 0; j < s->naxes; j++)
-        if (!strcmp(s->axes[j].key, key))
+        if (s->axes[j].key_index == idx)
           status = rs_case_error(&d, k, "sweep", "%s is swept twice", key);
       if (status != RS_OK) break;
       rs_sweep_axis *ax = &s->axes[s->naxes];
       ax->key = strdup(key);
+      ax->key_index = idx;
       if (!ax->key) {
         status = rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory");
         break;
@@ -118,33 +117,20 @@ int rs_sweep_load(rs_sweep *s, const char *path, const char *const *sets, int ns
     if (status == RS_OK && s->naxes == 0)
       status = rs_case_error(&d, sw, "sweep", "no keys to sweep (every key is null)");
   }
-  rs_case_doc_free(&d);
-  if (status != RS_OK) {
-    rs_sweep_free(s);
-    return status;
-  }
-  /* Every value must give a valid case: load it once with the value as a --set. */
-  const char **all = calloc((size_t)nsets + 1, sizeof *all);
-  if (!all) {
-    rs_sweep_free(s);
-    return rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory");
-  }
-  for (int i = 0; i < nsets; i++) all[i] = sets[i];
-  char assign[512], num[64];
+  /* Every value must give a valid case: the case derived with it. */
+  char num[64];
   for (int a = 0; status == RS_OK && a < s->naxes; a++)
     for (int k = 0; status == RS_OK && k < s->axes[a].n; k++) {
-      snprintf(assign, sizeof assign, "%s=%s", s->axes[a].key,
-               rs_case_fmt(s->axes[a].values[k], num, sizeof num));
-      all[nsets] = assign;
-      rs_case c;
+      const rs_case_override ov = {s->axes[a].key_index, s->axes[a].values[k]};
+      rs_case pc;
       rs_msg inner;
-      status = rs_case_load(&c, path, all, nsets + 1, &inner);
+      status = rs_case_derive(c, &ov, 1, &pc, &inner);
       if (status == RS_OK)
-        rs_case_free(&c);
+        rs_case_free(&pc);
       else
-        rs_msg_set(msg, status, "%s: sweep: %s = %s: %s", path, s->axes[a].key, num, inner.text);
+        rs_msg_set(msg, status, "%s: sweep: %s = %s: %s", path, s->axes[a].key,
+                   rs_case_fmt(s->axes[a].values[k], num, sizeof num), inner.text);
     }
-  free(all);
   if (status != RS_OK) rs_sweep_free(s);
   return status;
 }

@@ -23,6 +23,13 @@ int rs_case_error(const rs_case_doc *d, const yaml_node_t *node, const char *key
   vsnprintf(what, sizeof what, fmt, ap);
   va_end(ap);
   if (!node && d->has_doc) node = yaml_document_get_root_node((yaml_document_t *)&d->doc);
+  for (int i = 0; node && i < d->noverrides; i++)
+    if (node == d->overrides[i].node) {
+      const char *set = d->overrides[i].key;
+      if (!key || strcmp(key, set) == 0)
+        return rs_msg_set(d->msg, RS_ERR_INPUT, "--set %s: %s", set, what);
+      return rs_msg_set(d->msg, RS_ERR_INPUT, "--set %s: %s: %s", set, key, what);
+    }
   if (node) {
     int index = (int)(node - d->doc.nodes.start) + 1;
     for (int i = 0; i < d->nsets; i++) {

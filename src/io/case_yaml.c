@@ -1,4 +1,4 @@
-/* The case file as a YAML document (libyaml's document API): loading with
+/* The case file as a YAML document (libyaml's document API): parsing with
  * file:line for every node, --set KEY=VALUE edits (each remembers the nodes it
  * created, so messages can point at the --set), and emission of the document
  * as run (the netCDF `case` attribute). */
@@ -12,7 +12,7 @@
 
 /* ---------------------------------------------------------------- loading */
 
-static int read_whole_file(const char *path, char **buf, size_t *len, rs_msg *msg)
+int rs_case_doc_read(const char *path, char **buf, size_t *len, rs_msg *msg)
 {
   FILE *f = fopen(path, "rb");
   if (!f)
@@ -71,7 +71,7 @@ static int parser_error(const yaml_parser_t *p, const char *where, const char *t
                     p->problem_mark.line + 1, problem);
 }
 
-int rs_case_doc_load(rs_case_doc *d, const char *path, rs_msg *msg)
+int rs_case_doc_parse(rs_case_doc *d, const char *path, const char *text, size_t len, rs_msg *msg)
 {
   memset(d, 0, sizeof *d);
   d->path = path;
@@ -80,16 +80,10 @@ int rs_case_doc_load(rs_case_doc *d, const char *path, rs_msg *msg)
   d->dir = slash ? strndup(path, (size_t)(slash - path) + 1) : strdup("");
   if (!d->dir) return rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory");
 
-  char *text = NULL;
-  size_t len = 0;
-  int status = read_whole_file(path, &text, &len, msg);
-  if (status != RS_OK) return status;
-
+  int status = RS_OK;
   yaml_parser_t parser;
-  if (!yaml_parser_initialize(&parser)) {
-    free(text);
+  if (!yaml_parser_initialize(&parser))
     return rs_msg_set(msg, RS_ERR_INTERNAL, "cannot initialize the YAML parser");
-  }
   yaml_parser_set_input_string(&parser, (const unsigned char *)text, len);
   if (!yaml_parser_load(&parser, &d->doc)) {
     status = parser_error(&parser, path, text, len, msg);
@@ -120,7 +114,6 @@ int rs_case_doc_load(rs_case_doc *d, const char *path, rs_msg *msg)
     }
   }
   yaml_parser_delete(&parser);
-  free(text);
   return status;
 }
 

@@ -1,4 +1,4 @@
-/* Fitting model parameters to measurements (interfaces.md v2 "Fitting"): the case's
+/* Fitting model parameters to measurements (docs/case-file.md): the case's
  * fit: block names case keys to fit (start, bounds) and a CSV of measurements whose
  * columns are inputs (swept case keys, or a twin-disc protocol step) and one measured
  * output. rs_fit_load reads and checks it (io/case_fit.c); rs_fit_run (study/fit.c)
@@ -10,6 +10,7 @@
 #include <stddef.h>
 
 #include "base/status.h"
+#include "io/case.h"
 
 typedef struct rs_fit_param {
   char *key;        /* dotted case key, e.g. "plasticity.tau_c0" */
@@ -48,8 +49,7 @@ typedef struct rs_fit_spec {
 
 /* Read and check the fit: block of a case (after --set) and its CSV. Errors name
  * case.yaml:line: fit.KEY or data.csv:line: column; nothing is run. */
-int rs_fit_load(rs_fit_spec *f, const char *case_path, const char *const *sets, int nsets,
-                rs_msg *msg);
+int rs_fit_load(rs_fit_spec *f, const rs_case *c, rs_msg *msg);
 void rs_fit_free(rs_fit_spec *f);
 
 typedef struct rs_fit_opts {
@@ -76,12 +76,11 @@ typedef struct rs_fit_result {
   char backup[1040];
 } rs_fit_result;
 
-int rs_fit_run(const rs_fit_spec *f, const char *case_path, const char *const *sets, int nsets,
-               const rs_fit_opts *o, rs_fit_result *res, rs_msg *msg);
+int rs_fit_run(const rs_fit_spec *f, const rs_case *c, const rs_fit_opts *o, rs_fit_result *res,
+               rs_msg *msg);
 void rs_fit_result_free(rs_fit_result *res);
 /* MPI ranks > 0 of a fit: serve rank 0's Jacobian columns until it is done. */
-int rs_fit_serve(const rs_fit_spec *f, const char *case_path, const char *const *sets, int nsets,
-                 const rs_fit_opts *o, rs_msg *msg);
+int rs_fit_serve(const rs_fit_spec *f, const rs_case *c, const rs_fit_opts *o, rs_msg *msg);
 
 /* FIT.nc (io/output_fit.c): written whole to PATH.part and renamed over PATH (an older
  * file is kept as PATH~ the first time). */

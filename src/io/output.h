@@ -148,8 +148,14 @@ typedef struct rs_sweep_point {
  * integers; doubles have _FillValue NaN. */
 int rs_sweep_output_create(rs_sweep_output **out, const rs_sweep_output_spec *spec, rs_msg *msg);
 const char *rs_sweep_output_backup(const rs_sweep_output *out);
-/* Write the point at flat index (row-major over the axes, last fastest) and sync. */
+/* Give the point at flat index (row-major over the axes, last fastest). Points are written
+ * (and synced) in batches: when one arrives RS_SWEEP_FLUSH_SECONDS or more after the last
+ * write, when the batch's memory is full, and at close. A killed process leaves a readable
+ * file holding every point but those given less than RS_SWEEP_FLUSH_SECONDS after the last
+ * write (io/output_sweep.c). */
+#define RS_SWEEP_FLUSH_SECONDS 0.5
 int rs_sweep_output_write(rs_sweep_output *out, size_t index, const rs_sweep_point *pt,
                           rs_msg *msg);
+/* Write the points not yet written, set the status attribute and close. */
 int rs_sweep_output_close(rs_sweep_output *out, const char *status, rs_msg *msg);
 #endif

@@ -1,9 +1,17 @@
-/* Sweep files (docs/file-format.md "Sweep files"): one dimension per swept key with a
- * coordinate variable holding its values (name: the dotted key with '_' for '.',
- * attribute `key` = the dotted key, `units` = the key's unit from the key table),
- * the scalar results over those dimensions and, with output.fields, the profiles of
- * every point over (swept keys..., x). Points are written as they are computed and
- * synced, so an interrupted sweep keeps what it had.
+/* Sweep files (docs/file-format.md): one dimension per swept key with a coordinate
+ * variable holding its values (name: the dotted key with '_' for '.', attribute `key` =
+ * the dotted key, `units` = the key's unit from the key table), the scalar results over
+ * those dimensions and, with output.fields, the profiles of every point over (swept
+ * keys..., x).
+ *
+ * Points are written in batches: the points given since the last write are kept in memory
+ * and written, each run of consecutive points along the last axis as one hyperslab per
+ * variable, then synced, when a point arrives RS_SWEEP_FLUSH_SECONDS or more after the last
+ * write, when the batch is full, and at close (also after an interrupt or a failure). A
+ * point costs a few system calls per batch instead of a read and a write of a file block
+ * for every variable. A killed process (SIGKILL) leaves a readable file with every point
+ * but those that arrived less than RS_SWEEP_FLUSH_SECONDS after the last write. As in
+ * output.c, a sync is not an fsync: the page cache survives a killed process.
  *
  * Missing values: doubles carry _FillValue NaN (a failed point is NaN too). Integers
  * (cell counts, converged, regime) carry no _FillValue, which would make CF readers such
@@ -15,6 +23,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
 #include "io/output_internal.h"
 #include "io/case.h"
@@ -54,6 +63,27 @@ static const sweep_var sweep_vars_3d[] = {
 #define N_SWEEP_VARS    (sizeof sweep_vars / sizeof sweep_vars[0])
 #define CONVERGED_VAR   (N_SWEEP_VARS - 1)
 
+/* netCDF's I/O buffer: a batch goes to the file in writes of this size. */
+#define SWEEP_IO_CHUNK  ((size_t)1 << 20)
+/* Memory for the points of a batch (the fields' rows dominate). */
+#define BATCH_BYTES     (8u << 20)
+#define BATCH_MAX       4096
+#define N_POINT_DOUBLES (N_SWEEP_VARS + N_SWEEP_VARS_3D)
+
+/* The points given since the last write, in the order given. */
+typedef struct batch {
+  size_t cap, n;
+  size_t *index;       /* [cap] flat index of each point */
+  double *d;           /* [cap][N_POINT_DOUBLES] the scalars (counts in i) */
+  int *i;              /* [cap][N_SWEEP_VARS] */
+  int *rank;           /* [cap] */
+  double *rows;        /* [RS_N_FIELDS][cap][nx] the stored fields' rows */
+  signed char *regime; /* [cap][nx] */
+  size_t *order;       /* [cap] the points by index (scratch of a write) */
+  double *scratch;     /* [cap * max(nx, 1)] one variable of a run (scratch of a write) */
+  double last_write;   /* s, monotonic clock */
+} batch;
+
 struct rs_sweep_output {
   int ncid, naxes;
   char *path;
@@ -63,10 +93,16 @@ struct rs_sweep_output {
   size_t nx;
   int field_id[RS_N_FIELDS]; /* -1: not stored */
   int rank_id;               /* -1: not stored (serial sweeps) */
-  double *nan_row;           /* nx NaN (fields of a failed point) */
-  signed char *flag_row;     /* nx times -1 (regime of a failed point) */
+  batch b;
   char backup[1040];
 };
+
+static double monotonic_seconds(void)
+{
+  struct timespec ts;
+  clock_gettime(CLOCK_MONOTONIC, &ts);
+  return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
 
 static const char *unit_of(const sweep_var *v, int dimension)
 {
@@ -135,9 +171,37 @@ static int define_fields(rs_sweep_output *o, const rs_sweep_output_spec *spec, c
 static void free_output(rs_sweep_output *o)
 {
   free(o->path);
-  free(o->nan_row);
-  free(o->flag_row);
+  free(o->b.index);
+  free(o->b.d);
+  free(o->b.i);
+  free(o->b.rank);
+  free(o->b.rows);
+  free(o->b.regime);
+  free(o->b.order);
+  free(o->b.scratch);
   free(o);
+}
+
+/* The batch's memory: as many points as fit in BATCH_BYTES (at least one). */
+static int batch_alloc(batch *b, size_t nx)
+{
+  const size_t per_point = (RS_N_FIELDS * sizeof(double) + 1) * nx + 256;
+  size_t cap = BATCH_BYTES / per_point;
+  cap = cap < 1 ? 1 : cap > BATCH_MAX ? BATCH_MAX : cap;
+  const size_t row = nx > 0 ? nx : 1;
+  b->cap = cap;
+  b->index = malloc(cap * sizeof *b->index);
+  b->d = malloc(cap * N_POINT_DOUBLES * sizeof *b->d);
+  b->i = malloc(cap * N_SWEEP_VARS * sizeof *b->i);
+  b->rank = malloc(cap * sizeof *b->rank);
+  b->rows = malloc(RS_N_FIELDS * cap * row * sizeof *b->rows);
+  b->regime = malloc(cap * row);
+  b->order = malloc(cap * sizeof *b->order);
+  b->scratch = malloc(cap * (row > N_POINT_DOUBLES ? row : N_POINT_DOUBLES) * sizeof *b->scratch);
+  b->last_write = monotonic_seconds();
+  return b->index && b->d && b->i && b->rank && b->rows && b->regime && b->order && b->scratch
+             ? RS_OK
+             : RS_ERR_INTERNAL;
 }
 
 int rs_sweep_output_create(rs_sweep_output **outp, const rs_sweep_output_spec *spec, rs_msg *msg)
@@ -157,24 +221,17 @@ int rs_sweep_output_create(rs_sweep_output **outp, const rs_sweep_output_spec *s
   o->naxes = spec->naxes;
   o->nx = spec->fields ? spec->nx : 0;
   for (int f = 0; f < RS_N_FIELDS; f++) o->field_id[f] = -1;
-  if (o->nx) {
-    o->nan_row = malloc(o->nx * sizeof *o->nan_row);
-    o->flag_row = malloc(o->nx);
-    if (!o->nan_row || !o->flag_row) {
-      free_output(o);
-      return rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory");
-    }
-    for (size_t i = 0; i < o->nx; i++) {
-      o->nan_row[i] = NAN;
-      o->flag_row[i] = -1;
-    }
+  if (batch_alloc(&o->b, o->nx) != RS_OK) {
+    free_output(o);
+    return rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory");
   }
   status = rs_output_keep_old(spec->path, o->backup, sizeof o->backup, msg);
   if (status != RS_OK) {
     free_output(o);
     return status;
   }
-  int err = nc_create(spec->path, NC_CLOBBER | NC_64BIT_OFFSET, &o->ncid);
+  size_t chunk = SWEEP_IO_CHUNK;
+  int err = nc__create(spec->path, NC_CLOBBER | NC_64BIT_OFFSET, 0, &chunk, &o->ncid);
   if (err) {
     free_output(o);
     return rs_output_nc_failure(msg, spec->path, "cannot create", err);
@@ -243,6 +300,7 @@ int rs_sweep_output_create(rs_sweep_output **outp, const rs_sweep_output_spec *s
     err = nc_put_var_double(o->ncid, coord[a], spec->values[a]);
   if (!err && o->nx) err = nc_put_var_double(o->ncid, x_id, spec->x);
   if (!err) err = nc_sync(o->ncid);
+  o->b.last_write = monotonic_seconds();
   if (err) {
     status = rs_output_nc_failure(msg, spec->path, "cannot write the sweep layout", err);
     nc_close(o->ncid);
@@ -258,69 +316,140 @@ const char *rs_sweep_output_backup(const rs_sweep_output *o)
   return o && o->backup[0] ? o->backup : NULL;
 }
 
-/* The profiles of one point (NaN / -1 rows where the point has none). */
-static int write_fields(rs_sweep_output *o, const size_t *start, const rs_sweep_point *pt)
+/* Point k of the batch: the scalars, and the rows of the stored fields (NaN / -1 rows
+ * where the point has none). */
+static void batch_add(rs_sweep_output *o, size_t index, const rs_sweep_point *pt)
 {
-  size_t fstart[NC_MAX_VAR_DIMS], fcount[NC_MAX_VAR_DIMS];
-  for (int a = 0; a < o->naxes; a++) {
-    fstart[a] = start[a];
-    fcount[a] = 1;
-  }
-  fstart[o->naxes] = 0;
-  fcount[o->naxes] = o->nx;
+  batch *b = &o->b;
+  const size_t k = b->n++, nx = o->nx;
+  b->index[k] = index;
+  const double ratio = pt->Fn != 0.0 ? pt->Fx / pt->Fn : NAN;
+  const double dv[N_POINT_DOUBLES] = {
+      pt->Fx,     pt->Fn, ratio,  pt->creepage,         pt->velocity,      0,
+      0,          0,      0,      pt->frictional_power, pt->plastic_power, pt->elastic_energy,
+      0,          pt->Fy, pt->Mz, pt->lateral_creepage, pt->spin,          pt->hertz_a,
+      pt->hertz_b};
+  const int iv[N_SWEEP_VARS] = {0,
+                                0,
+                                0,
+                                0,
+                                0,
+                                pt->n_exterior,
+                                pt->n_adhesion,
+                                pt->n_slip,
+                                pt->n_plastic,
+                                0,
+                                0,
+                                0,
+                                pt->converged};
+  memcpy(b->d + k * N_POINT_DOUBLES, dv, sizeof dv);
+  memcpy(b->i + k * N_SWEEP_VARS, iv, sizeof iv);
+  b->rank[k] = pt->rank;
   /* in the order of rs_field_vars (the regime's slot unused) */
   const double *rows[RS_N_FIELDS] = {pt->px,    pt->pn,   pt->slip, pt->upl,
                                      pt->ustar, pt->tauc, NULL,     pt->mu};
-  int err = 0;
-  for (int f = 0; f < RS_N_FIELDS && !err; f++) {
+  for (int f = 0; f < RS_N_FIELDS && nx; f++) {
     if (o->field_id[f] < 0) continue;
-    if (f == RS_REGIME_FIELD)
-      err = nc_put_vara_schar(o->ncid, o->field_id[f], fstart, fcount,
-                              pt->regime ? pt->regime : o->flag_row);
+    if (f == RS_REGIME_FIELD) {
+      if (pt->regime)
+        memcpy(b->regime + k * nx, pt->regime, nx);
+      else
+        memset(b->regime + k * nx, -1, nx);
+      continue;
+    }
+    double *dst = b->rows + ((size_t)f * b->cap + k) * nx;
+    if (rows[f])
+      memcpy(dst, rows[f], nx * sizeof *dst);
     else
-      err = nc_put_vara_double(o->ncid, o->field_id[f], fstart, fcount,
-                               rows[f] ? rows[f] : o->nan_row);
+      for (size_t i = 0; i < nx; i++) dst[i] = NAN;
   }
+}
+
+/* One variable over a run of len points (order[0..len)) at start: the scalars (field
+ * -1: double d[v] or int i[v]; -2: rank) or a field's rows. */
+static int put_run(rs_sweep_output *o, const size_t *order, size_t len, const size_t *start,
+                   int varid, int field, int v, int is_int)
+{
+  batch *b = &o->b;
+  size_t st[NC_MAX_VAR_DIMS], count[NC_MAX_VAR_DIMS];
+  for (int a = 0; a < o->naxes; a++) {
+    st[a] = start[a];
+    count[a] = 1;
+  }
+  count[o->naxes - 1] = len;
+  if (field >= 0) {
+    st[o->naxes] = 0;
+    count[o->naxes] = o->nx;
+    if (field == RS_REGIME_FIELD) {
+      signed char *out = (signed char *)b->scratch;
+      for (size_t m = 0; m < len; m++) memcpy(out + m * o->nx, b->regime + order[m] * o->nx, o->nx);
+      return nc_put_vara_schar(o->ncid, varid, st, count, out);
+    }
+    for (size_t m = 0; m < len; m++)
+      memcpy(b->scratch + m * o->nx, b->rows + ((size_t)field * b->cap + order[m]) * o->nx,
+             o->nx * sizeof *b->scratch);
+    return nc_put_vara_double(o->ncid, varid, st, count, b->scratch);
+  }
+  if (is_int) {
+    int *out = (int *)b->scratch;
+    for (size_t m = 0; m < len; m++)
+      out[m] = field == -2 ? b->rank[order[m]] : b->i[order[m] * N_SWEEP_VARS + (size_t)v];
+    return nc_put_vara_int(o->ncid, varid, st, count, out);
+  }
+  for (size_t m = 0; m < len; m++) b->scratch[m] = b->d[order[m] * N_POINT_DOUBLES + (size_t)v];
+  return nc_put_vara_double(o->ncid, varid, st, count, b->scratch);
+}
+
+/* Write the batch: its points by index (a point given twice: the later), each run of
+ * consecutive indices along the last axis as one hyperslab per variable; then sync. */
+static int batch_write(rs_sweep_output *o)
+{
+  batch *b = &o->b;
+  int err = 0;
+  for (size_t k = 0; k < b->n; k++) { /* insertion sort, stable (the batch is mostly in order) */
+    size_t m = k;
+    while (m > 0 && b->index[b->order[m - 1]] > b->index[k]) {
+      b->order[m] = b->order[m - 1];
+      m--;
+    }
+    b->order[m] = k;
+  }
+  const size_t nlast = o->sizes[o->naxes - 1];
+  for (size_t r = 0; r < b->n && !err;) {
+    const size_t first = b->index[b->order[r]];
+    size_t len = 1;
+    while (r + len < b->n && b->index[b->order[r + len]] == first + len &&
+           (first + len) / nlast == first / nlast)
+      len++;
+    size_t start[NC_MAX_VAR_DIMS], rest = first;
+    for (int a = o->naxes - 1; a >= 0; a--) {
+      start[a] = rest % o->sizes[a];
+      rest /= o->sizes[a];
+    }
+    const size_t *order = b->order + r;
+    for (size_t v = 0; v < N_SWEEP_VARS && !err; v++)
+      err = put_run(o, order, len, start, o->varid[v], -1, (int)v, sweep_vars[v].type == SW_INT);
+    for (int v = 0; v < N_SWEEP_VARS_3D && !err; v++)
+      if (o->varid3[v] >= 0)
+        err = put_run(o, order, len, start, o->varid3[v], -1, (int)N_SWEEP_VARS + v, 0);
+    for (int f = 0; f < RS_N_FIELDS && o->nx && !err; f++)
+      if (o->field_id[f] >= 0) err = put_run(o, order, len, start, o->field_id[f], f, 0, 0);
+    if (!err && o->rank_id >= 0) err = put_run(o, order, len, start, o->rank_id, -2, 0, 1);
+    r += len;
+  }
+  if (!err && b->n) err = nc_sync(o->ncid);
+  b->n = 0;
+  b->last_write = monotonic_seconds();
   return err;
 }
 
 int rs_sweep_output_write(rs_sweep_output *o, size_t index, const rs_sweep_point *pt, rs_msg *msg)
 {
-  size_t start[NC_MAX_VAR_DIMS];
-  for (int a = o->naxes - 1; a >= 0; a--) {
-    start[a] = index % o->sizes[a];
-    index /= o->sizes[a];
-  }
-  const double ratio = pt->Fn != 0.0 ? pt->Fx / pt->Fn : NAN;
-  const double dv[] = {
-      pt->Fx, pt->Fn, ratio, pt->creepage,         pt->velocity,      0,
-      0,      0,      0,     pt->frictional_power, pt->plastic_power, pt->elastic_energy,
-      0};
-  const int iv[] = {0,
-                    0,
-                    0,
-                    0,
-                    0,
-                    pt->n_exterior,
-                    pt->n_adhesion,
-                    pt->n_slip,
-                    pt->n_plastic,
-                    0,
-                    0,
-                    0,
-                    pt->converged};
+  batch_add(o, index, pt);
   int err = 0;
-  for (size_t v = 0; v < N_SWEEP_VARS && !err; v++)
-    err = sweep_vars[v].type == SW_INT ? nc_put_var1_int(o->ncid, o->varid[v], start, &iv[v])
-                                       : nc_put_var1_double(o->ncid, o->varid[v], start, &dv[v]);
-  const double d3[N_SWEEP_VARS_3D] = {pt->Fy,   pt->Mz,      pt->lateral_creepage,
-                                      pt->spin, pt->hertz_a, pt->hertz_b};
-  for (int v = 0; v < N_SWEEP_VARS_3D && !err; v++)
-    if (o->varid3[v] >= 0) err = nc_put_var1_double(o->ncid, o->varid3[v], start, &d3[v]);
-  if (!err && o->nx) err = write_fields(o, start, pt);
-  if (!err && o->rank_id >= 0) err = nc_put_var1_int(o->ncid, o->rank_id, start, &pt->rank);
-  if (!err) err = nc_sync(o->ncid);
-  return err ? rs_output_nc_failure(msg, o->path, "cannot write a sweep point", err) : RS_OK;
+  if (o->b.n == o->b.cap || monotonic_seconds() - o->b.last_write >= RS_SWEEP_FLUSH_SECONDS)
+    err = batch_write(o);
+  return err ? rs_output_nc_failure(msg, o->path, "cannot write sweep points", err) : RS_OK;
 }
 
 int rs_sweep_output_close(rs_sweep_output *o, const char *status, rs_msg *msg)
@@ -328,7 +457,8 @@ int rs_sweep_output_close(rs_sweep_output *o, const char *status, rs_msg *msg)
   if (!o) return RS_OK;
   char buf[RS_OUTPUT_STATUS_LEN];
   rs_output_status_text(buf, status);
-  int err = nc_put_att_text(o->ncid, NC_GLOBAL, "status", RS_OUTPUT_STATUS_LEN, buf);
+  int err = batch_write(o);
+  if (!err) err = nc_put_att_text(o->ncid, NC_GLOBAL, "status", RS_OUTPUT_STATUS_LEN, buf);
   int err2 = nc_close(o->ncid);
   int rc = RS_OK;
   if (err || err2) rc = rs_output_nc_failure(msg, o->path, "cannot finish", err ? err : err2);

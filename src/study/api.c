@@ -18,6 +18,21 @@ static int finish(int status, const rs_msg *m, char *msg, size_t len)
   return status;
 }
 
+/* The case (loaded once) and its sweep: block. */
+static int load_sweep(rs_case *c, rs_sweep *sw, const char *case_path, const char *const *sets,
+                      int nsets, rs_msg *m)
+{
+  int status = rs_case_load(c, case_path, sets, nsets, m);
+  if (status != RS_OK) return status;
+  if (!c->has_sweep)
+    status = rs_msg_set(m, RS_ERR_INPUT, "%s: the case has no sweep: block (use rollsim run)",
+                        case_path);
+  else
+    status = rs_sweep_load(sw, c, m);
+  if (status != RS_OK) rs_case_free(c);
+  return status;
+}
+
 int rs_api_run(const char *case_path, const char *const *sets, int nsets, const char *out_path,
                char *msg, size_t msg_len)
 {
@@ -41,24 +56,17 @@ int rs_api_sweep(const char *case_path, const char *const *sets, int nsets, cons
 {
   rs_msg m = {{0}};
   rs_case c;
-  int status = rs_case_load(&c, case_path, sets, nsets, &m);
-  if (status != RS_OK) return finish(status, &m, msg, msg_len);
-  const int has_sweep = c.has_sweep;
-  rs_case_free(&c);
-  if (!has_sweep) {
-    rs_msg_set(&m, RS_ERR_INPUT, "%s: the case has no sweep: block (use rollsim run)", case_path);
-    return finish(RS_ERR_INPUT, &m, msg, msg_len);
-  }
   rs_sweep sw;
-  status = rs_sweep_load(&sw, case_path, sets, nsets, &m);
+  int status = load_sweep(&c, &sw, case_path, sets, nsets, &m);
   if (status != RS_OK) return finish(status, &m, msg, msg_len);
   volatile sig_atomic_t stop = 0;
   const rs_run_opts o = {.output_path = out_path,
                          .history = "rollsim " RS_VERSION " (API: rs_api_sweep)",
                          .interrupt_flag = &stop};
   rs_sweep_result res;
-  status = rs_sweep_run(&sw, case_path, sets, nsets, &o, &res, &m);
+  status = rs_sweep_run(&sw, &c, &o, &res, &m);
   rs_sweep_free(&sw);
+  rs_case_free(&c);
   return finish(status, &m, msg, msg_len);
 }
 
@@ -68,16 +76,8 @@ int rs_api_sweep_progress(const char *case_path, const char *const *sets, int ns
 {
   rs_msg m = {{0}};
   rs_case c;
-  int status = rs_case_load(&c, case_path, sets, nsets, &m);
-  if (status != RS_OK) return finish(status, &m, msg, msg_len);
-  const int has_sweep = c.has_sweep;
-  rs_case_free(&c);
-  if (!has_sweep) {
-    rs_msg_set(&m, RS_ERR_INPUT, "%s: the case has no sweep: block (use rollsim run)", case_path);
-    return finish(RS_ERR_INPUT, &m, msg, msg_len);
-  }
   rs_sweep sw;
-  status = rs_sweep_load(&sw, case_path, sets, nsets, &m);
+  int status = load_sweep(&c, &sw, case_path, sets, nsets, &m);
   if (status != RS_OK) return finish(status, &m, msg, msg_len);
   volatile sig_atomic_t stop = 0;
   const rs_run_opts o = {.output_path = out_path,
@@ -85,8 +85,9 @@ int rs_api_sweep_progress(const char *case_path, const char *const *sets, int ns
                          .interrupt_flag = &stop};
   const rs_sweep_dist d = {.progress = progress, .progress_ctx = ctx};
   rs_sweep_result res;
-  status = rs_sweep_run_dist(&sw, case_path, sets, nsets, &o, &d, &res, &m);
+  status = rs_sweep_run_dist(&sw, &c, &o, &d, &res, &m);
   rs_sweep_free(&sw);
+  rs_case_free(&c);
   return finish(status, &m, msg, msg_len);
 }
 

@@ -76,23 +76,22 @@ static int make_lines(rs_fit_eval *e, rs_msg *msg)
   return RS_OK;
 }
 
-int rs_fit_eval_init(rs_fit_eval *e, const rs_fit_spec *f, const char *case_path,
-                     const char *const *sets, int nsets, rs_msg *msg)
+int rs_fit_eval_init(rs_fit_eval *e, const rs_fit_spec *f, const rs_case *base, rs_msg *msg)
 {
   memset(e, 0, sizeof *e);
   e->f = f;
-  e->case_path = case_path;
-  e->sets = sets;
-  e->nsets = nsets;
-  const size_t nall = (size_t)(nsets + f->nparams + f->ncols);
-  e->all = calloc(nall, sizeof *e->all);
-  e->assign = calloc((size_t)(f->nparams + f->ncols), sizeof *e->assign);
+  e->base = base;
+  e->ov = calloc((size_t)(f->nparams + f->ncols), sizeof *e->ov);
+  e->param_key = calloc((size_t)f->nparams, sizeof *e->param_key);
+  e->input_key = calloc((size_t)f->ncols, sizeof *e->input_key);
   e->xs = calloc(f->npoints, sizeof *e->xs);
   e->diag = calloc(f->npoints, sizeof *e->diag);
   e->ok = calloc(f->npoints, sizeof *e->ok);
-  if (!e->all || !e->assign || !e->xs || !e->diag || !e->ok)
+  if (!e->ov || !e->param_key || !e->input_key || !e->xs || !e->diag || !e->ok)
     return rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory");
-  for (int i = 0; i < nsets; i++) e->all[i] = sets[i];
+  for (int k = 0; k < f->nparams; k++) e->param_key[k] = rs_case_key_index(f->params[k].key);
+  for (int j = 0; j < f->ncols; j++)
+    e->input_key[j] = f->input_keys && f->input_keys[j] ? rs_case_key_index(f->input_keys[j]) : -1;
   if (f->kind != RS_FIT_STEADY) return RS_OK;
   int status = make_lines(e, msg);
   for (size_t i = 0; i < f->npoints; i++)
@@ -102,8 +101,9 @@ int rs_fit_eval_init(rs_fit_eval *e, const rs_fit_spec *f, const char *case_path
 
 void rs_fit_eval_free(rs_fit_eval *e)
 {
-  free(e->all);
-  free(e->assign);
+  free(e->ov);
+  free(e->param_key);
+  free(e->input_key);
   free(e->xs);
   free(e->diag);
   free(e->ok);
@@ -144,29 +144,25 @@ static int store_point(void *ctx, size_t j, int status, const rs_diag *d, long n
 int rs_fit_eval_at(rs_fit_eval *e, const double *p, double *sim, rs_msg *msg)
 {
   const rs_fit_spec *f = e->f;
-  int n = e->nsets;
-  for (int k = 0; k < f->nparams; k++) {
-    snprintf(e->assign[k], sizeof e->assign[k], "%s=%.17g", f->params[k].key, p[k]);
-    e->all[n++] = e->assign[k];
-  }
+  int n = 0;
+  for (int k = 0; k < f->nparams; k++) e->ov[n++] = (rs_case_override){e->param_key[k], p[k]};
   int status = RS_OK;
   if (f->kind == RS_FIT_STEADY) {
     for (size_t l = 0; l < e->nlines && status == RS_OK; l++) {
       const size_t i0 = e->line_start[l], len = e->line_start[l + 1] - i0;
       int nl = n;
       for (int j = 0; j < f->ncols; j++)
-        if (f->input_keys[j] && j != e->key_col) {
-          snprintf(e->assign[f->nparams + j], sizeof e->assign[0], "%s=%.17g", f->input_keys[j],
-                   f->table[i0 * (size_t)f->ncols + (size_t)j]);
-          e->all[nl++] = e->assign[f->nparams + j];
-        }
+        if (f->input_keys[j] && j != e->key_col)
+          e->ov[nl++] =
+              (rs_case_override){e->input_key[j], f->table[i0 * (size_t)f->ncols + (size_t)j]};
       e->line0 = i0;
-      const rs_sweep_line line = {.case_path = e->case_path,
-                                  .sets = e->all,
-                                  .nsets = nl,
-                                  .key = f->input_keys[e->key_col],
+      const rs_sweep_line line = {.base = e->base,
+                                  .fixed = e->ov,
+                                  .nfixed = nl,
+                                  .key = e->input_key[e->key_col],
                                   .values = e->xs + i0,
                                   .n = len,
+                                  .first_point = -1,
                                   .point_done = store_point,
                                   .ctx = e};
       status = rs_sweep_line_eval(&line, msg);
@@ -179,7 +175,7 @@ int rs_fit_eval_at(rs_fit_eval *e, const double *p, double *sim, rs_msg *msg)
     }
   } else {
     rs_case c;
-    status = rs_case_load(&c, e->case_path, e->all, n, msg);
+    status = rs_case_derive(e->base, e->ov, n, &c, msg);
     if (status == RS_OK) {
       const rs_run_opts po = {.no_output = 1};
       rs_run_result rr;
@@ -526,12 +522,11 @@ static int analyse(fit_run *r, rs_fit_result *res)
   return status;
 }
 
-int rs_fit_serve(const rs_fit_spec *f, const char *case_path, const char *const *sets, int nsets,
-                 const rs_fit_opts *o, rs_msg *msg)
+int rs_fit_serve(const rs_fit_spec *f, const rs_case *c, const rs_fit_opts *o, rs_msg *msg)
 {
   rs_fit_eval e;
   rs_fit_columns *cols = NULL;
-  int status = rs_fit_eval_init(&e, f, case_path, sets, nsets, msg);
+  int status = rs_fit_eval_init(&e, f, c, msg);
   if (status == RS_OK) status = rs_fit_columns_create(&cols, f, o->mpi_rank, o->mpi_size, msg);
   if (status == RS_OK) status = rs_fit_columns_serve(cols, &e);
   rs_fit_columns_free(cols);
@@ -548,17 +543,16 @@ void rs_fit_result_free(rs_fit_result *res)
   memset(res, 0, sizeof *res);
 }
 
-int rs_fit_run(const rs_fit_spec *f, const char *case_path, const char *const *sets, int nsets,
-               const rs_fit_opts *o, rs_fit_result *res, rs_msg *msg)
+int rs_fit_run(const rs_fit_spec *f, const rs_case *c, const rs_fit_opts *o, rs_fit_result *res,
+               rs_msg *msg)
 {
   memset(res, 0, sizeof *res);
   const int n = f->nparams, m = (int)f->npoints;
   fit_run r = {.f = f, .o = o, .started = rs_wall_clock()};
-  rs_case base;
-  int status = rs_case_load(&base, case_path, sets, nsets, msg);
-  if (status != RS_OK) return status;
-  r.base = &base;
-  r.path = o->output_path ? o->output_path : base.output_file;
+  int status = RS_OK;
+  const char *case_path = c->source_path;
+  r.base = c;
+  r.path = o->output_path ? o->output_path : c->output_file;
   snprintf(res->file, sizeof res->file, "%s", r.path ? r.path : "");
   res->nparams = n;
   res->npoints = f->npoints;
@@ -584,7 +578,7 @@ int rs_fit_run(const rs_fit_spec *f, const char *case_path, const char *const *s
            !r.sim || !r.w || !r.meas || !r.best_u || !r.best_p || !r.best_sim || !u || !fvec ||
            !fjac || !diag || !qtf || !wa || !ipvt)
     status = rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory");
-  if (status == RS_OK) status = rs_fit_eval_init(&r.e, f, case_path, sets, nsets, msg);
+  if (status == RS_OK) status = rs_fit_eval_init(&r.e, f, c, msg);
   if (status == RS_OK)
     status = rs_fit_columns_create(&r.cols, f, 0, o->mpi_size > 1 ? o->mpi_size : 1, msg);
   if (status == RS_OK) {
@@ -625,14 +619,10 @@ int rs_fit_run(const rs_fit_spec *f, const char *case_path, const char *const *s
     }
   res->evaluations = r.e.evaluations;
   if (r.have_best) {
-    char why[RS_MSG_LEN + 16];
-    snprintf(why, sizeof why, "%s%s",
-             status == RS_OK                ? "complete"
-             : status == RS_ERR_INTERRUPTED ? "interrupted"
-                                            : "failed: ",
-             status == RS_OK || status == RS_ERR_INTERRUPTED ? "" : msg->text);
+    char why[RS_FINAL_STATUS_LEN];
     rs_msg tmp;
-    const int ws = write_file(&r, why, res->fitted, status == RS_OK ? res->std_error : NULL,
+    const int ws = write_file(&r, rs_final_status(status, msg, why), res->fitted,
+                              status == RS_OK ? res->std_error : NULL,
                               status == RS_OK ? res->covariance : NULL, res->simulated,
                               res->residual_norm, res->notes, status == RS_OK ? msg : &tmp);
     if (status == RS_OK) status = ws;
@@ -655,6 +645,5 @@ int rs_fit_run(const rs_fit_spec *f, const char *case_path, const char *const *s
   free(qtf);
   free(wa);
   free(ipvt);
-  rs_case_free(&base);
   return status;
 }

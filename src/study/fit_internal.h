@@ -11,13 +11,12 @@
 /* The model evaluated on every data row at given parameter values. */
 typedef struct rs_fit_eval {
   const rs_fit_spec *f;
-  const char *case_path;
-  const char *const *sets;
-  int nsets;
-  const char **all;    /* sets + parameter and input assignments */
-  char (*assign)[320]; /* [nparams + ncols] */
-  int key_col;         /* the continued input column (steady fits) */
-  size_t nlines;       /* continuation lines: rows [line_start[l], line_start[l + 1]) */
+  const rs_case *base;  /* the loaded case */
+  rs_case_override *ov; /* [nparams + ncols]: the parameters, then a line's other inputs */
+  int *param_key;       /* [nparams] key index of each parameter */
+  int *input_key;       /* [ncols] key index of each input column (-1 for others) */
+  int key_col;          /* the continued input column (steady fits) */
+  size_t nlines;        /* continuation lines: rows [line_start[l], line_start[l + 1]) */
   size_t *line_start;
   double *xs;       /* [npoints] the continued input of each row */
   rs_diag *diag;    /* [npoints] */
@@ -26,8 +25,7 @@ typedef struct rs_fit_eval {
   long evaluations; /* whole data sets evaluated */
 } rs_fit_eval;
 
-int rs_fit_eval_init(rs_fit_eval *e, const rs_fit_spec *f, const char *case_path,
-                     const char *const *sets, int nsets, rs_msg *msg);
+int rs_fit_eval_init(rs_fit_eval *e, const rs_fit_spec *f, const rs_case *base, rs_msg *msg);
 void rs_fit_eval_free(rs_fit_eval *e);
 /* sim[i]: the simulated output of data row i at parameters p. RS_ERR_SOLVER when a
  * point fails (the message names the parameter values). */

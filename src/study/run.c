@@ -145,8 +145,7 @@ static int run_transient(run_state *s, const rs_run_opts *o, rs_run_result *res,
     const double t_out = k == nrec ? t_end : k * c->output_interval;
     /* A breakpoint that falls on an output time up to rounding is that output time: IDA
      * goes to the breakpoint itself (its stop time; asked for the output time an ulp away
-     * it failed with IDA_ILL_INPUT, 2e-5 against 100 * 2e-7) and the record there is
-     * stored at the output time. */
+     * it fails with IDA_ILL_INPUT) and the record there is stored at the output time. */
     const int on_output = fabs(bp - t_out) <= 1e-9 * c->output_interval;
     const double target = on_output ? bp : fmin(t_out, bp);
     status = rs_transient_advance(tr, target, s->y, s->yp, msg);
@@ -398,13 +397,8 @@ int rs_run(const rs_case *c, const rs_run_opts *o, rs_run_result *res, rs_msg *m
     status = run_transient(&s, o, res, t0, started, rig, msg);
   }
 
-  char why[RS_MSG_LEN + 16];
-  if (status == RS_OK)
-    snprintf(why, sizeof why, "complete");
-  else if (status == RS_ERR_INTERRUPTED)
-    snprintf(why, sizeof why, "interrupted");
-  else
-    snprintf(why, sizeof why, "failed: %s", msg->text);
+  char why[RS_FINAL_STATUS_LEN];
+  rs_final_status(status, msg, why);
   rs_msg tmp;
   res->file_records = rs_output_records(s.out);
   if (s.out && status != RS_ERR_OUTPUT) rs_output_set_status(s.out, why, &tmp);

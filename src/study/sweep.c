@@ -1,7 +1,8 @@
-/* rollsim sweep (study/sweep.h): every combination of the swept values, one
- * netCDF file. Steady points continue from the solution of the previous point
- * along the last axis (the creepage of a creep-force curve), which keeps Newton
- * within reach of the active set. */
+/* Continuation lines of sweep points (study/sweep_lines.h): the points along a sweep's last
+ * axis, each a case derived from the loaded one, solved in memory. Steady points continue
+ * from the solution of the previous point along the last axis (the creepage of a
+ * creep-force curve), which keeps Newton within reach of the active set. The driver over
+ * the lines and the sweep file is study/sweep_dist.c. */
 #define _POSIX_C_SOURCE 200809L
 #include <math.h>
 #include <stdio.h>
@@ -20,28 +21,6 @@
 #include "base/util.h"
 #include "study/sweep_fields.h"
 #include "study/sweep_lines.h"
-
-static void fill_point(rs_sweep_point *pt, const rs_diag *d)
-{
-  pt->Fx = d->Fx;
-  pt->Fn = d->Fn;
-  pt->creepage = d->creepage;
-  pt->Fy = d->Fy;
-  pt->Mz = d->Mz;
-  pt->lateral_creepage = d->lateral_creepage;
-  pt->spin = d->spin;
-  pt->hertz_a = d->hertz_a;
-  pt->hertz_b = d->hertz_b;
-  pt->velocity = d->velocity;
-  pt->n_exterior = d->count[RS_EXTERIOR];
-  pt->n_adhesion = d->count[RS_ADHESION];
-  pt->n_slip = d->count[RS_SLIP];
-  pt->n_plastic = d->count[RS_PLASTIC];
-  pt->frictional_power = d->frictional_power;
-  pt->plastic_power = d->plastic_power;
-  pt->elastic_energy = d->elastic_energy;
-  pt->converged = 1;
-}
 
 /* Steady points along the last axis share one model and one solver when that axis
  * is a rolling input (a creep-force curve): grid, coefficients, normal solution and
@@ -86,22 +65,14 @@ static void chain_drop(steady_chain *ch)
   ch->have_model = 0;
 }
 
-/* Keys whose change leaves everything but the rolling inputs of the model unchanged. */
-static int rolling_key(const char *key)
+/* The model's rolling input held at x (an intermediate continuation point). */
+static void set_rolling_value(rs_model *m, rs_rolling_input which, double x)
 {
-  return !strcmp(key, "rolling.creepage") || !strcmp(key, "rolling.velocity") ||
-         !strcmp(key, "rolling.shift_velocity") || !strcmp(key, "rolling.lateral_creepage") ||
-         !strcmp(key, "rolling.spin");
-}
-
-/* The model's rolling input `key` held at x (an intermediate continuation point). */
-static void set_rolling_value(rs_model *m, const char *key, double x)
-{
-  rs_history *h = !strcmp(key, "rolling.creepage")           ? &m->par.creepage
-                  : !strcmp(key, "rolling.velocity")         ? &m->par.velocity
-                  : !strcmp(key, "rolling.lateral_creepage") ? &m->par.lateral_creepage
-                  : !strcmp(key, "rolling.spin")             ? &m->par.spin
-                                                             : &m->par.shift_velocity;
+  rs_history *h = which == RS_ROLLING_CREEPAGE           ? &m->par.creepage
+                  : which == RS_ROLLING_VELOCITY         ? &m->par.velocity
+                  : which == RS_ROLLING_LATERAL_CREEPAGE ? &m->par.lateral_creepage
+                  : which == RS_ROLLING_SPIN             ? &m->par.spin
+                                                         : &m->par.shift_velocity;
   rs_history_free(h);
   *h = (rs_history){.kind = RS_HISTORY_CONSTANT, .value = x};
 }
@@ -109,21 +80,15 @@ static void set_rolling_value(rs_model *m, const char *key, double x)
 /* Continuation step refinement: a step whose solution changes the regime of more
  * than max(JUMP_MIN_CELLS, n/JUMP_FRACTION) cells, or fails, is halved (at most
  * MAX_HALVINGS times in a row), so that Newton follows the path of solutions instead
- * of leaping across a change of the active set to another zero of the residual.
- * Measured on cases/creep_curves.yaml (41 points, 100 cells): up to 16 cells change
- * per step along the physical path, 1-3 in most steps. */
+ * of leaping across a change of the active set to another zero of the residual. Along the
+ * physical path only a few cells change regime per step. */
 enum { JUMP_MIN_CELLS = 4, JUMP_FRACTION = 10, MAX_HALVINGS = 3 };
 
 /* Where the steady state is unique the jump test only costs time: a 3D model with
- * Coulomb friction, elastic or plastic without softening (k_tau >= 0). Any step there
- * lands on the solution the halved path reaches (bench/cases/hertz3d_curve.yaml at 44 x
- * 44 cells, sweeps of 2, 4 or 7 points against 61 along the same line: F_x, F_y, M_z
- * within 3.5e-9 N / N mm and the same regime counts at every point, elastic, k_rel = 0
- * and 0.3, and a spin sweep), and the halving made 4-point sweeps 3-6 times slower than
- * without it (plastic k_rel = 0.3: 321 -> 69 Newton iterations, 1.95 -> 0.36 s). Softening
- * and velocity-dependent friction have several steady states (softening, k_rel = -0.3:
- * F_x = 848.4 N or 902.2 N at xi = -0.4 %, by the path), so the test stays there, as in
- * 2D, where it was introduced and costs little. */
+ * Coulomb friction, elastic or plastic without softening (k_tau >= 0), where any step
+ * lands on the solution the halved path reaches. Softening and velocity-dependent
+ * friction have several steady states (which one a point reaches depends on the path),
+ * so the test stays there, as in 2D. */
 static int unique_steady(int dimension, const rs_friction *friction, int plastic, double k_tau)
 {
   return dimension == 3 && !rs_friction_varies(friction) && (!plastic || k_tau >= 0.0);
@@ -153,22 +118,8 @@ static int regimes_of(steady_chain *ch, const double *y, signed char *reg)
  * its midpoint (rs_steady_approximate to SUBSTEP_TOL, at most SUBSTEP_ITERS Newton
  * iterations), the next secant predictor's base. The plastic Newton iterations per point
  * grow with the cells that change regime in a step (the line search cuts the steps while
- * the active set of the plastic unknowns is searched): along the 30-point plastic creep
- * curve of bench/cases, at most 104 cells per step and 4-8 iterations per point at 44 x 44
- * cells, 130-870 and up to 31 iterations at 128 x 128; with the midpoints there 462 -> 359
- * Newton iterations (two threads), 19.6 -> 13.2 s, and every point the same to 2e-12 of the
- * forces. Measured thresholds (128 x 128, two threads): every step 376 iterations, 200 cells
- * 359, 400 cells 359; up to three intermediate points (one per 150 / 400 cells): 454 / 375;
- * midpoint tolerance 1e-1 / 3e-2 / 1e-2 / 3e-3: 444 / 361 / 359 / 363. Elastic models take
- * such steps whole: the elastic curve at 128 x 128 took 204 Newton iterations without
- * midpoints and 280 with them (16.3 against 19.6 s). Measured again with the solver of
- * 2026-11-27 (Newton / GMRES iterations, the same curve): midpoint tolerance 1e-2 / 2e-2 /
- * 3e-2 / 5e-2 / 7e-2 / 1e-1 at 128 x 128 cells, one thread, 317 / 314 / 307 / 303 / 322 / 379
- * Newton (2116 / 2098 / 2046 / 2004 / 2214 GMRES); two threads 1e-2 / 2e-2 / 3e-2 / 5e-2 346 /
- * 342 / 338 / 331 (2285 / 2271 / 2237 / 2182); 100 x 100 1e-2 / 3e-2 / 5e-2 274 / 273 / 278
- * (1733 / 1705 / 1729), 88 x 88 263 / 262 / 260; 3e-2 for a margin from the rise above 5e-2.
- * Without midpoints 402 Newton iterations at 128 x 128 (one thread); at most 3 or 4 Newton
- * iterations per midpoint 453 / 459. */
+ * the active set of the plastic unknowns is searched); elastic models take such steps
+ * whole, as midpoints cost them more iterations than they save. */
 enum { SUBSTEP_CELLS = 400, SUBSTEP_ITERS = 15 };
 #define SUBSTEP_TOL 3e-2
 
@@ -197,7 +148,7 @@ static void chain_push(steady_chain *ch, double x, const double *y)
  * midpoint first after a large change of the active set (SUBSTEP_CELLS), the secant
  * predictor, Newton, and the step halved where the regimes jump. On success y and the
  * chain hold the solution at x. */
-static int continue_to(steady_chain *ch, const char *key, double x, double *y, int depth,
+static int continue_to(steady_chain *ch, rs_rolling_input key, double x, double *y, int depth,
                        rs_stats *stats, rs_msg *msg)
 {
   const int neq = ch->m.lay.neq, n = ch->m.grid.n;
@@ -238,12 +189,13 @@ static int continue_to(steady_chain *ch, const char *key, double x, double *y, i
 
 /* One steady point, warm-started from y (length neq of this grid) when warm; the
  * model and solver of the previous point are reused (continuation in the rolling
- * input `key`) when reuse. */
+ * input `key`) when key is one. */
 static int steady_point(const rs_case *c, steady_chain *ch, double **y, int *ny, int warm,
-                        int reuse, const char *key, double x, rs_diag *d, rs_fields *f,
-                        rs_stats *sum, rs_msg *msg)
+                        rs_rolling_input key, double x, rs_diag *d, rs_fields *f, rs_stats *sum,
+                        rs_msg *msg)
 {
   int status = RS_OK;
+  const int reuse = key != RS_ROLLING_NONE;
   const int chained =
       reuse && warm && ch->have_model && ch->st && ch->nsolved >= 1 && *ny == ch->m.lay.neq;
   if (!chained) {
@@ -314,282 +266,30 @@ static int steady_point(const rs_case *c, steady_chain *ch, double **y, int *ny,
   return status;
 }
 
-/* What a sweep's points are written to (rs_sweep_run). */
-typedef struct sweep_writer {
-  const rs_sweep *s;
-  const rs_run_opts *o;
-  rs_sweep_output *out;
-  rs_sweep_result *res;
-  const rs_fields *buf; /* the points' profiles (a common grid), or NULL */
-  double started;
-  size_t p0;  /* the first point of the line solved by rs_sweep_line_eval */
-  rs_msg msg; /* why the line's callback stopped it */
-} sweep_writer;
-
-/* Point p solved (ps RS_OK, d its quantities) or failed (RS_ERR_SOLVER, why): written,
- * progress shown, and RS_ERR_INTERRUPTED once the user has interrupted the sweep. */
-static int record_point(sweep_writer *w, size_t p, int ps, const rs_diag *d, const char *why,
-                        rs_msg *msg)
+/* The case of point j of the line: the base case with the line's fixed overrides and its
+ * key at values[j] (ov holds nfixed + 1 overrides). */
+static int line_case(const rs_sweep_line *line, rs_case_override *ov, size_t j, rs_case *c,
+                     rs_msg *msg)
 {
-  const rs_sweep *s = w->s;
-  rs_sweep_result *res = w->res;
-  rs_sweep_point pt;
-  memset(&pt, 0, sizeof pt);
-  if (ps == RS_OK) {
-    fill_point(&pt, d);
-    if (w->buf) {
-      pt.px = w->buf->px;
-      pt.pn = w->buf->pn;
-      pt.slip = w->buf->slip;
-      pt.upl = w->buf->upl;
-      pt.ustar = w->buf->ustar;
-      pt.tauc = w->buf->tauc;
-      pt.regime = w->buf->regime;
-      pt.mu = w->buf->mu;
-    }
-    res->points_done++;
-  } else {
-    pt.Fx = pt.Fn = pt.creepage = pt.velocity = NAN;
-    pt.Fy = pt.Mz = pt.lateral_creepage = pt.spin = pt.hertz_a = pt.hertz_b = NAN;
-    pt.frictional_power = pt.plastic_power = pt.elastic_energy = NAN;
-    pt.n_exterior = pt.n_adhesion = pt.n_slip = pt.n_plastic = -1;
-    res->points_failed++;
-    const rs_sweep_axis *ax = &s->axes[s->naxes - 1];
-    fprintf(stderr, "rollsim sweep: point %zu (%s=%.17g): %s\n", p, ax->key,
-            ax->values[p % (size_t)ax->n], why);
-  }
-  int status = rs_sweep_output_write(w->out, p, &pt, msg);
-  const size_t done = res->points_done + res->points_failed;
-  if (w->o->progress) {
-    fprintf(stderr, "\rsweep: %zu/%zu points, %zu failed, %.1f s ", done, s->npoints,
-            res->points_failed, rs_wall_clock() - w->started);
-    fflush(stderr);
-  }
-  if (status == RS_OK && w->o->interrupt_flag && *w->o->interrupt_flag)
-    status = rs_msg_set(msg, RS_ERR_INTERRUPTED, "interrupted after %zu of %zu points", done,
-                        s->npoints);
-  return status;
-}
-
-static int line_point_written(void *ctx, size_t j, int status, const rs_diag *d, long newton,
-                              const char *why)
-{
-  sweep_writer *w = ctx;
-  (void)newton;
-  return record_point(w, w->p0 + j, status, d, why, &w->msg);
-}
-
-int rs_sweep_run(const rs_sweep *s, const char *case_path, const char *const *sets, int nsets,
-                 const rs_run_opts *o, rs_sweep_result *res, rs_msg *msg)
-{
-  const double started = rs_wall_clock();
-  memset(res, 0, sizeof *res);
-  rs_case base;
-  int status = rs_case_load(&base, case_path, sets, nsets, msg);
-  if (status != RS_OK) return status;
-  const char *path = o->output_path ? o->output_path : base.output_file;
-  snprintf(res->file, sizeof res->file, "%s", path);
-  double *grid_x = NULL; /* the common grid of the points' profiles, or NULL */
-  int grid_n = 0;
-  rs_fields buf = {0};
-
-  const char **keys = calloc((size_t)s->naxes, sizeof *keys);
-  int *sizes = calloc((size_t)s->naxes, sizeof *sizes);
-  const double **values = calloc((size_t)s->naxes, sizeof *values);
-  const char **all = calloc((size_t)(nsets + s->naxes), sizeof *all);
-  char(*assign)[256] = calloc((size_t)s->naxes, sizeof *assign);
-  if (!keys || !sizes || !values || !all || !assign) {
-    status = rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory");
-    goto done;
-  }
-  for (int a = 0; a < s->naxes; a++) {
-    keys[a] = s->axes[a].key;
-    sizes[a] = s->axes[a].n;
-    values[a] = s->axes[a].values;
-  }
-  for (int i = 0; i < nsets; i++) all[i] = sets[i];
-  /* Profiles (output.fields) when every point has the base case's grid. */
-  const unsigned fields = rs_sweep_profile_fields(&base, 1);
-  if (fields) {
-    char why[512];
-    int common = 0;
-    status = rs_sweep_common_grid(s, case_path, sets, nsets, &common, &grid_x, &grid_n, why,
-                                  sizeof why, msg);
-    if (status != RS_OK) goto done;
-    if (!common)
-      fprintf(stderr,
-              "rollsim sweep: warning: output.fields not stored: %s, and the profiles "
-              "of a sweep file share one x axis (output.fields: [] silences this)\n",
-              why);
-    else if (rs_fields_alloc(&buf, grid_n) != RS_OK) {
-      status = rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory");
-      goto done;
-    }
-  }
-  rs_sweep_output_spec spec = {.path = path,
-                               .fields = grid_x ? fields : 0,
-                               .nx = (size_t)grid_n,
-                               .x = grid_x,
-                               .title = base.title,
-                               .case_text = base.yaml_text,
-                               .history = o->history,
-                               .dimension = base.dimension,
-                               .naxes = s->naxes,
-                               .keys = keys,
-                               .sizes = sizes,
-                               .values = values};
-  rs_sweep_output *out = NULL;
-  status = rs_sweep_output_create(&out, &spec, msg);
-  if (status != RS_OK) goto done;
-  if (rs_sweep_output_backup(out))
-    snprintf(res->backup, sizeof res->backup, "%s", rs_sweep_output_backup(out));
-
-  double *y = NULL;
-  int ny = 0;
-  steady_chain chain = {0};
-  if (SUNContext_Create(NULL, &chain.ctx) != 0) {
-    status = rs_msg_set(msg, RS_ERR_INTERNAL, "could not create the SUNDIALS context");
-    rs_msg tmp;
-    rs_sweep_output_close(out, "failed: could not create the SUNDIALS context", &tmp);
-    goto done;
-  }
-  rs_stats steady_sum = {0};
-  rs_msg point_msg = {{0}};
-  sweep_writer wr = {
-      .s = s, .o = o, .out = out, .res = res, .buf = grid_x ? &buf : NULL, .started = started};
-  const rs_sweep_axis *last = &s->axes[s->naxes - 1];
-  long line_refined = 0, line_midpoints = 0;
-  for (size_t p = 0; p < s->npoints && status == RS_OK; p++) {
-    size_t rest = p;
-    int last_index = 0;
-    for (int a = s->naxes - 1; a >= 0; a--) {
-      const int k = (int)(rest % (size_t)s->axes[a].n);
-      rest /= (size_t)s->axes[a].n;
-      if (a == s->naxes - 1) last_index = k;
-      snprintf(assign[a], sizeof assign[a], "%s=%.17g", s->axes[a].key, s->axes[a].values[k]);
-      all[nsets + a] = assign[a];
-    }
-    rs_case c;
-    rs_diag d;
-    int ps = rs_case_load(&c, case_path, all, nsets + s->naxes, &point_msg);
-    const int in_two = ps == RS_OK && rs_sweep_line_in_two(&c, last->key, (size_t)last->n);
-    if (ps == RS_OK && last_index == 0 && !grid_x &&
-        (in_two || rs_sweep_line_far_first(&c, last->key, (size_t)last->n))) {
-      /* the whole line at once: in two parts (solver.threads: 2), or far first */
-      rs_case_free(&c);
-      wr.p0 = p;
-      wr.msg.text[0] = '\0';
-      const rs_sweep_line line = {.case_path = case_path,
-                                  .sets = all,
-                                  .nsets = nsets + s->naxes - 1,
-                                  .key = last->key,
-                                  .values = last->values,
-                                  .n = (size_t)last->n,
-                                  .point_done = line_point_written,
-                                  .ctx = &wr,
-                                  .interrupt_flag = o->interrupt_flag,
-                                  .stats = &steady_sum,
-                                  .refined = &line_refined,
-                                  .midpoints = &line_midpoints,
-                                  .in_two = &res->lines_in_two,
-                                  .in_two_known = in_two};
-      status = rs_sweep_line_eval(&line, &point_msg);
-      if (status != RS_OK)
-        rs_msg_set(msg, status, "%s", wr.msg.text[0] ? wr.msg.text : point_msg.text);
-      p += (size_t)last->n - 1;
-      continue;
-    }
-    if (ps == RS_OK) {
-      if (c.mode == RS_MODE_STEADY) {
-        ps = steady_point(&c, &chain, &y, &ny, last_index > 0, rolling_key(last->key), last->key,
-                          last->values[last_index], &d, grid_x ? &buf : NULL, &steady_sum,
-                          &point_msg);
-      } else {
-        rs_run_opts po = *o;
-        po.no_output = 1;
-        po.progress = 0;
-        po.cost_warning = 0;
-        po.final_fields = grid_x ? &buf : NULL;
-        rs_run_result rr;
-        ps = rs_run(&c, &po, &rr, &point_msg);
-        d = rr.final;
-        res->newton_iters += rr.stats.nonlin_iters;
-        rs_run_result_free(&rr);
-      }
-      rs_case_free(&c);
-    }
-    if (ps != RS_OK && ps != RS_ERR_SOLVER) {
-      status = rs_msg_set(msg, ps, "sweep point %zu: %s", p, point_msg.text);
-      break;
-    }
-    if (ps == RS_ERR_SOLVER) {
-      free(y); /* no warm start from a failed point */
-      y = NULL;
-      ny = 0;
-    }
-    status = record_point(&wr, p, ps, &d, point_msg.text, msg);
-  }
-  if (o->progress) fputc('\n', stderr);
-  chain_drop(&chain);
-  SUNContext_Free(&chain.ctx);
-  res->newton_iters += steady_sum.nonlin_iters;
-  res->lin_solves = steady_sum.lin_solves;
-  res->jac_evals = chain.jac_evals + steady_sum.jac_evals; /* the latter: lines' */
-  res->refused = steady_sum.refused;
-  res->refined = chain.refined + line_refined;
-  res->midpoints = chain.midpoints + line_midpoints;
-  free(y);
-  if (status == RS_OK && res->points_failed > 0)
-    status =
-        rs_msg_set(msg, RS_ERR_SOLVER, "%zu of %zu sweep points did not converge (NaN in the file)",
-                   res->points_failed, s->npoints);
-  char why[RS_MSG_LEN + 16];
-  snprintf(why, sizeof why, "%s%s",
-           status == RS_OK                ? "complete"
-           : status == RS_ERR_INTERRUPTED ? "interrupted"
-                                          : "failed: ",
-           status == RS_OK || status == RS_ERR_INTERRUPTED ? "" : msg->text);
-  rs_msg tmp;
-  int cs = rs_sweep_output_close(out, why, status == RS_OK ? msg : &tmp);
-  if (status == RS_OK) status = cs;
-done:
-  res->wall_seconds = rs_wall_clock() - started;
-  free(grid_x);
-  rs_fields_free(&buf);
-  free(keys);
-  free(sizes);
-  free(values);
-  free(all);
-  free(assign);
-  rs_case_free(&base);
-  return status;
-}
-
-/* The case of point j of the line (its key at values[j]); all holds the line's sets and
- * one more entry. */
-static int line_case(const rs_sweep_line *line, const char **all, char *assign, size_t len,
-                     size_t j, rs_case *c, rs_msg *msg)
-{
-  snprintf(assign, len, "%s=%.17g", line->key, line->values[j]);
-  all[line->nsets] = assign;
-  return rs_case_load(c, line->case_path, all, line->nsets + 1, msg);
+  for (int i = 0; i < line->nfixed; i++) ov[i] = line->fixed[i];
+  ov[line->nfixed] = (rs_case_override){line->key, line->values[j]};
+  return rs_case_derive(line->base, ov, line->nfixed + 1, c, msg);
 }
 
 /* Point j of the line on the chain ch (warm: continued from *y); one_thread: the point's
  * solver on one thread. Returns the point's status (RS_OK, or RS_ERR_SOLVER with why in
  * pmsg; then no warm start from it) or an input or internal error's. */
-static int line_point(const rs_sweep_line *line, steady_chain *ch, const char **all, double **y,
+static int line_point(const rs_sweep_line *line, steady_chain *ch, rs_case_override *ov, double **y,
                       int *ny, size_t j, int warm, int one_thread, rs_stats *sum, rs_diag *d,
                       long *newton, rs_msg *pmsg)
 {
-  char assign[320];
   rs_case c;
   *newton = 0;
-  int ps = line_case(line, all, assign, sizeof assign, j, &c, pmsg);
+  int ps = line_case(line, ov, j, &c, pmsg);
   if (ps != RS_OK) return ps;
   if (one_thread) c.threads = 1;
   if (c.mode == RS_MODE_STEADY) {
-    ps = steady_point(&c, ch, y, ny, warm, rolling_key(line->key), line->key, line->values[j], d,
+    ps = steady_point(&c, ch, y, ny, warm, rs_case_key_rolling(line->key), line->values[j], d,
                       line->fields, sum, pmsg);
   } else {
     rs_run_opts po = {
@@ -609,6 +309,16 @@ static int line_point(const rs_sweep_line *line, steady_chain *ch, const char **
   return ps;
 }
 
+/* The message of a point that stopped the line with an input or internal error. */
+static int line_error(const rs_sweep_line *line, size_t j, int status, const rs_msg *pm,
+                      rs_msg *msg)
+{
+  if (line->first_point >= 0)
+    return rs_msg_set(msg, status, "sweep point %zu: %s", (size_t)line->first_point + j, pm->text);
+  return rs_msg_set(msg, status, "%s=%.17g: %s", rs_case_key_name(line->key), line->values[j],
+                    pm->text);
+}
+
 static void line_totals(const rs_sweep_line *line, const rs_stats *sum, const steady_chain *ch)
 {
   if (line->stats) {
@@ -622,18 +332,18 @@ static void line_totals(const rs_sweep_line *line, const rs_stats *sum, const st
 }
 
 /* A line of steady points along a rolling input where the steady state is unique. */
-static int unique_line(const rs_case *c, const char *key, size_t n)
+static int unique_line(const rs_case *c, int key, size_t n)
 {
-  return n >= 2 && c->mode == RS_MODE_STEADY && rolling_key(key) &&
+  return n >= 2 && c->mode == RS_MODE_STEADY && rs_case_key_rolling(key) != RS_ROLLING_NONE &&
          unique_steady(c->dimension, &c->friction, c->has_plasticity, c->k_tau);
 }
 
-int rs_sweep_line_far_first(const rs_case *c, const char *key, size_t n)
+int rs_sweep_line_far_first(const rs_case *c, int key, size_t n)
 {
   return unique_line(c, key, n) && c->has_plasticity;
 }
 
-int rs_sweep_line_in_two(const rs_case *c, const char *key, size_t n)
+int rs_sweep_line_in_two(const rs_case *c, int key, size_t n)
 {
 #ifdef _OPENMP
   return unique_line(c, key, n) && rs_threads(c->threads) == 2;
@@ -657,26 +367,8 @@ static size_t far_first_point(const rs_sweep_line *line, size_t k)
  * (a creep curve's rest end, whichever way the sweep runs) to the other, the first
  * IN_TWO_SMALL of them in that order go to worker 0, the rest to worker 1, and each
  * worker solves its part from its larger |value| back (its first point from rest). A fixed
- * split, so that a sweep's file does not depend on the threads' timing. Measured on the
- * 30-point creep curves of bench/cases (2-core VM, single runs):
- * - partial slip costs more than saturation, and more so on fine grids: the first 12
- *   points at 128 x 128 cells (plastic) forward 310 Newton iterations, 23.6 s; the last 18
- *   back from the end 249, 16.9 s (the two as processes side by side: 23.7 / 18.1 s);
- * - plastic continuation towards smaller creepage takes fewer iterations: the first 12
- *   points at 128^2 back 241 (20.9 s), the whole 44^2 curve back 172 against 193 (the
- *   elastic 44^2 curve 165 against 152);
- * - with two threads (worker 0 forward from the first point / back towards it, split at):
- *   plastic 44^2 forward 0.35 / 0.4 / 0.45 / 0.5: 0.65 / 0.68 / 0.74 / 0.78 s, back 0.64 /
- *   0.67 / 0.73 / 0.79 s; elastic 44^2 forward 0.59 / 0.57 / 0.52 / 0.56 s, back 0.58 /
- *   0.54 / 0.56 / 0.61 s; plastic 128^2 forward 0.3 / 0.35 / 0.4: 20.3 / 21.5 / 23.7 s, back
- *   0.35 / 0.4: 20.0 / 21.6 s.
- * Measured again after the solver's speed-ups of 2026-11-27 (each worker's CPU time summed
- * over its points, so that the machine's changes of speed cancel in the ratio): split at
- * 0.35 worker 1 took 1.04-1.17 times worker 0's time on the plastic 44^2 curve and
- * 1.27-1.39 on the elastic one, at 0.4 0.95-1.02 and 0.95-1.10, at 0.45 0.77-0.84
- * (plastic); the same Newton and GMRES totals. Paired wall times 0.4 against 0.35: plastic
- * 44^2 0.999 (median of 15, noise), plastic 128^2 0.932 (median of 5; 346 against 364 Newton
- * iterations). */
+ * split, so that a sweep's file does not depend on the threads' timing; partial slip costs
+ * more than saturation (more so on fine grids), hence the smaller share for worker 0. */
 #define IN_TWO_SMALL 0.40
 static size_t in_two_split(size_t n)
 {
@@ -700,9 +392,8 @@ static int line_in_two(const rs_sweep_line *line, rs_msg *msg)
     const int w = omp_get_thread_num();
     steady_chain ch = {0};
     rs_stats sum = {0};
-    const char **all = calloc((size_t)line->nsets + 1, sizeof *all);
-    int mine = all && SUNContext_Create(NULL, &ch.ctx) == 0 ? RS_OK : RS_ERR_INTERNAL;
-    for (int i = 0; all && i < line->nsets; i++) all[i] = line->sets[i];
+    rs_case_override *ov = calloc((size_t)line->nfixed + 1, sizeof *ov);
+    int mine = ov && SUNContext_Create(NULL, &ch.ctx) == 0 ? RS_OK : RS_ERR_INTERNAL;
     double *y = NULL;
     int ny = 0, warm = 0;
     for (;;) {
@@ -722,7 +413,7 @@ static int line_in_two(const rs_sweep_line *line, rs_msg *msg)
       rs_diag d;
       long newton = 0;
       rs_msg pm = {{0}};
-      const int ps = line_point(line, &ch, all, &y, &ny, j, warm, 1, &sum, &d, &newton, &pm);
+      const int ps = line_point(line, &ch, ov, &y, &ny, j, warm, 1, &sum, &d, &newton, &pm);
       warm = 1;
 #pragma omp critical(rs_sweep_line)
       {
@@ -730,7 +421,7 @@ static int line_in_two(const rs_sweep_line *line, rs_msg *msg)
         if (ps == RS_OK || ps == RS_ERR_SOLVER)
           st = line->point_done(line->ctx, j, ps, &d, newton, pm.text);
         else if (status == RS_OK)
-          rs_msg_set(msg, ps, "%s=%.17g: %s", line->key, line->values[j], pm.text);
+          line_error(line, j, ps, &pm, msg);
         if (st != RS_OK && status == RS_OK) status = st;
       }
     }
@@ -739,7 +430,7 @@ static int line_in_two(const rs_sweep_line *line, rs_msg *msg)
     chain_drop(&ch);
     if (ch.ctx) SUNContext_Free(&ch.ctx);
     free(y);
-    free(all);
+    free(ov);
   }
   if (line->in_two) (*line->in_two)++;
   return status;
@@ -750,24 +441,19 @@ static int line_in_two(const rs_sweep_line *line, rs_msg *msg)
  * along its last axis, with the same models, warm starts and continuation. */
 int rs_sweep_line_eval(const rs_sweep_line *line, rs_msg *msg)
 {
-#ifdef _OPENMP
-  if (line->in_two_known) return line_in_two(line, msg);
-#endif
-  const char **all = calloc((size_t)line->nsets + 1, sizeof *all);
-  if (!all) return rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory");
-  for (int i = 0; i < line->nsets; i++) all[i] = line->sets[i];
+  rs_case_override *ov = calloc((size_t)line->nfixed + 1, sizeof *ov);
+  if (!ov) return rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory");
   int far = 0;
   if (line->n >= 2 && !line->fields) { /* 3D sweeps store no profiles */
-    char assign[320];
     rs_case c;
     rs_msg cm = {{0}};
-    if (line_case(line, all, assign, sizeof assign, 0, &c, &cm) == RS_OK) {
+    if (line_case(line, ov, 0, &c, &cm) == RS_OK) {
       far = rs_sweep_line_far_first(&c, line->key, line->n);
       const int in_two = rs_sweep_line_in_two(&c, line->key, line->n); /* 0 without OpenMP */
       rs_case_free(&c);
 #ifdef _OPENMP
       if (in_two) {
-        free(all);
+        free(ov);
         return line_in_two(line, msg);
       }
 #else
@@ -777,7 +463,7 @@ int rs_sweep_line_eval(const rs_sweep_line *line, rs_msg *msg)
   }
   steady_chain chain = {0};
   if (SUNContext_Create(NULL, &chain.ctx) != 0) {
-    free(all);
+    free(ov);
     return rs_msg_set(msg, RS_ERR_INTERNAL, "could not create the SUNDIALS context");
   }
   double *y = NULL;
@@ -788,16 +474,16 @@ int rs_sweep_line_eval(const rs_sweep_line *line, rs_msg *msg)
     rs_diag d;
     long newton = 0;
     rs_msg pm = {{0}};
-    const int ps = line_point(line, &chain, all, &y, &ny, j, k > 0, 0, &sum, &d, &newton, &pm);
+    const int ps = line_point(line, &chain, ov, &y, &ny, j, k > 0, 0, &sum, &d, &newton, &pm);
     if (ps == RS_OK || ps == RS_ERR_SOLVER)
       status = line->point_done(line->ctx, j, ps, &d, newton, pm.text);
     else
-      status = rs_msg_set(msg, ps, "%s=%.17g: %s", line->key, line->values[j], pm.text);
+      status = line_error(line, j, ps, &pm, msg);
   }
   line_totals(line, &sum, &chain);
   chain_drop(&chain);
   SUNContext_Free(&chain.ctx);
   free(y);
-  free(all);
+  free(ov);
   return status;
 }

@@ -1,5 +1,5 @@
-/* Sweeps (interfaces.md "Sweeps"): the case's `sweep:` block maps dotted case keys
- * to value lists (or {linspace: [from, to, n]}); `rollsim sweep` runs every
+/* Sweeps (docs/case-file.md, docs/file-format.md): the case's `sweep:` block maps dotted
+ * case keys to value lists (or {linspace: [from, to, n]}); `rollsim sweep` runs every
  * combination and writes one netCDF file with one dimension per swept key.
  * Steady sweeps continue from the previous point along the last key (creep-force
  * curves: continuation in creepage). */
@@ -27,12 +27,12 @@ typedef struct rs_sweep_result {
   char backup[1040]; /* an older file at the output path kept under this name, or "" */
 } rs_sweep_result;
 
-/* Run every point; write `path` (case output.file when NULL). With output.fields the
- * file holds every point's profiles too, when all points share the base case's grid
- * (else a warning on stderr and scalars only). Returns RS_OK,
- * RS_ERR_SOLVER when some points failed (their results are NaN), RS_ERR_INTERRUPTED,
- * RS_ERR_OUTPUT or RS_ERR_INPUT. */
-int rs_sweep_run(const rs_sweep *s, const char *case_path, const char *const *sets, int nsets,
-                 const rs_run_opts *o, rs_sweep_result *res, rs_msg *msg);
+/* Run every point of the loaded case c (rs_case_load, its sweep read by rs_sweep_load);
+ * write o->output_path (case output.file when NULL). With output.fields the file holds
+ * every point's profiles too, when all points share c's grid (else a warning on stderr
+ * and scalars only). Returns RS_OK, RS_ERR_SOLVER when some points failed (their results
+ * are NaN), RS_ERR_INTERRUPTED, RS_ERR_OUTPUT or RS_ERR_INPUT. */
+int rs_sweep_run(const rs_sweep *s, const rs_case *c, const rs_run_opts *o, rs_sweep_result *res,
+                 rs_msg *msg);
 
 #endif

@@ -1,12 +1,13 @@
-/* Distributed sweeps (interfaces.md v2 "Scale-out"; study/sweep_dist.h):
- *  - under MPI, a task farm over the sweep's continuation lines (the points that differ
- *    only in the last key; each starts from rest, so lines are independent): rank 0
- *    hands out lines, longest first, to ranks that ask, computes lines itself between
- *    requests and writes every point as it arrives (with the rank that computed it);
+/* The sweep driver (study/sweep.h, study/sweep_dist.h): a task farm over the sweep's
+ * continuation lines (the points that differ only in the last key; each starts from rest,
+ * so lines are independent), each solved by rs_sweep_line_eval:
+ *  - serial: the farm of one rank, which computes every line in order;
+ *  - under MPI: rank 0 hands out lines, in line order, to ranks that ask, computes lines
+ *    itself between requests and writes every point as it arrives (with the rank that
+ *    computed it);
  *  - rollsim sweep --part K/N: the lines l with l mod N = K - 1, into a file of the full
  *    sweep's shape (points of other parts left unwritten), joined by rollsim merge.
- * Each line is computed by rs_sweep_line_eval with the serial sweep's assignments, so
- * every point carries the serial sweep's numbers bit for bit. */
+ * A point's numbers do not depend on which process computed it. */
 #define _POSIX_C_SOURCE 200809L
 #include <math.h>
 #include <stdio.h>
@@ -26,17 +27,14 @@ enum { PT_HEAD = 22 }; /* m[16..21]: F_y, M_z, eta, phi, Hertz a, b (3D; 0 in 2D
 
 typedef struct dist_run {
   const rs_sweep *s;
-  const char *case_path;
-  const char *const *sets;
-  int nsets;
+  const rs_case *c; /* the loaded case */
   const rs_run_opts *o;
   const rs_sweep_dist *dist;
   rs_sweep_result *res;
   size_t nlast, nlines;
-  const char **all;     /* sets + the other axes' assignments */
-  char (*assign)[256];  /* [naxes] */
-  rs_sweep_output *out; /* rank 0 / the part's file */
-  rs_fields buf;        /* this rank's fields of a point (when the file stores them) */
+  rs_case_override *fixed; /* [naxes - 1] the other axes' values of the line */
+  rs_sweep_output *out;    /* rank 0 / the part's file */
+  rs_fields buf;           /* this rank's fields of a point (when the file stores them) */
   int with_fields;
   size_t nx;
   double *msgbuf; /* a point message */
@@ -151,7 +149,7 @@ static int write_point(dist_run *r, const double *m, int rank)
   return ws;
 }
 
-/* The assignments of the axes other than the last for a line. */
+/* The values of the axes other than the last for a line. */
 static void line_sets(dist_run *r, size_t line)
 {
   const rs_sweep *s = r->s;
@@ -159,8 +157,7 @@ static void line_sets(dist_run *r, size_t line)
   for (int a = s->naxes - 2; a >= 0; a--) {
     const int k = (int)(rest % (size_t)s->axes[a].n);
     rest /= (size_t)s->axes[a].n;
-    snprintf(r->assign[a], sizeof r->assign[a], "%s=%.17g", s->axes[a].key, s->axes[a].values[k]);
-    r->all[r->nsets + a] = r->assign[a];
+    r->fixed[a] = (rs_case_override){s->axes[a].key_index, s->axes[a].values[k]};
   }
 }
 
@@ -198,12 +195,13 @@ static int compute_line(dist_run *r, size_t line)
   const rs_sweep_axis *last = &s->axes[s->naxes - 1];
   r->line = line;
   line_sets(r, line);
-  const rs_sweep_line L = {.case_path = r->case_path,
-                           .sets = r->all,
-                           .nsets = r->nsets + s->naxes - 1,
-                           .key = last->key,
+  const rs_sweep_line L = {.base = r->c,
+                           .fixed = r->fixed,
+                           .nfixed = s->naxes - 1,
+                           .key = last->key_index,
                            .values = last->values,
                            .n = (size_t)last->n,
+                           .first_point = (long)(line * r->nlast),
                            .fields = r->with_fields ? &r->buf : NULL,
                            .point_done = point_done,
                            .ctx = r,
@@ -214,6 +212,7 @@ static int compute_line(dist_run *r, size_t line)
                            .in_two = &r->in_two};
   rs_msg m = {{0}};
   const int st = rs_sweep_line_eval(&L, &m);
+  if (st == RS_ERR_INTERRUPTED) r->interrupted = 1; /* also inside a transient point */
   if (st != RS_OK && st != RS_ERR_INTERRUPTED && !r->msg.text[0])
     snprintf(r->msg.text, sizeof r->msg.text, "%s", m.text);
   return st;
@@ -268,24 +267,21 @@ static int worker(dist_run *r)
   }
 }
 
-int rs_sweep_run_dist(const rs_sweep *s, const char *case_path, const char *const *sets, int nsets,
-                      const rs_run_opts *o, const rs_sweep_dist *dist, rs_sweep_result *res,
-                      rs_msg *msg)
+int rs_sweep_run(const rs_sweep *s, const rs_case *c, const rs_run_opts *o, rs_sweep_result *res,
+                 rs_msg *msg)
 {
-  dist_run r = {.s = s,
-                .case_path = case_path,
-                .sets = sets,
-                .nsets = nsets,
-                .o = o,
-                .dist = dist,
-                .res = res,
-                .started = rs_wall_clock()};
+  const rs_sweep_dist serial = {0};
+  return rs_sweep_run_dist(s, c, o, &serial, res, msg);
+}
+
+int rs_sweep_run_dist(const rs_sweep *s, const rs_case *c, const rs_run_opts *o,
+                      const rs_sweep_dist *dist, rs_sweep_result *res, rs_msg *msg)
+{
+  dist_run r = {.s = s, .c = c, .o = o, .dist = dist, .res = res, .started = rs_wall_clock()};
   memset(res, 0, sizeof *res);
   const int rank = dist->mpi ? dist->mpi->rank : 0, size = dist->mpi ? dist->mpi->size : 1;
-  rs_case base;
-  int status = rs_case_load(&base, case_path, sets, nsets, msg);
-  if (status != RS_OK) return status;
-  const char *path = o->output_path ? o->output_path : base.output_file;
+  int status = RS_OK;
+  const char *path = o->output_path ? o->output_path : c->output_file;
   snprintf(res->file, sizeof res->file, "%s", path);
   r.nlast = (size_t)s->axes[s->naxes - 1].n;
   r.nlines = s->npoints / r.nlast;
@@ -294,9 +290,8 @@ int rs_sweep_run_dist(const rs_sweep *s, const char *case_path, const char *cons
   const char **keys = calloc((size_t)s->naxes, sizeof *keys);
   int *sizes = calloc((size_t)s->naxes, sizeof *sizes);
   const double **values = calloc((size_t)s->naxes, sizeof *values);
-  r.all = calloc((size_t)(nsets + s->naxes), sizeof *r.all);
-  r.assign = calloc((size_t)s->naxes, sizeof *r.assign);
-  if (!keys || !sizes || !values || !r.all || !r.assign) {
+  r.fixed = calloc((size_t)s->naxes, sizeof *r.fixed);
+  if (!keys || !sizes || !values || !r.fixed) {
     status = rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory");
     goto done;
   }
@@ -305,14 +300,12 @@ int rs_sweep_run_dist(const rs_sweep *s, const char *case_path, const char *cons
     sizes[a] = s->axes[a].n;
     values[a] = s->axes[a].values;
   }
-  for (int i = 0; i < nsets; i++) r.all[i] = sets[i];
-  /* Profiles (output.fields) as rs_sweep_run stores them. */
-  const unsigned fields = rs_sweep_profile_fields(&base, rank == 0);
+  /* Profiles (output.fields) when every point has the loaded case's grid. */
+  const unsigned fields = rs_sweep_profile_fields(c, rank == 0);
   if (fields) {
     char why[512];
     int common = 0;
-    status = rs_sweep_common_grid(s, case_path, sets, nsets, &common, &grid_x, &grid_n, why,
-                                  sizeof why, msg);
+    status = rs_sweep_common_grid(s, c, &common, &grid_x, &grid_n, why, sizeof why, msg);
     if (status != RS_OK) goto done;
     if (!common && rank == 0)
       fprintf(stderr,
@@ -337,10 +330,10 @@ int rs_sweep_run_dist(const rs_sweep *s, const char *case_path, const char *cons
                                        .fields = grid_x ? fields : 0,
                                        .nx = (size_t)grid_n,
                                        .x = grid_x,
-                                       .title = base.title,
-                                       .case_text = base.yaml_text,
+                                       .title = c->title,
+                                       .case_text = c->yaml_text,
                                        .history = o->history,
-                                       .dimension = base.dimension,
+                                       .dimension = c->dimension,
                                        .naxes = s->naxes,
                                        .keys = keys,
                                        .sizes = sizes,
@@ -389,14 +382,10 @@ int rs_sweep_run_dist(const rs_sweep *s, const char *case_path, const char *cons
         rs_msg_set(msg, RS_ERR_SOLVER, "%zu of %zu sweep points did not converge (NaN in the file)",
                    res->points_failed, s->npoints);
   {
-    char why[RS_MSG_LEN + 16];
-    snprintf(why, sizeof why, "%s%s",
-             status == RS_OK                ? "complete"
-             : status == RS_ERR_INTERRUPTED ? "interrupted"
-                                            : "failed: ",
-             status == RS_OK || status == RS_ERR_INTERRUPTED ? "" : msg->text);
+    char why[RS_FINAL_STATUS_LEN];
     rs_msg tmp;
-    const int cs = rs_sweep_output_close(r.out, why, status == RS_OK ? msg : &tmp);
+    const int cs = rs_sweep_output_close(r.out, rs_final_status(status, msg, why),
+                                         status == RS_OK ? msg : &tmp);
     if (status == RS_OK) status = cs;
   }
 done:
@@ -414,8 +403,6 @@ done:
   free(keys);
   free(sizes);
   free(values);
-  free(r.all);
-  free(r.assign);
-  rs_case_free(&base);
+  free(r.fixed);
   return status;
 }

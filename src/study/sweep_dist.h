@@ -1,5 +1,6 @@
-/* Private to the drivers: sweeps over MPI ranks (a task farm over continuation lines)
- * and sweep parts for job arrays (rollsim sweep --part K/N; rollsim merge joins them). */
+/* Private to the drivers: the sweep over MPI ranks (a task farm over continuation lines;
+ * serial sweeps are the farm of one rank) and sweep parts for job arrays (rollsim sweep
+ * --part K/N; rollsim merge joins them). */
 #ifndef ROLLSIM_SWEEP_DIST_H
 #define ROLLSIM_SWEEP_DIST_H
 
@@ -18,8 +19,7 @@ typedef struct rs_sweep_dist {
 
 /* The sweep over MPI ranks, or one part of it. Rank 0 (or the part) writes the file;
  * results and statuses as rs_sweep_run. Every rank calls it. */
-int rs_sweep_run_dist(const rs_sweep *s, const char *case_path, const char *const *sets, int nsets,
-                      const rs_run_opts *o, const rs_sweep_dist *dist, rs_sweep_result *res,
-                      rs_msg *msg);
+int rs_sweep_run_dist(const rs_sweep *s, const rs_case *c, const rs_run_opts *o,
+                      const rs_sweep_dist *dist, rs_sweep_result *res, rs_msg *msg);
 
 #endif

@@ -73,43 +73,40 @@ unsigned rs_sweep_profile_fields(const rs_case *c, int warn)
   return fields;
 }
 
-/* The grid of the case with the extra assignment `extra` (NULL: none). */
-static int grid_of(const char *case_path, const char *const *sets, int nsets, const char *extra,
-                   rs_model *m, rs_msg *msg)
+/* The model of the case derived with one override. */
+static int model_with(const rs_case *base, rs_case_override ov, rs_model *m, rs_msg *msg)
 {
-  const char **all = calloc((size_t)nsets + 1, sizeof *all);
-  if (!all) return rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory");
-  for (int i = 0; i < nsets; i++) all[i] = sets[i];
-  if (extra) all[nsets] = extra;
   rs_case c;
-  int status = rs_case_load(&c, case_path, all, nsets + (extra ? 1 : 0), msg);
-  free(all);
+  int status = rs_case_derive(base, &ov, 1, &c, msg);
   if (status != RS_OK) return status;
   status = rs_model_from_case(m, &c, msg);
   rs_case_free(&c);
   return status;
 }
 
-int rs_sweep_common_grid(const rs_sweep *s, const char *case_path, const char *const *sets,
-                         int nsets, int *common_out, double **x, int *n, char *why, size_t why_len,
-                         rs_msg *msg)
+int rs_sweep_common_grid(const rs_sweep *s, const rs_case *c, int *common_out, double **x, int *n,
+                         char *why, size_t why_len, rs_msg *msg)
 {
   *x = NULL;
   *n = 0;
   *common_out = 0;
   why[0] = '\0';
   rs_model base;
-  int status = grid_of(case_path, sets, nsets, NULL, &base, msg);
+  int status = rs_model_from_case(&base, c, msg);
   if (status != RS_OK) return status;
   double xmax = 0.0;
   for (int i = 0; i < base.grid.n; i++) xmax = fmax(xmax, fabs(base.grid.x[i]));
   int common = 1;
-  char assign[512];
-  for (int a = 0; a < s->naxes && common; a++)
+  for (int a = 0; a < s->naxes && common; a++) {
+    /* A rolling input leaves the grid as it is: it is sized on the normal load, whose
+     * largest value depends on the run's length only when the load varies. */
+    if (rs_case_key_rolling(s->axes[a].key_index) != RS_ROLLING_NONE &&
+        rs_history_is_constant(&c->normal_load))
+      continue;
     for (int k = 0; k < s->axes[a].n && common; k++) {
-      snprintf(assign, sizeof assign, "%s=%.17g", s->axes[a].key, s->axes[a].values[k]);
       rs_model m;
-      if ((status = grid_of(case_path, sets, nsets, assign, &m, msg)) != RS_OK) {
+      const rs_case_override ov = {s->axes[a].key_index, s->axes[a].values[k]};
+      if ((status = model_with(c, ov, &m, msg)) != RS_OK) {
         rs_model_free(&base);
         return status;
       }
@@ -123,6 +120,7 @@ int rs_sweep_common_grid(const rs_sweep *s, const char *case_path, const char *c
                  m.grid.x[m.grid.n - 1]);
       rs_model_free(&m);
     }
+  }
   if (common) {
     *x = malloc((size_t)base.grid.n * sizeof **x);
     if (!*x) {

@@ -18,12 +18,12 @@ void rs_fields_copy(rs_fields *f, int n, const double *y, const double *pn, cons
  * and counts; a warning says so on stderr when `warn` and fields were asked for). */
 unsigned rs_sweep_profile_fields(const rs_case *c, int warn);
 
-/* Whether every point of the sweep has the grid of the base case (*common; the profiles
- * then share one x axis): the model of the base case and of each swept value (the other
- * keys at the base case's values) are compared. Common: x (malloc'ed) and n hold the
- * grid; else why says which key changes it. Returns a status (case or model errors). */
-int rs_sweep_common_grid(const rs_sweep *s, const char *case_path, const char *const *sets,
-                         int nsets, int *common, double **x, int *n, char *why, size_t why_len,
-                         rs_msg *msg);
+/* Whether every point of the sweep has the grid of the loaded case c (*common; the
+ * profiles then share one x axis): the model of c and of each swept value (the other keys
+ * at c's values) are compared; a rolling input under a constant normal load leaves the grid
+ * as it is and is not built. Common: x (malloc'ed) and n hold the grid; else why says which
+ * key changes it. Returns a status (case or model errors). */
+int rs_sweep_common_grid(const rs_sweep *s, const rs_case *c, int *common, double **x, int *n,
+                         char *why, size_t why_len, rs_msg *msg);
 
 #endif

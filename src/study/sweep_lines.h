@@ -1,8 +1,8 @@
-/* Private to the drivers: one continuation line of sweep points solved in memory with
- * the machinery of rollsim sweep (the same case assignments, models, warm starts and
- * continuation along the last key), for fits, distributed sweeps and sweep parts. The
- * lines of a sweep are independent (each starts from rest), so a line computed here
- * gives the numbers of the serial sweep bit for bit. */
+/* Private to the drivers: one continuation line of sweep points solved in memory (the
+ * cases derived from the loaded one with typed overrides, models, warm starts and
+ * continuation along the last key), for sweeps (serial, over MPI ranks, in parts) and
+ * fits. The lines of a sweep are independent (each starts from rest), so a line gives
+ * the same numbers whichever process computes it. */
 #ifndef ROLLSIM_SWEEP_LINES_H
 #define ROLLSIM_SWEEP_LINES_H
 
@@ -23,12 +23,14 @@ typedef int (*rs_line_point_fn)(void *ctx, size_t j, int status, const rs_diag *
                                 const char *why);
 
 typedef struct rs_sweep_line {
-  const char *case_path;
-  const char *const *sets; /* the command's --set, then the other axes' KEY=%.17g */
-  int nsets;
-  const char *key; /* the continued (last) key */
+  const rs_case *base;           /* the loaded case (rs_case_load) */
+  const rs_case_override *fixed; /* the other axes' values (fits: parameters, other inputs) */
+  int nfixed;
+  int key; /* the continued (last) key (rs_case_key_index) */
   const double *values;
   size_t n;
+  long first_point;  /* >= 0: a point's input error reads "sweep point first_point + j: ...";
+                        < 0: "KEY=VALUE: ..." */
   rs_fields *fields; /* the profiles of each point, or NULL */
   rs_line_point_fn point_done;
   void *ctx;
@@ -37,7 +39,6 @@ typedef struct rs_sweep_line {
   long *refined;                         /* continuation steps halved added, or NULL */
   long *midpoints;                       /* approximate midpoints tried added, or NULL */
   long *in_two;                          /* 1 added when solved in two parts, or NULL */
-  int in_two_known; /* 1: the caller found rs_sweep_line_in_two true (not checked again) */
 } rs_sweep_line;
 
 /* Solve the points key = values[j], j = 0..n-1, each warm-started from the one solved
@@ -53,12 +54,12 @@ int rs_sweep_line_eval(const rs_sweep_line *line, rs_msg *msg);
  * no softening), where a point does not depend on the path to it beyond Newton's
  * tolerance and the plastic Newton iterations are fewer in that direction (elastic
  * lines: more, so they run in order). */
-int rs_sweep_line_far_first(const rs_case *c, const char *key, size_t n);
+int rs_sweep_line_far_first(const rs_case *c, int key, size_t n);
 
 /* Whether a line of n points of case c along key is solved in two parts at once, on two
  * threads, each part from its end with the larger |value| back: steady points along a
  * rolling input with a unique steady state (elastic or plastic), solver.threads 2 with
  * two threads available. */
-int rs_sweep_line_in_two(const rs_case *c, const char *key, size_t n);
+int rs_sweep_line_in_two(const rs_case *c, int key, size_t n);
 
 #endif
