@@ -9,6 +9,10 @@ extern void dgesv_(const int *n, const int *nrhs, double *a, const int *lda, int
 extern void dgetrf_(const int *m, const int *n, double *a, const int *lda, int *ipiv, int *info);
 extern void dgetrs_(const char *trans, const int *n, const int *nrhs, const double *a,
                     const int *lda, const int *ipiv, double *b, const int *ldb, int *info);
+/* LAPACK: Cholesky factorisation of a symmetric positive definite matrix and the inverse
+ * from it (column-major; uplo "L" or "U"). */
+extern void dpotrf_(const char *uplo, const int *n, double *a, const int *lda, int *info);
+extern void dpotri_(const char *uplo, const int *n, double *a, const int *lda, int *info);
 
 /* Monotonic wall-clock time in seconds (progress, ETA and reported wall times). */
 double rs_wall_clock(void);

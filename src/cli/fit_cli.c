@@ -4,7 +4,7 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "io/fit.h"
+#include "study/fit.h"
 #include "cli/cli.h"
 
 static void print_summary(const rs_fit_spec *f, const rs_fit_result *r, int status)

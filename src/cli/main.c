@@ -16,7 +16,7 @@
 #include <unistd.h>
 
 #include "io/case.h"
-#include "io/fit.h"
+#include "study/fit.h"
 #include "study/run.h"
 #include "study/sweep.h"
 #include "cli/cli.h"

@@ -1,4 +1,4 @@
-/* FIT.nc (docs/file-format.md "Fit files"; io/fit.h): dimension `parameter` with
+/* FIT.nc (docs/file-format.md "Fit files"; io/fit_spec.h): dimension `parameter` with
  * parameter_name, start, fitted, standard_error, lower_bound, upper_bound and
  * covariance(parameter, parameter); dimension `point` with one variable per CSV column
  * (attribute `column` = its name in the CSV, `role` = input | measured | weight) plus
@@ -14,7 +14,7 @@
 
 #include "io/output_internal.h"
 #include "io/case.h"
-#include "io/fit.h"
+#include "io/fit_spec.h"
 
 #define NAME_LEN 64
 

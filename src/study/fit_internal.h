@@ -5,7 +5,7 @@
 
 #include <stddef.h>
 
-#include "io/fit.h"
+#include "study/fit.h"
 #include "physics/model.h"
 
 /* The model evaluated on every data row at given parameter values. */

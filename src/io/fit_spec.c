@@ -1,5 +1,5 @@
 #define _POSIX_C_SOURCE 200809L
-/* The fit: block of a case file (io/fit.h): parameters (case keys with start and
+/* The fit: block of a case file (io/fit_spec.h): parameters (case keys with start and
  * bounds), the measurements' CSV (header row of column names; lines starting with '#'
  * are comments), the measured output and optional weights. Every error names
  * case.yaml:line: fit.KEY or data.csv:line: column; nothing is run before all is
@@ -12,7 +12,7 @@
 #include <string.h>
 
 #include "io/case_internal.h"
-#include "io/fit.h"
+#include "io/fit_spec.h"
 
 void rs_fit_free(rs_fit_spec *f)
 {

@@ -1,12 +1,11 @@
-/* Fitting model parameters to measurements (docs/case-file.md): the case's
- * fit: block names case keys to fit (start, bounds) and a CSV of measurements whose
- * columns are inputs (swept case keys, or a twin-disc protocol step) and one measured
- * output. rs_fit_load reads and checks it (io/case_fit.c); rs_fit_run (study/fit.c)
- * solves the bounded least-squares problem with MINPACK's Levenberg-Marquardt. */
-#ifndef ROLLSIM_FIT_H
-#define ROLLSIM_FIT_H
+/* The fit: block of a case (docs/case-file.md) and the fit file (docs/file-format.md): which
+ * case keys to fit (start, bounds) and a CSV of measurements whose columns are inputs (swept
+ * case keys, or a twin-disc protocol step) and one measured output. rs_fit_load reads and
+ * checks it (io/fit_spec.c), rs_fit_output_write writes FIT.nc (io/output_fit.c); the fit
+ * itself is study/fit.h. */
+#ifndef ROLLSIM_IO_FIT_SPEC_H
+#define ROLLSIM_IO_FIT_SPEC_H
 
-#include <signal.h>
 #include <stddef.h>
 
 #include "base/status.h"
@@ -51,36 +50,6 @@ typedef struct rs_fit_spec {
  * case.yaml:line: fit.KEY or data.csv:line: column; nothing is run. */
 int rs_fit_load(rs_fit_spec *f, const rs_case *c, rs_msg *msg);
 void rs_fit_free(rs_fit_spec *f);
-
-typedef struct rs_fit_opts {
-  const char *output_path; /* FIT.nc (default: the case's output.file) */
-  const char *history;
-  int progress;                          /* evaluation count and residual on stderr */
-  volatile sig_atomic_t *interrupt_flag; /* Ctrl-C: stop, keep the best point */
-  int mpi_rank, mpi_size; /* under MPI: the Jacobian's columns over the ranks (else 0, 1) */
-} rs_fit_opts;
-
-typedef struct rs_fit_result {
-  int nparams;
-  size_t npoints;
-  double *fitted, *std_error; /* [nparams]; std_error and covariance NaN unless complete */
-  double *covariance;         /* [nparams][nparams] */
-  double *simulated;          /* [npoints] at the fitted values */
-  double residual_norm;       /* |W (simulated - measured)| */
-  long evaluations;           /* model evaluations (whole data sets) */
-  int minpack_info;           /* lmder's info */
-  double wall_seconds;
-  char stop_reason[256];
-  char notes[2048]; /* bounds reached, no effect, correlated pairs ("" when none) */
-  char file[1024];
-  char backup[1040];
-} rs_fit_result;
-
-int rs_fit_run(const rs_fit_spec *f, const rs_case *c, const rs_fit_opts *o, rs_fit_result *res,
-               rs_msg *msg);
-void rs_fit_result_free(rs_fit_result *res);
-/* MPI ranks > 0 of a fit: serve rank 0's Jacobian columns until it is done. */
-int rs_fit_serve(const rs_fit_spec *f, const rs_case *c, const rs_fit_opts *o, rs_msg *msg);
 
 /* FIT.nc (io/output_fit.c): written whole to PATH.part and renamed over PATH (an older
  * file is kept as PATH~ the first time). */
