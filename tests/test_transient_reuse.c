@@ -5,8 +5,9 @@
  *     cell stays in its regime and c_j within a factor 4, so fresh ones follow the slip
  *     front's moves during the build-up and the larger changes of the step size, not the
  *     steps (exact Newton evaluates at every iteration, at least once a step);
- *   - Newton iterations per step at most 1.5: a kept factorisation must not cost many
- *     more iterations (exact Newton needs one a step where the regimes hold);
+ *   - Newton iterations per step at most 3: a kept factorisation is refreshed when an
+ *     iteration reduces the residual by less than a factor 5, and from a predictor within
+ *     IDA's tolerance the test at 1/100 of it then takes at most 3 (5^3 > 100);
  *   - the final F_x equals the steady solution of the same grid within 1e-4, the bound of
  *     test_transient_to_steady (after 20 contact lengths the build-up is within it). */
 #include <stdlib.h>
@@ -67,7 +68,7 @@ int main(void)
          st.nonlin_fails, fx, fx_steady);
   ts_check("Jacobian evaluations per step (at most 0.5)", (double)st.jac_evals / st.steps, 0.25,
            0.25);
-  ts_check("Newton iterations per step (1 to 1.5)", (double)st.nonlin_iters / st.steps, 1.25, 0.25);
+  ts_check("Newton iterations per step (1 to 3)", (double)st.nonlin_iters / st.steps, 2.0, 1.0);
   ts_check("final F_x against the steady solution (relative)", (fx - fx_steady) / fx_steady, 0.0,
            1e-4);
 done:
