@@ -5,6 +5,9 @@ rs_unit_test(test_carter_steady)
 rs_unit_test(test_linear_paths)
 rs_unit_test(test_plastic_fine)
 rs_unit_test(test_transient_to_steady)
+# The transient's modified Newton: Jacobian evaluations and Newton iterations per step on the
+# main job's case, its final force against the steady solution.
+rs_unit_test(test_transient_reuse)
 rs_unit_test(test_hou_single_cell)
 rs_unit_test(test_plastic_limits)
 rs_unit_test(test_plastic_transient_to_steady)

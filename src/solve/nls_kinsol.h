@@ -1,8 +1,10 @@
 /* Private: a SUNNonlinearSolver (rootfinding type) for IDA that solves each BDF
- * step's system F(t, ypred + ycor, yppred + cj ycor) = 0 with KINSOL's exact
- * Newton and the generalized Jacobian (docs/model.md §6, §9), so the contact regimes
- * are re-resolved in every step. The linear solver is that of ls (linsys.h): KLU
- * on the whole matrix, or the Schur-complement solver of linsys_reduced.h. */
+ * step's system F(t, ypred + ycor, yppred + cj ycor) = 0 with the generalized Jacobian
+ * (docs/model.md §6, §9), so the contact regimes are re-resolved in every step. Direct
+ * linear algebra (ls, linsys.h: KLU on the whole matrix, or the Schur-complement solver
+ * of linsys_reduced.h): modified Newton that keeps a factorisation across iterations and
+ * steps while no cell changes regime and c_j stays within a factor 4, and sets up a fresh
+ * one otherwise. Newton-Krylov (kry): KINSOL's exact Newton. */
 #ifndef ROLLSIM_NLS_KINSOL_H
 #define ROLLSIM_NLS_KINSOL_H
 
