@@ -6,3 +6,8 @@ foreach(part file restart sweep jumps midpoints threads check rig)
   add_test(NAME threed_${part}
            COMMAND ${RS_3D_CHECK} ${CMAKE_CURRENT_BINARY_DIR}/threed/${part} ${part})
 endforeach()
+# Issue 42: weak hardening (k_rel 0.01, 0.003) in steady 3D creep curves within 3 x the elastic
+# curve's Newton iterations (tests/check_weak_hardening.py).
+add_test(NAME threed_weak_hardening
+         COMMAND ${SYSTEM_PYTHON3} ${RS_TESTS}/check_weak_hardening.py ${RS_BIN}
+                 ${CMAKE_CURRENT_BINARY_DIR}/threed/weak_hardening)

@@ -559,6 +559,69 @@ static int grid_sequencing(rs_steady *s, double *y, int plain, rs_stats *stats)
   return status == RS_OK || status == RS_START_ONLY ? status : RS_ERR_SOLVER;
 }
 
+/* Weak hardening from rest: a 3D model with Coulomb friction, no memory and no force
+ * control whose k_rel = k_tau/(G + k_tau) lies in (0, K_REL_WEAK), where steady Newton's
+ * friction weight falls with k_rel (rs_model_evaluate). On the coarsest grid (the one grid
+ * sequencing ends on) its Newton from rest stalled at some creepages: the line search stuck
+ * at once and the fallbacks took thousands of iterations (22 x 22 cells of
+ * bench/cases/tractcurve_plast.yaml at xi = -4 %: k_rel 0.003 10845, k_rel 0.001 and 0.0003
+ * over 5000), while k_rel = K_REL_START converges from rest in a few iterations. So it
+ * starts there and continues in k_rel, each step a factor K_REL_STEP, down to the model's
+ * (continuation in k_rel). Measured there (Newton iterations from rest, the 7-point line
+ * from -4 % to -0.4 % in total): k_rel 0.01 / 0.003 / 0.001 / 0.0003 / 0.0001 20 / 47 / 67
+ * / 81 / 86 (54 / 83 / 99 / 108 / 110); one step from k_rel 0.3 / 0.03 / 0.01 / 0 to 0.003:
+ * 5 + 26 / 6 + 31 / 8 + 29 / 32 + 19, steps of a factor 0.1 failed for 0.0003. Only on the
+ * coarsest grid: on every grid of the sequence the 44 x 44 line took 108 / 146 iterations for
+ * k_rel 0.01 / 0.003 against 97 / 120, and k_rel 0.001 still failed on 32 x 32 cells and
+ * finer. */
+#define K_REL_WEAK     0.07
+#define K_REL_START    0.3
+#define K_REL_STEP     0.3
+#define K_REL_STEP_MIN 1.5
+static int weak_hardening(const rs_model *m)
+{
+  const double k_tau = m->par.plasticity.k_tau;
+  return m->el.dim == 3 && m->par.plasticity.on && k_tau > 0.0 &&
+         k_tau / (m->par.shear_modulus + k_tau) < K_REL_WEAK &&
+         !rs_friction_varies(&m->par.friction) && !m->lay.memory && !m->par.force_control;
+}
+
+/* The start of a weak-hardening model from rest: the steady states of the same model with
+ * k_rel = K_REL_START, K_REL_STEP times that, ... while above K_REL_STEP_MIN times the
+ * model's, each from the last (the model's copy shares its grid, operator and normal
+ * solution, read only). RS_OK with the last in y, else RS_ERR_SOLVER (y unchanged). */
+static int harder_start(rs_steady *s, double *y, rs_stats *stats)
+{
+  rs_model hard = *s->m;
+  rs_steady *hs = NULL;
+  rs_msg hmsg = {{0}};
+  rs_stats hst = {0};
+  const int neq = s->m->lay.neq;
+  double *z = malloc((size_t)neq * sizeof *z);
+  const double G = s->m->par.shear_modulus, k_tau = s->m->par.plasticity.k_tau;
+  const double k_rel = k_tau / (G + k_tau);
+  int status = z ? RS_OK : RS_ERR_INTERNAL;
+  if (z) memcpy(z, y, (size_t)neq * sizeof *z);
+  for (double kr = K_REL_START; status == RS_OK && kr > K_REL_STEP_MIN * k_rel; kr *= K_REL_STEP) {
+    hard.par.plasticity.k_tau = G * kr / (1.0 - kr);
+    status = rs_steady_create(&hs, &hard, s->ctx, &hmsg);
+    if (status == RS_OK) status = rs_steady_solve(hs, s->in.t, z, &hst, &hmsg);
+    rs_steady_free(hs);
+    hs = NULL;
+  }
+  if (stats) { /* the auxiliary model's work counts too */
+    stats->steps += hst.steps;
+    stats->nonlin_iters += hst.nonlin_iters;
+    stats->res_evals += hst.res_evals;
+    stats->lin_solves += hst.lin_solves;
+  }
+  s->coarse_jac_evals += hst.jac_evals;
+  if (status == RS_OK) memcpy(y, z, (size_t)neq * sizeof *y);
+  rs_steady_free(hs);
+  free(z);
+  return status == RS_OK ? RS_OK : RS_ERR_SOLVER;
+}
+
 /* The steady solve at the inputs in s->in. */
 static int solve_at(rs_steady *s, double *y, rs_stats *stats, rs_msg *msg)
 {
@@ -575,6 +638,7 @@ static int solve_at(rs_steady *s, double *y, rs_stats *stats, rs_msg *msg)
    * first, from the caller's start (continuation). */
   int cold = 1;
   for (int k = 0; k < m->lay.ncomp * m->lay.n && cold; k++) cold = y[k] == 0.0;
+  if (cold && weak_hardening(m) && !can_coarsen(m) && harder_start(s, y, stats) == RS_OK) cold = 0;
   const int plastic = m->par.plasticity.on, three_plastic = m->el.dim == 3 && plastic;
   const int sequence_first = plastic && cold && can_coarsen(m);
   int status = sequence_first ? grid_sequencing(s, y, 10, stats) : RS_ERR_SOLVER;

@@ -289,8 +289,10 @@ static int line_point(const rs_sweep_line *line, steady_chain *ch, rs_case_overr
   if (ps != RS_OK) return ps;
   if (one_thread) c.threads = 1;
   if (c.mode == RS_MODE_STEADY) {
+    const long before = sum->nonlin_iters;
     ps = steady_point(&c, ch, y, ny, warm, rs_case_key_rolling(line->key), line->values[j], d,
                       line->fields, sum, pmsg);
+    *newton = sum->nonlin_iters - before;
   } else {
     rs_run_opts po = {
         .no_output = 1, .final_fields = line->fields, .interrupt_flag = line->interrupt_flag};

@@ -389,7 +389,7 @@ int rs_sweep_run_dist(const rs_sweep *s, const rs_case *c, const rs_run_opts *o,
     if (status == RS_OK) status = cs;
   }
 done:
-  res->newton_iters += r.stats.nonlin_iters;
+  /* newton_iters: the points' own counts (write_point), every rank's, steady ones too */
   res->lin_solves = r.stats.lin_solves;
   res->jac_evals = r.stats.jac_evals;
   res->refused = r.stats.refused;

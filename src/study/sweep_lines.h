@@ -15,7 +15,9 @@
 #include "base/status.h"
 
 /* Called after point j of the line: status RS_OK or RS_ERR_SOLVER (why says why), d its
- * quantities, the line's fields buffer filled (when given and the point has the grid).
+ * quantities, newton the point's Newton iterations (steady: its continuation step's,
+ * intermediate points included; transient: the run's; also in rs_sweep_line.stats for
+ * steady points), the line's fields buffer filled (when given and the point has the grid).
  * Returns a status; anything but RS_OK stops the line with it. A line solved in two
  * parts (rs_sweep_line_in_two) calls it out of order and from two threads, one call at
  * a time. */
