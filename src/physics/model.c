@@ -509,20 +509,11 @@ int rs_model_evaluate(const rs_model *m, rs_work *w, const rs_inputs *in, const 
                         !L->memory;
   /* Weak hardening (k_rel = k_tau/(G + k_tau) below 0.07): the weight falls with k_rel, to
    * FRICTION_WEIGHT_PER_K_REL k_rel r. A cell that hardened up to the friction bound slips
-   * and flows at once, its u* pinned by tau_c(u*) = mu p_n: a change of its traction moves
-   * u* by that change over k_tau, and the flow and u* of every cell downstream with it.
-   * With the slip velocity weighed by 0.7 r the slip test |p - r v_s| > g of those cells
-   * flipped with such moves: the line search stalled at once, Newton cycled between the
-   * slip + yield and the yield-only branch of 50-130 cells per iteration (u* of iterates
-   * up to 1e2 mm against 0.25 mm at the solution) and the fallbacks ended in the
-   * pseudo-transient, thousands of iterations per point. A weight in proportion to k_rel
-   * keeps the slip test of such cells on the traction. Measured (the 30-point series of
-   * bench/cases/tractcurve_plast.yaml, Newton iterations at 22 x 22 / 44 x 44 cells; fixed
-   * weights 0.5 / 0.3 / 0.2 / 0.1 / 0.05 r): k_rel 0.01 2916 / 750 / 126 / 124 / 128 at 22 x
-   * 22 against 3987 with 0.7 r, 2605 / 787 / 196 / 198 / 193 at 44 x 44 against 9933; k_rel
-   * 0.003 within 30 s only with 0.1 r at 22 x 22 (147 against 46162) and 0.05 r at 44 x 44
-   * (227 against 66531); 7 / 10 / 15 k_rel r: k_rel 0.003 238 / 257 / 248 at 44 x
-   * 44, k_rel 0.03 163 / 159 / 162 (174 with 0.7 r). */
+   * and flows at once, its u* pinned by tau_c(u*) = mu p_n, so a change of its traction moves
+   * u* by that change over k_tau, and the flow and u* of every cell downstream with it. With
+   * the slip velocity weighed by 0.7 r the slip test of such cells flipped with these moves
+   * and Newton cycled between the slip + yield and the yield-only branch; a weight in
+   * proportion to k_rel keeps the test on the traction (bench/RESULTS.md, issue 42). */
   const double k_tau = m->par.plasticity.k_tau, k_rel = k_tau / (m->par.shear_modulus + k_tau);
   w->r = hardening ? fmin(FRICTION_WEIGHT, FRICTION_WEIGHT_PER_K_REL * k_rel) * r0 : r0;
   /* The yield projections of steady evaluations (cj = 0) weigh the flow with a fraction of

@@ -562,18 +562,10 @@ static int grid_sequencing(rs_steady *s, double *y, int plain, rs_stats *stats)
 /* Weak hardening from rest: a 3D model with Coulomb friction, no memory and no force
  * control whose k_rel = k_tau/(G + k_tau) lies in (0, K_REL_WEAK), where steady Newton's
  * friction weight falls with k_rel (rs_model_evaluate). On the coarsest grid (the one grid
- * sequencing ends on) its Newton from rest stalled at some creepages: the line search stuck
- * at once and the fallbacks took thousands of iterations (22 x 22 cells of
- * bench/cases/tractcurve_plast.yaml at xi = -4 %: k_rel 0.003 10845, k_rel 0.001 and 0.0003
- * over 5000), while k_rel = K_REL_START converges from rest in a few iterations. So it
- * starts there and continues in k_rel, each step a factor K_REL_STEP, down to the model's
- * (continuation in k_rel). Measured there (Newton iterations from rest, the 7-point line
- * from -4 % to -0.4 % in total): k_rel 0.01 / 0.003 / 0.001 / 0.0003 / 0.0001 20 / 47 / 67
- * / 81 / 86 (54 / 83 / 99 / 108 / 110); one step from k_rel 0.3 / 0.03 / 0.01 / 0 to 0.003:
- * 5 + 26 / 6 + 31 / 8 + 29 / 32 + 19, steps of a factor 0.1 failed for 0.0003. Only on the
- * coarsest grid: on every grid of the sequence the 44 x 44 line took 108 / 146 iterations for
- * k_rel 0.01 / 0.003 against 97 / 120, and k_rel 0.001 still failed on 32 x 32 cells and
- * finer. */
+ * sequencing ends on) its Newton from rest can stall at once, while k_rel = K_REL_START
+ * converges from rest in a few iterations: so it starts there and continues in k_rel, each
+ * step a factor K_REL_STEP, down to the model's. Only the coarsest grid needs it; the finer
+ * grids start from the coarser solution (bench/RESULTS.md, issue 42). */
 #define K_REL_WEAK     0.07
 #define K_REL_START    0.3
 #define K_REL_STEP     0.3
