@@ -51,8 +51,11 @@ int rs_api_run(const char *case_path, const char *const *sets, int nsets, const 
   return finish(status, &m, msg, msg_len);
 }
 
-int rs_api_sweep(const char *case_path, const char *const *sets, int nsets, const char *out_path,
-                 char *msg, size_t msg_len)
+/* rollsim sweep as the API runs it: the serial farm, with progress when given; `history`
+ * names the API call in the file. */
+static int api_sweep(const char *case_path, const char *const *sets, int nsets,
+                     const char *out_path, const char *history, rs_api_progress_fn progress,
+                     void *ctx, char *msg, size_t msg_len)
 {
   rs_msg m = {{0}};
   rs_case c;
@@ -60,35 +63,29 @@ int rs_api_sweep(const char *case_path, const char *const *sets, int nsets, cons
   int status = load_sweep(&c, &sw, case_path, sets, nsets, &m);
   if (status != RS_OK) return finish(status, &m, msg, msg_len);
   volatile sig_atomic_t stop = 0;
-  const rs_run_opts o = {.output_path = out_path,
-                         .history = "rollsim " RS_VERSION " (API: rs_api_sweep)",
-                         .interrupt_flag = &stop};
-  rs_sweep_result res;
-  status = rs_sweep_run(&sw, &c, &o, &res, &m);
-  rs_sweep_free(&sw);
-  rs_case_free(&c);
-  return finish(status, &m, msg, msg_len);
-}
-
-int rs_api_sweep_progress(const char *case_path, const char *const *sets, int nsets,
-                          const char *out_path, rs_api_progress_fn progress, void *ctx, char *msg,
-                          size_t msg_len)
-{
-  rs_msg m = {{0}};
-  rs_case c;
-  rs_sweep sw;
-  int status = load_sweep(&c, &sw, case_path, sets, nsets, &m);
-  if (status != RS_OK) return finish(status, &m, msg, msg_len);
-  volatile sig_atomic_t stop = 0;
-  const rs_run_opts o = {.output_path = out_path,
-                         .history = "rollsim " RS_VERSION " (API: rs_api_sweep_progress)",
-                         .interrupt_flag = &stop};
+  const rs_run_opts o = {.output_path = out_path, .history = history, .interrupt_flag = &stop};
   const rs_sweep_dist d = {.progress = progress, .progress_ctx = ctx};
   rs_sweep_result res;
   status = rs_sweep_run_dist(&sw, &c, &o, &d, &res, &m);
   rs_sweep_free(&sw);
   rs_case_free(&c);
   return finish(status, &m, msg, msg_len);
+}
+
+int rs_api_sweep(const char *case_path, const char *const *sets, int nsets, const char *out_path,
+                 char *msg, size_t msg_len)
+{
+  return api_sweep(case_path, sets, nsets, out_path, "rollsim " RS_VERSION " (API: rs_api_sweep)",
+                   NULL, NULL, msg, msg_len);
+}
+
+int rs_api_sweep_progress(const char *case_path, const char *const *sets, int nsets,
+                          const char *out_path, rs_api_progress_fn progress, void *ctx, char *msg,
+                          size_t msg_len)
+{
+  return api_sweep(case_path, sets, nsets, out_path,
+                   "rollsim " RS_VERSION " (API: rs_api_sweep_progress)", progress, ctx, msg,
+                   msg_len);
 }
 
 int rs_api_check(const char *case_path, const char *const *sets, int nsets, char **text, char *msg,
