@@ -1,0 +1,36 @@
+# Resuming a killed sweep (issue 46): tests/check_resume.py kills a sweep with SIGKILL at
+# three moments, resumes it and compares the file with an uninterrupted sweep's variable by
+# variable, bit for bit; rollsim status on the killed and resumed files; bad resumes exit 2
+# with the file untouched. The sweep: cases/creep_curves.yaml cut to 3 x 3 lines of 31
+# creepages on 500 cells with profiles (279 points, about 3.5 s: the kills at 0.6, 1.2 and
+# 1.8 s fall inside it).
+set(RS_RESUME ${CMAKE_CURRENT_BINARY_DIR}/resume)
+set(RS_RESUME_SETS
+  --set grid.cells=500
+  --set "sweep.plasticity.tau_c0=[200, 250, 350]"
+  --set "sweep.plasticity.k_rel=[0.6, 0.0, -0.01]"
+  --set "sweep.rolling.creepage={linspace: [0, -0.02, 31]}"
+  --set "output.fields=[px, pn, tauc, regime]")
+set(RS_RESUME_CHECK ${SYSTEM_PYTHON3} ${RS_TESTS}/check_resume.py)
+
+add_test(NAME sweep_resume_serial
+  COMMAND ${RS_RESUME_CHECK} kill ${RS_BIN} ${RS_CASES}/creep_curves.yaml ${RS_RESUME}/serial
+    -- ${RS_RESUME_SETS})
+# a part has a third of the lines: more creepages so that it still outlasts the last kill
+add_test(NAME sweep_resume_part
+  COMMAND ${RS_RESUME_CHECK} kill ${RS_BIN} ${RS_CASES}/creep_curves.yaml ${RS_RESUME}/part
+    --part 2/3 -- ${RS_RESUME_SETS} --set "sweep.rolling.creepage={linspace: [0, -0.02, 161]}")
+add_test(NAME sweep_resume_refused
+  COMMAND ${RS_RESUME_CHECK} refuse ${RS_BIN} ${RS_CASES}/creep_curves.yaml ${RS_RESUME}/refuse
+    -- ${RS_RESUME_SETS})
+set_tests_properties(sweep_resume_serial sweep_resume_part sweep_resume_refused
+  PROPERTIES TIMEOUT 120)
+if(RS_MPI)
+  find_program(RS_MPIRUN NAMES mpirun mpiexec REQUIRED)
+  add_test(NAME sweep_resume_mpi
+    COMMAND ${RS_RESUME_CHECK} kill ${RS_BIN} ${RS_CASES}/creep_curves.yaml ${RS_RESUME}/mpi
+      --mpi ${RS_MPIRUN} --delay 0.6 -- ${RS_RESUME_SETS}
+      --set "sweep.rolling.creepage={linspace: [0, -0.02, 61]}")
+  # MPI's start takes about half a second: the kills come that much later (--delay)
+  set_tests_properties(sweep_resume_mpi PROPERTIES TIMEOUT 120)
+endif()
