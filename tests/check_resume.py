@@ -11,6 +11,10 @@ the file must exit 2 and leave it untouched (same bytes and modification time).
       reference, three kills (0.6, 1.2, 1.8 s, plus S), status, resume, comparison
   check_resume.py refuse BIN CASE DIR -- SETS...
       bad resumes: other --set, other case, other part, not a sweep file, a truncated file
+  check_resume.py status BIN CASE DIR -- SETS...
+      rollsim status and rollsim.status (Python) of a complete, a killed and a failed sweep
+      (cases/startup.yaml with solver.max_steps 3: every transient point stops before its
+      end), and of a killed part
 """
 import os
 import shutil
@@ -227,6 +231,50 @@ def refuse(b, case, d, sets):
           r.stderr.strip())
 
 
+def status(b, case, d, sets):
+    sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "postproc"))
+    import rollsim
+
+    def both(path, line, state, written, points, failed, part=0, parts=0):
+        s = subprocess.run([b, "status", path], capture_output=True, text=True)
+        check(f"rollsim status {os.path.basename(path)}: {s.stdout.strip()}",
+              s.returncode == 0 and s.stdout.startswith(line), s.stderr.strip())
+        r = rollsim.status(path)
+        check(f"rollsim.status: {r}",
+              (r["state"], r["written"], r["points"], r["failed"], r["part"], r["parts"])
+              == (state, written, points, failed, part, parts)
+              and r["summary"] == s.stdout.strip())
+
+    full = os.path.join(d, "complete.nc")
+    subprocess.run([b, "sweep", case, "--quiet", "-o", full] + sets, check=True,
+                   stdout=subprocess.DEVNULL)
+    both(full, "complete: 279 of 279 points\n", "complete", 279, 279, 0)
+    killed = os.path.join(d, "killed.nc")
+    if os.path.exists(killed):
+        os.remove(killed)
+    p = subprocess.Popen([b, "sweep", case, "--quiet", "-o", killed] + sets,
+                         stdout=subprocess.DEVNULL)
+    time.sleep(1.0)
+    p.send_signal(signal.SIGKILL)
+    p.wait()
+    n, m = counts(killed)
+    check(f"killed after 1 s: {n} of {m} points", 0 < n < m)
+    both(killed, f"incomplete: {n} of {m} points (status: running: the writer was killed, or is "
+         "still running), last written at ", "incomplete", n, m, 0)
+    part = os.path.join(d, "part.nc")
+    subprocess.run([b, "sweep", case, "--quiet", "-o", part, "--part", "3/4"] + sets, check=True,
+                   stdout=subprocess.DEVNULL)
+    # lines 2 and 6 of the 9 (l mod 4 = 2), 31 points each
+    both(part, "complete: 62 of 62 points of part 3/4", "complete", 62, 62, 0, 3, 4)
+    failed = os.path.join(d, "failed.nc")
+    startup = os.path.join(os.path.dirname(case), "startup.yaml")
+    r = subprocess.run([b, "sweep", startup, "--quiet", "-o", failed, "--set",
+                        "sweep={friction.mu: [0.3, 0.35]}", "--set", "solver.max_steps=3"],
+                       capture_output=True, text=True)
+    check("the sweep with solver.max_steps 3 fails: exit 3", r.returncode == 3, r.stderr.strip())
+    both(failed, "failed: 2 of 2 points did not converge (NaN in the file)", "failed", 2, 2, 2)
+
+
 if __name__ == "__main__":
     args = sys.argv[1:]
     sets = args[args.index("--") + 1:] if "--" in args else []
@@ -239,6 +287,8 @@ if __name__ == "__main__":
     os.makedirs(d, exist_ok=True)
     if mode == "kill":
         kill(b, case, d, part, mpirun, delay, sets)
+    elif mode == "status":
+        status(b, case, d, sets)
     else:
         refuse(b, case, d, sets)
     if failures:

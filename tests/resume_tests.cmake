@@ -23,7 +23,12 @@ add_test(NAME sweep_resume_part
 add_test(NAME sweep_resume_refused
   COMMAND ${RS_RESUME_CHECK} refuse ${RS_BIN} ${RS_CASES}/creep_curves.yaml ${RS_RESUME}/refuse
     -- ${RS_RESUME_SETS})
-set_tests_properties(sweep_resume_serial sweep_resume_part sweep_resume_refused
+# rollsim status and rollsim.status on a complete, a killed, a failed sweep and a part
+add_test(NAME sweep_status
+  COMMAND ${RS_RESUME_CHECK} status ${RS_BIN} ${RS_CASES}/creep_curves.yaml ${RS_RESUME}/status
+    -- ${RS_RESUME_SETS})
+set_tests_properties(sweep_status PROPERTIES ENVIRONMENT "ROLLSIM_LIB=$<TARGET_FILE:rollsim_shared>")
+set_tests_properties(sweep_resume_serial sweep_resume_part sweep_resume_refused sweep_status
   PROPERTIES TIMEOUT 120)
 if(RS_MPI)
   find_program(RS_MPIRUN NAMES mpirun mpiexec REQUIRED)

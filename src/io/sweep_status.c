@@ -82,8 +82,8 @@ void rs_sweep_file_status_line(const rs_sweep_file_status *st, char *buf, size_t
     snprintf(buf, len, "complete: %zu of %zu points%s", st->written, st->npoints, part);
     break;
   case RS_SWEEP_FAILED:
-    snprintf(buf, len, "failed: %zu of %zu points%s did not converge (NaN in the file; status: %s)",
-             st->failed, st->npoints, part, st->status);
+    snprintf(buf, len, "failed: %zu of %zu points%s did not converge (NaN in the file)", st->failed,
+             st->npoints, part);
     break;
   default:
     snprintf(buf, len, "incomplete: %zu of %zu points%s (status: %s), last written at %s",

@@ -17,14 +17,15 @@ typedef struct rs_sweep_result {
   size_t points_done, points_failed;
   double wall_seconds;
   long newton_iters;
-  long lin_solves;    /* steady points: linear solves (direct) or Krylov iterations */
-  long jac_evals;     /* steady points: Jacobian evaluations */
-  long refused;       /* steady solutions refused by the physical check (rs_model_check_steady) */
-  long refined;       /* continuation steps halved where the regimes jumped or Newton failed */
-  long midpoints;     /* approximate intermediate points before steps with many regime changes */
-  long lines_in_two;  /* lines solved in two parts at once (solver.threads: 2) */
-  size_t points_kept; /* --resume: points of the lines complete in the file (in points_done
-                         and points_failed, not recomputed) */
+  long lin_solves;   /* steady points: linear solves (direct) or Krylov iterations */
+  long jac_evals;    /* steady points: Jacobian evaluations */
+  long refused;      /* steady solutions refused by the physical check (rs_model_check_steady) */
+  long refined;      /* continuation steps halved where the regimes jumped or Newton failed */
+  long midpoints;    /* approximate intermediate points before steps with many regime changes */
+  long lines_in_two; /* lines solved in two parts at once (solver.threads: 2) */
+  /* --resume: the points of the lines complete in the file (counted in points_done and
+   * points_failed, not computed again) */
+  size_t points_kept;
   char file[1024];
   char backup[1040]; /* an older file at the output path kept under this name, or "" */
 } rs_sweep_result;
