@@ -7,8 +7,9 @@ first point (lines start from rest, so nothing of the killed run carries over).
 `rollsim status` must say how far the killed file got, and a resume that does not belong to
 the file must exit 2 and leave it untouched (same bytes and modification time).
 
-  check_resume.py kill BIN CASE DIR [--part K/N] [--mpi MPIRUN [--delay S]] -- SETS...
-      reference, three kills (0.6, 1.2, 1.8 s, plus S), status, resume, comparison
+  check_resume.py kill BIN CASE DIR [--part K/N] [--mpi MPIRUN] -- SETS...
+      reference, three kills (after 20, 45 and 70 % of an uninterrupted run's time), status,
+      resume, comparison
   check_resume.py refuse BIN CASE DIR -- SETS...
       bad resumes: other --set, other case, other part, not a sweep file, a truncated file
   check_resume.py status BIN CASE DIR -- SETS...
@@ -27,7 +28,7 @@ import netCDF4
 import numpy as np
 
 failures = []
-MOMENTS = (0.6, 1.2, 1.8)
+FRACTIONS = (0.2, 0.45, 0.7)
 
 
 def check(what, ok, detail=""):
@@ -109,32 +110,40 @@ def kill_rank1(mpirun_pid):
     return False
 
 
-def kill(b, case, d, part, mpirun, delay, sets):
+def kill(b, case, d, part, mpirun, sets):
     tag = "mpi" if mpirun else f"part{part.replace('/', 'of')}" if part else "serial"
     extra = ["--part", part] if part else []
     ref = os.path.join(d, f"{tag}_ref.nc")
     cmd = [b, "sweep", case, "--quiet"] + extra + sets
-    t0 = time.monotonic()
-    subprocess.run(cmd + ["-o", ref], check=True, stdout=subprocess.DEVNULL)
-    took = time.monotonic() - t0
-    if not mpirun:  # (under MPI: the file has points missing after each kill, checked below)
-        check(f"the uninterrupted sweep ({took:.1f} s) outlasts the last kill ({MOMENTS[-1]} s)",
-              took > MOMENTS[-1] + 0.3)
     launch = [mpirun, "--oversubscribe", "--allow-run-as-root", "-n", "2"] if mpirun else []
-    for t in (round(m + delay, 2) for m in MOMENTS):
-        out = os.path.join(d, f"{tag}_killed_{t}.nc")
-        for f in (out, out + "~"):
-            if os.path.exists(f):
-                os.remove(f)
-        p = subprocess.Popen(launch + cmd + ["-o", out], stdout=subprocess.DEVNULL,
-                             stderr=subprocess.DEVNULL)
-        time.sleep(t)
-        if mpirun:
-            check(f"rank 1 killed at {t} s", kill_rank1(p.pid))
-        else:
-            p.send_signal(signal.SIGKILL)
-        rc = p.wait(timeout=60)
-        check(f"killed at {t} s (exit {rc})", rc != 0)
+    subprocess.run(cmd + ["-o", ref], check=True, stdout=subprocess.DEVNULL)
+    # the kills at fixed fractions of an uninterrupted run's time on this machine now
+    t0 = time.monotonic()
+    subprocess.run(launch + cmd + ["-o", os.path.join(d, f"{tag}_timed.nc")], check=True,
+                   stdout=subprocess.DEVNULL)
+    took = time.monotonic() - t0
+    print(f"uninterrupted: {took:.2f} s")
+    for k, f in enumerate(FRACTIONS):
+        out = os.path.join(d, f"{tag}_killed_{k + 1}.nc")
+        t = round(f * took, 2)
+        for attempt in range(4):  # a busy machine: the run may end before the kill, kill earlier
+            for name in (out, out + "~"):
+                if os.path.exists(name):
+                    os.remove(name)
+            p = subprocess.Popen(launch + cmd + ["-o", out], stdout=subprocess.DEVNULL,
+                                 stderr=subprocess.DEVNULL)
+            time.sleep(t)
+            if mpirun:
+                killed = kill_rank1(p.pid)
+            else:
+                killed = p.poll() is None
+                p.send_signal(signal.SIGKILL)
+            rc = p.wait(timeout=60)
+            if killed and rc != 0:
+                break
+            print(f"the run ended before the kill at {t} s: again, killed earlier")
+            t = round(t * 0.6, 2)
+        check(f"killed at {t} s (exit {rc})", killed and rc != 0)
         n, m = counts(out)
         check(f"killed at {t} s: {n} of {m} points in the file, some missing", n < m)
         s = subprocess.run([b, "status", out], capture_output=True, text=True)
@@ -151,6 +160,7 @@ def kill(b, case, d, part, mpirun, delay, sets):
         s = subprocess.run([b, "status", out], capture_output=True, text=True)
         check(f"rollsim status after the resume: {s.stdout.strip()}",
               s.returncode == 0 and s.stdout.startswith(f"complete: {m} of {m} points"))
+    shutil.copyfile(out, os.path.join(d, f"{tag}_resumed.nc"))
 
 
 def untouched_after(what, path, cmd, expect):
@@ -169,6 +179,8 @@ def untouched_after(what, path, cmd, expect):
 
 def refuse(b, case, d, sets):
     """Bad resumes of a killed file: each exits 2 with a clear message, the file untouched."""
+    shutil.rmtree(d)  # no files (or backups) of an earlier run
+    os.makedirs(d)
     out = os.path.join(d, "refuse.nc")
     for f in (out, out + "~"):
         if os.path.exists(f):
@@ -283,10 +295,9 @@ if __name__ == "__main__":
     opts = args[4:]
     part = opts[opts.index("--part") + 1] if "--part" in opts else None
     mpirun = opts[opts.index("--mpi") + 1] if "--mpi" in opts else None
-    delay = float(opts[opts.index("--delay") + 1]) if "--delay" in opts else 0.0
     os.makedirs(d, exist_ok=True)
     if mode == "kill":
-        kill(b, case, d, part, mpirun, delay, sets)
+        kill(b, case, d, part, mpirun, sets)
     elif mode == "status":
         status(b, case, d, sets)
     else:
