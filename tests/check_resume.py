@@ -12,7 +12,7 @@ the file must exit 2 and leave it untouched (same bytes and modification time).
       resume, comparison
   check_resume.py refuse BIN CASE DIR -- SETS...
       bad resumes: other --set, other case, other part, not a sweep file, a truncated file
-  check_resume.py status BIN CASE DIR -- SETS...
+  check_resume.py status BIN CASE DIR [--no-python] -- SETS...
       rollsim status and rollsim.status (Python) of a complete, a killed and a failed sweep
       (cases/startup.yaml with solver.max_steps 3: every transient point stops before its
       end), and of a killed part
@@ -243,14 +243,18 @@ def refuse(b, case, d, sets):
           r.stderr.strip())
 
 
-def status(b, case, d, sets):
-    sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "postproc"))
-    import rollsim
+def status(b, case, d, sets, python=True):
+    if python:
+        sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..",
+                                        "postproc"))
+        import rollsim
 
     def both(path, line, state, written, points, failed, part=0, parts=0):
         s = subprocess.run([b, "status", path], capture_output=True, text=True)
         check(f"rollsim status {os.path.basename(path)}: {s.stdout.strip()}",
               s.returncode == 0 and s.stdout.startswith(line), s.stderr.strip())
+        if not python:
+            return
         r = rollsim.status(path)
         check(f"rollsim.status: {r}",
               (r["state"], r["written"], r["points"], r["failed"], r["part"], r["parts"])
@@ -299,7 +303,7 @@ if __name__ == "__main__":
     if mode == "kill":
         kill(b, case, d, part, mpirun, sets)
     elif mode == "status":
-        status(b, case, d, sets)
+        status(b, case, d, sets, python="--no-python" not in opts)
     else:
         refuse(b, case, d, sets)
     if failures:

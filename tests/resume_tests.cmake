@@ -33,10 +33,16 @@ add_test(NAME sweep_resume_refused
   COMMAND ${RS_RESUME_CHECK} refuse ${RS_BIN} ${RS_CASES}/creep_curves.yaml ${RS_RESUME}/refuse
     -- ${RS_RESUME_SETS})
 # rollsim status and rollsim.status on a complete, a killed, a failed sweep and a part
+# (without the Python package in sanitizer builds: see python_tests.cmake)
+set(RS_RESUME_PY "")
+if(CMAKE_C_FLAGS MATCHES "sanitize")
+  set(RS_RESUME_PY --no-python)
+endif()
 add_test(NAME sweep_status
   COMMAND ${RS_RESUME_CHECK} status ${RS_BIN} ${RS_CASES}/creep_curves.yaml ${RS_RESUME}/status
-    -- ${RS_RESUME_SETS})
+    ${RS_RESUME_PY} -- ${RS_RESUME_SETS})
 set_tests_properties(sweep_status PROPERTIES ENVIRONMENT "ROLLSIM_LIB=$<TARGET_FILE:rollsim_shared>")
+set_tests_properties(sweep_resume_refused PROPERTIES FIXTURES_SETUP resume_refuse)
 set_tests_properties(sweep_resume_serial sweep_resume_part sweep_resume_refused sweep_status
   PROPERTIES TIMEOUT 120)
 if(RS_MPI)
@@ -46,4 +52,10 @@ if(RS_MPI)
       --mpi ${RS_MPIRUN} -- ${RS_RESUME_SETS}
       --set "sweep.rolling.creepage={linspace: [0, -0.02, 61]}")
   set_tests_properties(sweep_resume_mpi PROPERTIES TIMEOUT 120)
+  # refused under MPI: rank 0 checks, tells the other ranks to stop, exit 2, file unchanged
+  add_test(NAME sweep_resume_mpi_refused
+    COMMAND ${CMAKE_COMMAND} -E chdir ${RS_RESUME}/refuse sh -c
+      "cp refuse.nc mpi_refused.nc && cp refuse.nc mpi_before.nc && '${RS_MPIRUN}' --oversubscribe --allow-run-as-root -n 2 '${RS_BIN}' sweep '${RS_CASES}/creep_curves.yaml' -o mpi_refused.nc --resume ${RS_RESUME_QSETS} --set grid.cells=500 --set friction.mu=0.31 2>err.txt; rc=$?; cat err.txt; test $rc -eq 2 && grep -q 'another case or other --set values' err.txt && cmp mpi_refused.nc mpi_before.nc")
+  set_tests_properties(sweep_resume_mpi_refused PROPERTIES FIXTURES_REQUIRED resume_refuse
+    TIMEOUT 60)
 endif()
