@@ -253,6 +253,8 @@ def status(b, case, d, sets, python=True):
         s = subprocess.run([b, "status", path], capture_output=True, text=True)
         check(f"rollsim status {os.path.basename(path)}: {s.stdout.strip()}",
               s.returncode == 0 and s.stdout.startswith(line), s.stderr.strip())
+        c = subprocess.run([b, "check", path], capture_output=True, text=True)
+        check("rollsim check FILE.nc says the same", c.returncode == 0 and c.stdout == s.stdout)
         if not python:
             return
         r = rollsim.status(path)

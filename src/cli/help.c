@@ -56,7 +56,8 @@ static const rs_command_help commands[] = {
      "derived values: the Hertz half-width a and peak pressure p0, the cell size, the\n"
      "discrete normal solution, the rolled distance of a transient. A case with a sweep:\n"
      "block also gets its swept keys, values, units and number of points. Exit code 2 and\n"
-     "a message naming file, line and key for an invalid case; warnings as for run.\n"},
+     "a message naming file, line and key for an invalid case; warnings as for run.\n"
+     "rollsim check FILE.nc (an output file) is rollsim status FILE.nc.\n"},
     {"sweep", "sweep CASE.yaml [-o OUT.nc] [--set KEY=VALUE]... [--part K/N] [--resume] [--quiet]",
      "run every point of the case's sweep: block into one netCDF file",
      "Runs every combination of the values in the case's sweep: block (dotted keys mapped\n"

@@ -2,7 +2,7 @@
  *   rollsim run CASE.yaml [-o OUT.nc] [--restart OLD.nc [--append]] [--set KEY=VALUE]... [--quiet]
  *   rollsim check CASE.yaml [--set KEY=VALUE]...
  *   rollsim sweep CASE.yaml [-o OUT.nc] [--part K/N] [--resume] [--set ...]
- *   rollsim status OUT.nc
+ *   rollsim status OUT.nc...   (rollsim check OUT.nc: the same)
  *   rollsim fit CASE.yaml [-o FIT.nc] [--set ...]
  *   rollsim --help | --version
  * Exit codes: 0 success, 2 invalid input (nothing run), 3 solver failure (partial
@@ -367,6 +367,9 @@ int main(int argc, char **argv)
   if (!strcmp(a.cmd, "help")) return cmd_help(argc, argv);
   if (!strcmp(a.cmd, "merge")) return exit_code(rs_cli_merge(argc - 2, argv + 2));
   if (!strcmp(a.cmd, "status")) return exit_code(rs_cli_status(argc - 2, argv + 2));
+  if (!strcmp(a.cmd, "check") && argc == 3 && strlen(argv[2]) > 3 &&
+      !strcmp(argv[2] + strlen(argv[2]) - 3, ".nc")) /* rollsim check OUT.nc: its status */
+    return exit_code(rs_cli_status(1, argv + 2));
   rs_mpi mpi;
   if (rs_mpi_start(&mpi, &argc, &argv) != 0) return 1;
   a.mpi = &mpi;
