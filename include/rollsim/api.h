@@ -25,6 +25,12 @@ int rs_api_sweep_progress(const char *case_path, const char *const *sets, int ns
  * them ("key: value  # unit" lines), in *text (free with rs_api_free). */
 int rs_api_check(const char *case_path, const char *const *sets, int nsets, char **text, char *msg,
                  size_t msg_len);
+/* rollsim status FILE.nc: "key: value" lines in *text (free with rs_api_free): state
+ * (complete, incomplete, failed, or "not a sweep"), points, written, failed, part,
+ * parts, status (the attribute), last_written (ISO 8601, UTC) and summary (the line
+ * rollsim status prints). 2 (message in msg) for a file that cannot be read or is
+ * truncated. */
+int rs_api_status(const char *path, char **text, char *msg, size_t msg_len);
 void rs_api_free(void *p);
 /* "rollsim <version>" */
 const char *rs_api_version(void);

@@ -86,6 +86,9 @@ def _load():
                                      ctypes.POINTER(ctypes.c_void_p), ctypes.c_char_p,
                                      ctypes.c_size_t]
         lib.rs_api_check.restype = ctypes.c_int
+        lib.rs_api_status.argtypes = [ctypes.c_char_p, ctypes.POINTER(ctypes.c_void_p),
+                                      ctypes.c_char_p, ctypes.c_size_t]
+        lib.rs_api_status.restype = ctypes.c_int
         lib.rs_api_free.argtypes = [ctypes.c_void_p]
         lib.rs_api_version.restype = ctypes.c_char_p
         _lib = lib
@@ -237,3 +240,27 @@ def check(case, set=None):
         value = rest.split("  # ")[0].strip()
         values[key.strip()] = _parse_value(value)
     return values
+
+
+def status(path):
+    """rollsim status FILE.nc: how far a sweep file got, as a dict: state ("complete",
+    "incomplete": interrupted, or its writer was killed and the status attribute still reads
+    "running"; "failed": points that did not converge; "not a sweep"), points, written,
+    failed (ints; of the part in a part file), part, parts, status (the attribute),
+    last_written (ISO 8601 UTC) and summary (the line rollsim status prints). An incomplete
+    sweep is finished by rollsim sweep CASE.yaml -o FILE.nc --resume."""
+    lib = _load()
+    msg = ctypes.create_string_buffer(4096)
+    text = ctypes.c_void_p()
+    code = lib.rs_api_status(os.fspath(path).encode(), ctypes.byref(text), msg, len(msg))
+    out = ctypes.string_at(text).decode() if text.value else ""
+    if text.value:
+        lib.rs_api_free(text)
+    if code != 0:
+        raise CaseError(msg.value.decode(errors="replace"), code)
+    result = {}
+    for line in out.splitlines():
+        key, _, value = line.partition(": ")
+        result[key] = int(value) if key in ("points", "written", "failed", "part", "parts") \
+            else value
+    return result

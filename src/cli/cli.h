@@ -1,5 +1,5 @@
 /* The command line (src/cli): per-subcommand help, the process's heap, and the
- * subcommands that only the command line has (merge, fit's report). */
+ * subcommands that only the command line has (merge, status, fit's report). */
 #ifndef ROLLSIM_CLI_CLI_H
 #define ROLLSIM_CLI_CLI_H
 
@@ -31,6 +31,9 @@ void rs_cli_heap_setup(void);
 
 /* ---- merge_cli.c: rollsim merge OUT.nc PART.nc... (args after "merge"); a status ---- */
 int rs_cli_merge(int argc, char **argv);
+
+/* ---- status_cli.c: rollsim status FILE.nc... (args after "status"); a status ---- */
+int rs_cli_status(int argc, char **argv);
 
 /* ---- fit_cli.c: rollsim fit ---- */
 struct rs_fit_opts;

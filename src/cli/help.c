@@ -56,8 +56,9 @@ static const rs_command_help commands[] = {
      "derived values: the Hertz half-width a and peak pressure p0, the cell size, the\n"
      "discrete normal solution, the rolled distance of a transient. A case with a sweep:\n"
      "block also gets its swept keys, values, units and number of points. Exit code 2 and\n"
-     "a message naming file, line and key for an invalid case; warnings as for run.\n"},
-    {"sweep", "sweep CASE.yaml [-o OUT.nc] [--set KEY=VALUE]... [--part K/N] [--quiet]",
+     "a message naming file, line and key for an invalid case; warnings as for run.\n"
+     "rollsim check FILE.nc (an output file) is rollsim status FILE.nc.\n"},
+    {"sweep", "sweep CASE.yaml [-o OUT.nc] [--set KEY=VALUE]... [--part K/N] [--resume] [--quiet]",
      "run every point of the case's sweep: block into one netCDF file",
      "Runs every combination of the values in the case's sweep: block (dotted keys mapped\n"
      "to lists or {linspace: [from, to, count]}; the last key varies fastest; steady points\n"
@@ -77,6 +78,12 @@ static const rs_command_help commands[] = {
      "                     continuation lines (line l when l mod N = K - 1) into its own file\n"
      "                     (the full sweep's shape, other points unwritten); rollsim merge\n"
      "                     joins the parts\n"
+     "  --resume           finish the interrupted or killed sweep in OUT.nc (rollsim status\n"
+     "                     OUT.nc tells how far it got): the continuation lines complete in\n"
+     "                     it are kept, the others computed again from their first point, into\n"
+     "                     that file; the numbers are those of a sweep run in one go. The\n"
+     "                     same case, --set values and --part as the first run; otherwise\n"
+     "                     exit 2 and the file is left untouched\n"
      "\n"
      "Under MPI (mpirun -n N rollsim sweep ...) the continuation lines are farmed out to the\n"
      "ranks (rank 0 computes too and writes the points as they arrive); the file has the\n"
@@ -105,6 +112,13 @@ static const rs_command_help commands[] = {
      "to the same case (equal case text) and N, that each is given once and that together\n"
      "they hold every point; otherwise exit 2 naming the files or the missing points, and\n"
      "nothing is written.\n"},
+    {"status", "status FILE.nc...", "how far a sweep file got (complete, incomplete, failed)",
+     "Prints one line per sweep file: \"complete: M of M points\"; \"incomplete: N of M\n"
+     "points (status: ...), last written at DATE\" for a sweep that was interrupted or whose\n"
+     "writer was killed (its status attribute still reads \"running\"): rollsim sweep CASE -o\n"
+     "FILE.nc --resume finishes it; \"failed: F of M points did not converge\". A part file\n"
+     "(--part K/N) counts the points of its part. Exit 0, or 2 for a file that cannot be read\n"
+     "or is truncated.\n"},
     {"help", "help [COMMAND]", "this overview, or the help of one command",
      "Prints the overview of rollsim's commands, or the help of COMMAND (the same as\n"
      "rollsim COMMAND --help).\n"},

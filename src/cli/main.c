@@ -1,7 +1,8 @@
 /* rollsim command line (the commands and options: README; each command's help: cli/help.c):
  *   rollsim run CASE.yaml [-o OUT.nc] [--restart OLD.nc [--append]] [--set KEY=VALUE]... [--quiet]
  *   rollsim check CASE.yaml [--set KEY=VALUE]...
- *   rollsim sweep CASE.yaml [-o OUT.nc] [--set ...]
+ *   rollsim sweep CASE.yaml [-o OUT.nc] [--part K/N] [--resume] [--set ...]
+ *   rollsim status OUT.nc...   (rollsim check OUT.nc: the same)
  *   rollsim fit CASE.yaml [-o FIT.nc] [--set ...]
  *   rollsim --help | --version
  * Exit codes: 0 success, 2 invalid input (nothing run), 3 solver failure (partial
@@ -71,6 +72,7 @@ typedef struct cli_args {
   int quiet, append, nsets;
   const char **sets; /* the --set KEY=VALUE strings [nsets] (owned array) */
   int part, parts;   /* sweep --part K/N, or 0 */
+  int resume;        /* sweep --resume */
   const rs_mpi *mpi; /* this process's MPI session (rank 0 of 1 without a launcher) */
 } cli_args;
 
@@ -125,6 +127,12 @@ static int parse_args(int argc, char **argv, cli_args *a)
                         "1 <= K <= N, e.g. --part 2/8\n");
         return RS_ERR_INPUT;
       }
+    } else if (!strcmp(arg, "--resume")) {
+      if (strcmp(a->cmd, "sweep")) {
+        fprintf(stderr, "rollsim %s: --resume applies to 'rollsim sweep' only\n", a->cmd);
+        return RS_ERR_INPUT;
+      }
+      a->resume = 1;
     } else if (!strcmp(arg, "--quiet") || !strcmp(arg, "-q")) {
       a->quiet = 1;
     } else if (arg[0] == '-' && arg[1] != '\0') {
@@ -175,14 +183,19 @@ static int cmd_sweep(const rs_case *c, const cli_args *a, const rs_sweep *sw, co
 {
   rs_msg msg = {{0}};
   if (a->mpi->rank > 0) { /* an MPI worker: compute, print nothing */
-    const rs_sweep_dist d = {.mpi = a->mpi};
+    const rs_sweep_dist d = {.mpi = a->mpi, .resume = a->resume};
     rs_sweep_result sres;
     return rs_sweep_run_dist(sw, c, o, &d, &sres, &msg);
   }
   print_title(c, a->case_path);
   rs_sweep_result sres;
-  const rs_sweep_dist d = {.mpi = a->mpi, .part = a->part, .parts = a->parts};
+  const rs_sweep_dist d = {.mpi = a->mpi, .part = a->part, .parts = a->parts, .resume = a->resume};
   const int status = rs_sweep_run_dist(sw, c, o, &d, &sres, &msg);
+  if (a->resume && status == RS_ERR_INPUT && sres.points_done + sres.points_failed == 0) {
+    /* a refused --resume: nothing run */
+    fprintf(stderr, "rollsim sweep: %s\n", msg.text);
+    return status;
+  }
   if (status != RS_OK) fprintf(stderr, "rollsim: %s: %s\n", a->case_path, msg.text);
   if (a->mpi->size > 1)
     printf("sweep on %d MPI ranks (task farm over continuation lines; the solver statistics below "
@@ -191,6 +204,10 @@ static int cmd_sweep(const rs_case *c, const cli_args *a, const rs_sweep *sw, co
   if (a->parts > 0)
     printf("part %d of %d (continuation lines l with l mod %d = %d)\n", a->part, a->parts, a->parts,
            a->part - 1);
+  if (a->resume)
+    printf("resumed: %zu points of complete continuation lines kept from the file, the others "
+           "computed\n",
+           sres.points_kept);
   printf("sweep over");
   for (int k = 0; k < sw->naxes; k++) printf(" %s (%d)", sw->axes[k].key, sw->axes[k].n);
   printf(": %zu points solved, %zu failed, Newton iterations %ld, wall time %.3f s\n",
@@ -349,6 +366,10 @@ int main(int argc, char **argv)
   cli_args a = {.cmd = argv[1]};
   if (!strcmp(a.cmd, "help")) return cmd_help(argc, argv);
   if (!strcmp(a.cmd, "merge")) return exit_code(rs_cli_merge(argc - 2, argv + 2));
+  if (!strcmp(a.cmd, "status")) return exit_code(rs_cli_status(argc - 2, argv + 2));
+  if (!strcmp(a.cmd, "check") && argc == 3 && strlen(argv[2]) > 3 &&
+      !strcmp(argv[2] + strlen(argv[2]) - 3, ".nc")) /* rollsim check OUT.nc: its status */
+    return exit_code(rs_cli_status(1, argv + 2));
   rs_mpi mpi;
   if (rs_mpi_start(&mpi, &argc, &argv) != 0) return 1;
   a.mpi = &mpi;
@@ -357,7 +378,7 @@ int main(int argc, char **argv)
   return code;
 }
 
-/* Everything but help and merge, on every MPI rank. */
+/* Everything but help, merge and status, on every MPI rank. */
 static int run_command(int argc, char **argv, cli_args *ap)
 {
   cli_args a = *ap;

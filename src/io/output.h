@@ -148,6 +148,15 @@ typedef struct rs_sweep_point {
  * integers; doubles have _FillValue NaN. */
 int rs_sweep_output_create(rs_sweep_output **out, const rs_sweep_output_spec *spec, rs_msg *msg);
 const char *rs_sweep_output_backup(const rs_sweep_output *out);
+/* Reopen the file spec->path of an interrupted sweep to write its missing points
+ * (rollsim sweep --resume). The file must be a sweep file of spec's layout (the same swept
+ * keys and values, fields and x, part and parts) and the same `case` text (the case as
+ * run, after --set); else RS_ERR_INPUT saying why, with the file untouched (also for a
+ * truncated or unreadable file). converged[npoints] gets the file's `converged`
+ * (NC_FILL_INT where no point was written), *kept the points written. The history gets
+ * spec->history as a new line (with the points kept), the status "running". */
+int rs_sweep_output_resume(rs_sweep_output **out, const rs_sweep_output_spec *spec, int *converged,
+                           size_t *kept, rs_msg *msg);
 /* Give the point at flat index (row-major over the axes, last fastest). Points are written
  * (and synced) in batches: when one arrives RS_SWEEP_FLUSH_SECONDS or more after the last
  * write, when the batch's memory is full, and at close. A killed process leaves a readable

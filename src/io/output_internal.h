@@ -77,5 +77,10 @@ int rs_output_keep_old(const char *path, char *backup, size_t len, rs_msg *msg);
 /* Text of a global text attribute (malloc'ed, NUL-terminated; "" when absent), NULL
  * when out of memory. */
 char *rs_output_get_text(int ncid, int varid, const char *name);
+/* The end of a classic/64-bit-offset file's fixed-size data according to its header, and
+ * the file's size: 0, or -1 when the file cannot be read or is not such a file
+ * (io/nc_classic.c). A file shorter than its data is truncated (netCDF would read the
+ * missing bytes as zeros). */
+int rs_nc_classic_data_end(const char *path, long long *data_end, long long *file_size);
 
 #endif

@@ -64,11 +64,14 @@ static const sweep_var sweep_vars_3d[] = {
 #define CONVERGED_VAR   (N_SWEEP_VARS - 1)
 
 /* netCDF's I/O buffer: a batch goes to the file in writes of this size. */
-#define SWEEP_IO_CHUNK  ((size_t)1 << 20)
+#define SWEEP_IO_CHUNK    ((size_t)1 << 20)
 /* Memory for the points of a batch (the fields' rows dominate). */
-#define BATCH_BYTES     (8u << 20)
-#define BATCH_MAX       4096
-#define N_POINT_DOUBLES (N_SWEEP_VARS + N_SWEEP_VARS_3D)
+#define BATCH_BYTES       (8u << 20)
+#define BATCH_MAX         4096
+#define N_POINT_DOUBLES   (N_SWEEP_VARS + N_SWEEP_VARS_3D)
+/* Free bytes left in a new file's header: a resume appends a line to `history`, which
+ * then fits without netCDF moving every variable further into the file. */
+#define SWEEP_HEADER_FREE 4096
 
 /* The points given since the last write, in the order given. */
 typedef struct batch {
@@ -295,7 +298,8 @@ int rs_sweep_output_create(rs_sweep_output **outp, const rs_sweep_output_spec *s
   if (!err)
     err = rs_output_put_text(o->ncid, NC_GLOBAL, "case", spec->case_text ? spec->case_text : "");
   if (!err) err = nc_put_att_text(o->ncid, NC_GLOBAL, "status", RS_OUTPUT_STATUS_LEN, status_buf);
-  if (!err) err = nc_enddef(o->ncid);
+  /* room in the header for the history lines of resumes (rs_sweep_output_resume) */
+  if (!err) err = nc__enddef(o->ncid, SWEEP_HEADER_FREE, 1, 0, 1);
   for (int a = 0; a < spec->naxes && !err; a++)
     err = nc_put_var_double(o->ncid, coord[a], spec->values[a]);
   if (!err && o->nx) err = nc_put_var_double(o->ncid, x_id, spec->x);
@@ -307,6 +311,178 @@ int rs_sweep_output_create(rs_sweep_output **outp, const rs_sweep_output_spec *s
     free_output(o);
     return status;
   }
+  *outp = o;
+  return RS_OK;
+}
+
+/* Whether the coordinate variable of axis a (or x: key NULL) holds n values equal bit for
+ * bit to values. */
+static int same_coordinate(int ncid, const char *name, size_t n, const double *values)
+{
+  int id, dim;
+  size_t len;
+  if (nc_inq_varid(ncid, name, &id) || nc_inq_dimid(ncid, name, &dim) ||
+      nc_inq_dimlen(ncid, dim, &len) || len != n)
+    return 0;
+  double *v = malloc(n * sizeof *v);
+  int same = v && !nc_get_var_double(ncid, id, v) && !memcmp(v, values, n * sizeof *v);
+  free(v);
+  return same;
+}
+
+static int global_int(int ncid, const char *name)
+{
+  int v = 0;
+  return nc_get_att_int(ncid, NC_GLOBAL, name, &v) ? 0 : v;
+}
+
+/* Why the file open in ncid cannot be resumed as spec's sweep ("" when it can), and its
+ * `converged` (npoints values). */
+static void resume_check(int ncid, const rs_sweep_output_spec *spec, int *converged, char *why,
+                         size_t len)
+{
+  why[0] = '\0';
+  int id, ndims, dims[NC_MAX_VAR_DIMS];
+  if (nc_inq_varid(ncid, "converged", &id) || nc_inq_varid(ncid, "Fx", &ndims) ||
+      nc_inq_varndims(ncid, id, &ndims) || ndims != spec->naxes ||
+      nc_inq_vardimid(ncid, id, dims)) {
+    snprintf(why, len, "not a sweep file of %d swept key%s", spec->naxes,
+             spec->naxes == 1 ? "" : "s");
+    return;
+  }
+  char *text = rs_output_get_text(ncid, NC_GLOBAL, "case");
+  const int same_case = text && !strcmp(text, spec->case_text ? spec->case_text : "");
+  free(text);
+  if (!same_case) {
+    snprintf(why, len,
+             "the file is of another case or other --set values (its `case` attribute "
+             "differs from the case as run now)");
+    return;
+  }
+  for (int a = 0; a < spec->naxes; a++) {
+    char name[NC_MAX_NAME + 1];
+    snprintf(name, sizeof name, "%s", spec->keys[a]);
+    for (char *p = name; *p; p++)
+      if (*p == '.') *p = '_';
+    char dname[NC_MAX_NAME + 1];
+    if (nc_inq_dimname(ncid, dims[a], dname) || strcmp(dname, name) ||
+        !same_coordinate(ncid, name, (size_t)spec->sizes[a], spec->values[a])) {
+      snprintf(why, len, "its swept key %d is not %s with the values of this sweep", a + 1,
+               spec->keys[a]);
+      return;
+    }
+  }
+  const int part = global_int(ncid, "part"), parts = global_int(ncid, "parts");
+  if (part != spec->part || parts != spec->parts) {
+    if (parts > 0 && spec->parts > 0)
+      snprintf(why, len, "the file is part %d/%d, not %d/%d", part, parts, spec->part, spec->parts);
+    else if (parts > 0)
+      snprintf(why, len, "the file is part %d/%d of the sweep (resume it with --part %d/%d)", part,
+               parts, part, parts);
+    else
+      snprintf(why, len, "the file is the whole sweep, not part %d/%d", spec->part, spec->parts);
+    return;
+  }
+  int fid;
+  if ((nc_inq_varid(ncid, "Fy", &fid) == 0) != (spec->dimension == 3)) {
+    snprintf(why, len, "the file is not of a %dD sweep", spec->dimension);
+    return;
+  }
+  for (int f = 0; f < RS_N_FIELDS; f++) {
+    const int want = spec->fields && (spec->fields & rs_field_vars[f].bit);
+    if ((nc_inq_varid(ncid, rs_field_vars[f].name, &fid) == 0) != want ||
+        (want && !same_coordinate(ncid, "x", spec->nx, spec->x))) {
+      snprintf(why, len, "its profiles (output.fields, x) are not this sweep's");
+      return;
+    }
+  }
+  if (nc_get_var_int(ncid, id, converged)) snprintf(why, len, "cannot read its converged variable");
+}
+
+int rs_sweep_output_resume(rs_sweep_output **outp, const rs_sweep_output_spec *spec, int *converged,
+                           size_t *kept, rs_msg *msg)
+{
+  *outp = NULL;
+  *kept = 0;
+  long long data_end = 0, file_size = 0;
+  FILE *f = fopen(spec->path, "rb");
+  if (!f)
+    return rs_msg_set(msg, RS_ERR_INPUT,
+                      "%s: cannot resume: no such file (run the sweep without --resume)",
+                      spec->path);
+  fclose(f);
+  if (rs_nc_classic_data_end(spec->path, &data_end, &file_size) != 0)
+    return rs_msg_set(msg, RS_ERR_INPUT,
+                      "%s: cannot resume: not a readable sweep file (netCDF 64-bit offset)",
+                      spec->path);
+  if (file_size < data_end)
+    return rs_msg_set(msg, RS_ERR_INPUT,
+                      "%s: cannot resume: the file is truncated (%lld of %lld bytes)", spec->path,
+                      file_size, data_end);
+  int ncid;
+  int err = nc_open(spec->path, NC_NOWRITE, &ncid);
+  if (err)
+    return rs_msg_set(msg, RS_ERR_INPUT, "%s: cannot resume: %s", spec->path, nc_strerror(err));
+  char why[512];
+  resume_check(ncid, spec, converged, why, sizeof why);
+  nc_close(ncid);
+  if (why[0]) return rs_msg_set(msg, RS_ERR_INPUT, "%s: cannot resume: %s", spec->path, why);
+  size_t npoints = 1;
+  for (int a = 0; a < spec->naxes; a++) npoints *= (size_t)spec->sizes[a];
+  for (size_t k = 0; k < npoints; k++) *kept += converged[k] != NC_FILL_INT;
+
+  rs_sweep_output *o = calloc(1, sizeof *o);
+  if (!o || !(o->path = strdup(spec->path))) {
+    free(o);
+    return rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory");
+  }
+  o->naxes = spec->naxes;
+  o->nx = spec->fields ? spec->nx : 0;
+  for (int a = 0; a < spec->naxes; a++) o->sizes[a] = (size_t)spec->sizes[a];
+  if (batch_alloc(&o->b, o->nx) != RS_OK) {
+    free_output(o);
+    return rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory");
+  }
+  size_t chunk = SWEEP_IO_CHUNK;
+  err = nc__open(spec->path, NC_WRITE, &chunk, &o->ncid);
+  for (size_t v = 0; v < N_SWEEP_VARS && !err; v++)
+    err = nc_inq_varid(o->ncid, sweep_vars[v].name, &o->varid[v]);
+  for (int v = 0; v < N_SWEEP_VARS_3D; v++)
+    if (err || spec->dimension != 3 || nc_inq_varid(o->ncid, sweep_vars_3d[v].name, &o->varid3[v]))
+      o->varid3[v] = -1;
+  for (int f = 0; f < RS_N_FIELDS && !err; f++)
+    if (!o->nx || nc_inq_varid(o->ncid, rs_field_vars[f].name, &o->field_id[f]))
+      o->field_id[f] = -1;
+  /* a file of an MPI sweep keeps its rank variable (0 where a serial resume computed) */
+  if (err || nc_inq_varid(o->ncid, "rank", &o->rank_id)) o->rank_id = -1;
+  char *old = err ? NULL : rs_output_get_text(o->ncid, NC_GLOBAL, "history");
+  if (!err && !old) err = NC_ENOMEM;
+  if (!err) {
+    const size_t hl = strlen(old) + strlen(spec->history ? spec->history : "") + 96;
+    char *history = malloc(hl);
+    if (!history) err = NC_ENOMEM;
+    if (!err) {
+      snprintf(history, hl, "%s%s%s (resumed: %zu of %zu points were there)", old, *old ? "\n" : "",
+               spec->history ? spec->history : "", *kept, npoints);
+      char status_buf[RS_OUTPUT_STATUS_LEN];
+      rs_output_status_text(status_buf, "running");
+      err = nc_redef(o->ncid);
+      if (!err) err = rs_output_put_text(o->ncid, NC_GLOBAL, "history", history);
+      if (!err)
+        err = nc_put_att_text(o->ncid, NC_GLOBAL, "status", RS_OUTPUT_STATUS_LEN, status_buf);
+      if (!err) err = nc__enddef(o->ncid, SWEEP_HEADER_FREE, 1, 0, 1);
+      if (!err) err = nc_sync(o->ncid);
+    }
+    free(history);
+  }
+  free(old);
+  if (err) {
+    const int st = rs_output_nc_failure(msg, spec->path, "cannot reopen to resume", err);
+    if (o->ncid) nc_close(o->ncid);
+    free_output(o);
+    return st;
+  }
+  o->b.last_write = monotonic_seconds();
   *outp = o;
   return RS_OK;
 }

@@ -5,9 +5,11 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
 #include "rollsim/api.h"
 #include "io/case.h"
+#include "io/sweep_status.h"
 #include "study/run.h"
 #include "study/sweep.h"
 #include "study/sweep_dist.h"
@@ -109,6 +111,31 @@ int rs_api_check(const char *case_path, const char *const *sets, int nsets, char
   rs_case_free(&c);
   if (status == RS_ERR_SOLVER) status = RS_ERR_INPUT; /* as rollsim check */
   return finish(status, &m, msg, msg_len);
+}
+
+int rs_api_status(const char *path, char **text, char *msg, size_t msg_len)
+{
+  *text = NULL;
+  rs_msg m = {{0}};
+  rs_sweep_file_status st;
+  int status = rs_sweep_file_status_read(path, &st, &m);
+  if (status != RS_OK) return finish(status, &m, msg, msg_len);
+  size_t len = 0;
+  FILE *f = open_memstream(text, &len);
+  if (!f) {
+    rs_msg_set(&m, RS_ERR_INTERNAL, "out of memory");
+    return finish(RS_ERR_INTERNAL, &m, msg, msg_len);
+  }
+  static const char *const states[] = {"complete", "failed", "incomplete"};
+  char when[64], line[512];
+  strftime(when, sizeof when, "%Y-%m-%dT%H:%M:%SZ", gmtime(&st.mtime));
+  rs_sweep_file_status_line(&st, line, sizeof line);
+  fprintf(f, "state: %s\npoints: %zu\nwritten: %zu\nfailed: %zu\npart: %d\nparts: %d\n",
+          st.sweep ? states[st.state] : "not a sweep", st.npoints, st.written, st.failed, st.part,
+          st.parts);
+  fprintf(f, "status: %s\nlast_written: %s\nsummary: %s\n", st.status, when, line);
+  fclose(f);
+  return finish(RS_OK, &m, msg, msg_len);
 }
 
 void rs_api_free(void *p) { free(p); }

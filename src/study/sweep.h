@@ -23,6 +23,9 @@ typedef struct rs_sweep_result {
   long refined;      /* continuation steps halved where the regimes jumped or Newton failed */
   long midpoints;    /* approximate intermediate points before steps with many regime changes */
   long lines_in_two; /* lines solved in two parts at once (solver.threads: 2) */
+  /* --resume: the points of the lines complete in the file (counted in points_done and
+   * points_failed, not computed again) */
+  size_t points_kept;
   char file[1024];
   char backup[1040]; /* an older file at the output path kept under this name, or "" */
 } rs_sweep_result;

@@ -7,6 +7,8 @@
  *    computed it);
  *  - rollsim sweep --part K/N: the lines l with l mod N = K - 1, into a file of the full
  *    sweep's shape (points of other parts left unwritten), joined by rollsim merge.
+ *  - --resume (any of the above): the lines complete in the existing file are kept, the
+ *    others computed again from their first point, into that file.
  * A point's numbers do not depend on which process computed it. */
 #define _POSIX_C_SOURCE 200809L
 #include <math.h>
@@ -39,9 +41,10 @@ typedef struct dist_run {
   size_t nx;
   double *msgbuf; /* a point message */
   int msglen;
-  size_t line;      /* the line being computed by this rank */
-  size_t next_line; /* rank 0: next line to hand out */
-  int stopped;      /* rank 0: workers told to stop */
+  size_t line;         /* the line being computed by this rank */
+  size_t next_line;    /* rank 0: next line to hand out */
+  unsigned char *done; /* --resume: [nlines] 1 for a line complete in the file, else NULL */
+  int stopped;         /* rank 0: workers told to stop */
   int interrupted;
   rs_stats stats;
   long refined;
@@ -163,6 +166,12 @@ static void line_sets(dist_run *r, size_t line)
 
 static int serve(dist_run *r, int block);
 
+/* Rank 0: next_line past the lines kept from the file (--resume). */
+static void next_pending(dist_run *r)
+{
+  while (r->done && r->next_line < r->nlines && r->done[r->next_line]) r->next_line++;
+}
+
 /* After each point of this rank: write it (rank 0, parts) or send it (workers). */
 static int point_done(void *ctx, size_t j, int status, const rs_diag *d, long newton,
                       const char *why)
@@ -235,6 +244,7 @@ static int serve(dist_run *r, int block)
       }
       if (ws == RS_ERR_INTERRUPTED) r->interrupted = 1;
       double next = -1;
+      next_pending(r);
       if (!r->interrupted && status == RS_OK && r->next_line < r->nlines)
         next = (double)r->next_line++;
       if (next < 0) r->stopped++;
@@ -265,6 +275,34 @@ static int worker(dist_run *r)
     if (line < 0) return last == RS_ERR_INTERRUPTED ? RS_ERR_INTERRUPTED : RS_OK;
     if (last == RS_OK) last = compute_line(r, (size_t)line);
   }
+}
+
+/* --resume: reopen the file (refused, untouched, unless it is this sweep's) and mark the
+ * lines complete in it, counting their points as done or failed. */
+static int resume_open(dist_run *r, const rs_sweep_output_spec *spec, rs_msg *msg)
+{
+  int *conv = malloc(r->s->npoints * sizeof *conv);
+  r->done = calloc(r->nlines, 1);
+  if (!conv || !r->done) {
+    free(conv);
+    return rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory");
+  }
+  size_t written = 0;
+  const int status = rs_sweep_output_resume(&r->out, spec, conv, &written, msg);
+  for (size_t l = 0; l < r->nlines && status == RS_OK; l++) {
+    size_t ok = 0, failed = 0;
+    for (size_t j = 0; j < r->nlast; j++) {
+      ok += conv[l * r->nlast + j] == 1;
+      failed += conv[l * r->nlast + j] == 0;
+    }
+    if (ok + failed < r->nlast) continue;
+    r->done[l] = 1;
+    r->res->points_done += ok;
+    r->res->points_failed += failed;
+    r->res->points_kept += r->nlast;
+  }
+  free(conv);
+  return status;
 }
 
 int rs_sweep_run(const rs_sweep *s, const rs_case *c, const rs_run_opts *o, rs_sweep_result *res,
@@ -341,8 +379,17 @@ int rs_sweep_run_dist(const rs_sweep *s, const rs_case *c, const rs_run_opts *o,
                                        .ranks = dist->mpi && size > 1 ? size : 0,
                                        .part = dist->part,
                                        .parts = dist->parts};
-    status = rs_sweep_output_create(&r.out, &spec, msg);
-    if (status != RS_OK) goto done;
+    if (dist->resume)
+      status = resume_open(&r, &spec, msg);
+    else
+      status = rs_sweep_output_create(&r.out, &spec, msg);
+    if (status != RS_OK) {
+      /* the workers are waiting for lines: tell them to stop */
+      r.next_line = r.nlines;
+      while (r.stopped < size - 1 && serve(&r, 1) == RS_OK) {
+      }
+      goto done;
+    }
     if (rs_sweep_output_backup(r.out))
       snprintf(res->backup, sizeof res->backup, "%s", rs_sweep_output_backup(r.out));
   }
@@ -358,10 +405,13 @@ int rs_sweep_run_dist(const rs_sweep *s, const rs_case *c, const rs_run_opts *o,
   if (dist->parts > 0) {
     for (size_t l = (size_t)(dist->part - 1); l < r.nlines && status == RS_OK;
          l += (size_t)dist->parts)
-      status = compute_line(&r, l);
+      if (!r.done || !r.done[l]) status = compute_line(&r, l);
   } else {
-    while (status == RS_OK && !r.interrupted && r.next_line < r.nlines)
+    next_pending(&r);
+    while (status == RS_OK && !r.interrupted && r.next_line < r.nlines) {
       status = compute_line(&r, r.next_line++);
+      next_pending(&r);
+    }
     /* the workers' last lines, and stop them */
     if (status == RS_ERR_INTERRUPTED) status = RS_OK;
     while (status == RS_OK && r.stopped < size - 1) status = serve(&r, 1);
@@ -404,5 +454,6 @@ done:
   free(sizes);
   free(values);
   free(r.fixed);
+  free(r.done);
   return status;
 }

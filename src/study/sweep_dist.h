@@ -12,6 +12,10 @@
 typedef struct rs_sweep_dist {
   const rs_mpi *mpi; /* NULL or size 1: no farm */
   int part, parts;   /* --part K/N (1 <= K <= N), or 0 */
+  /* --resume: write into the existing file of this sweep (or part), computing only the
+   * lines not complete in it (a line with any point missing is computed from its first
+   * point: lines start from rest, so it gives the same numbers as in one go). */
+  int resume;
   /* Called after each point written (points written so far, of the sweep's), or NULL. */
   void (*progress)(void *ctx, size_t done, size_t total);
   void *progress_ctx;
