@@ -15,6 +15,19 @@ add_test(NAME fit_twin_disc_revolutions
           ${RS_CASES}/fit_twin_disc.yaml ${RS_FIT_WORK}/twin_disc_rev)
 set_tests_properties(fit_creep_noisy fit_twin_disc fit_twin_disc_revolutions PROPERTIES TIMEOUT 600)
 
+# rollsim fit --resume (issue 46): an interrupted fit continued from its file reaches the
+# uninterrupted optimum with fewer new evaluations; bad resumes refused, the file untouched
+# (tests/check_fit_resume.py; under MPI also a refusal with two ranks).
+set(RS_FIT_RESUME_MPI "")
+if(RS_MPI)
+  find_program(RS_MPIRUN NAMES mpirun mpiexec REQUIRED)
+  set(RS_FIT_RESUME_MPI ${RS_MPIRUN})
+endif()
+add_test(NAME fit_resume
+  COMMAND ${SYSTEM_PYTHON3} ${RS_TESTS}/check_fit_resume.py ${RS_BIN}
+          ${RS_CASES}/fit_creep_curve.yaml ${RS_FIT_WORK}/resume ${RS_FIT_RESUME_MPI})
+set_tests_properties(fit_resume PROPERTIES TIMEOUT 120)
+
 # Each tests/fit_inputs/*.yaml names on its first line (# expect: REGEX) what the
 # message must say: exit 2, nothing written.
 file(GLOB RS_FIT_BAD CONFIGURE_DEPENDS ${RS_TESTS}/fit_inputs/*.yaml)

@@ -1,4 +1,4 @@
-/* rollsim fit CASE.yaml [-o FIT.nc] [--set ...]: read the fit: block, fit, print the
+/* rollsim fit CASE.yaml [-o FIT.nc] [--resume] [--set ...]: read the fit: block, fit, print the
  * summary (stop reason, fitted values with standard errors, correlations, notes). */
 #include <math.h>
 #include <stdio.h>
@@ -36,6 +36,9 @@ static void print_summary(const rs_fit_spec *f, const rs_fit_result *r, int stat
   }
   printf("  residual norm %.6g (rms %.4g), %ld evaluations, wall time %.2f s\n", r->residual_norm,
          r->residual_norm / sqrt((double)f->npoints), r->evaluations, r->wall_seconds);
+  if (r->resumed)
+    printf("  resumed: %ld evaluations were in the file, %ld new\n", r->evaluations_before,
+           r->evaluations - r->evaluations_before);
   if (r->notes[0]) {
     printf("  notes:\n");
     const char *p = r->notes;
@@ -72,8 +75,16 @@ int rs_cli_fit(const rs_case *c, const rs_fit_opts *o)
   if (c->overrides) printf("  with --set %s\n", c->overrides);
   rs_fit_result r;
   status = rs_fit_run(&f, c, o, &r, &msg);
-  if (status != RS_OK) fprintf(stderr, "rollsim fit: %s: %s\n", case_path, msg.text);
-  if (r.fitted) print_summary(&f, &r, status);
+  if (o->resume && status == RS_ERR_INPUT && !r.resumed) /* a refused --resume: nothing run */
+    fprintf(stderr, "rollsim fit: %s\n", msg.text);
+  else if (status != RS_OK)
+    fprintf(stderr, "rollsim fit: %s: %s\n", case_path, msg.text);
+  if (r.already_complete)
+    printf("  %s: the fit is complete (%ld evaluations, residual norm %.6g): nothing to resume, "
+           "the file is unchanged\n",
+           r.file, r.evaluations, r.residual_norm);
+  else if (r.fitted && (status != RS_ERR_INPUT || r.resumed))
+    print_summary(&f, &r, status);
   rs_fit_result_free(&r);
   rs_fit_free(&f);
   return status;

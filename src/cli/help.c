@@ -89,7 +89,7 @@ static const rs_command_help commands[] = {
      "ranks (rank 0 computes too and writes the points as they arrive); the file has the\n"
      "serial sweep's numbers plus the per-point variable rank and the attribute ranks.\n"
      "A point that fails is NaN in the file (counts -1, converged 0) and the exit code is 3.\n"},
-    {"fit", "fit CASE.yaml [-o FIT.nc] [--set KEY=VALUE]... [--quiet]",
+    {"fit", "fit CASE.yaml [-o FIT.nc] [--set KEY=VALUE]... [--resume] [--quiet]",
      "fit case keys to measurements (the case's fit: block), write FIT.nc",
      "Fits the parameters of the case's fit: block (case keys with start and bounds) to the\n"
      "measurements of its CSV (input columns: swept case keys such as rolling.creepage, or\n"
@@ -104,6 +104,10 @@ static const rs_command_help commands[] = {
      "\n"
      "  -o, --output FILE  the output file (default: output.file of the case; an existing\n"
      "                     one is kept as FILE~)\n"
+     "  --resume           continue the interrupted or killed fit in FILE from its best\n"
+     "                     point, counting on its evaluations (same case and --set; a file\n"
+     "                     of another case, other --set or data, a truncated or missing\n"
+     "                     file: exit 2, the file untouched; a complete fit: nothing to do)\n"
      "  -q, --quiet        no progress line\n"},
     {"merge", "merge OUT.nc PART.nc...",
      "join the parts of a sweep (rollsim sweep --part K/N) into one file",

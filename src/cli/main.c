@@ -3,7 +3,7 @@
  *   rollsim check CASE.yaml [--set KEY=VALUE]...
  *   rollsim sweep CASE.yaml [-o OUT.nc] [--part K/N] [--resume] [--set ...]
  *   rollsim status OUT.nc...   (rollsim check OUT.nc: the same)
- *   rollsim fit CASE.yaml [-o FIT.nc] [--set ...]
+ *   rollsim fit CASE.yaml [-o FIT.nc] [--resume] [--set ...]
  *   rollsim --help | --version
  * Exit codes: 0 success, 2 invalid input (nothing run), 3 solver failure (partial
  * results kept), 4 interrupted (partial results kept), 1 internal or output error. */
@@ -72,7 +72,7 @@ typedef struct cli_args {
   int quiet, append, nsets;
   const char **sets; /* the --set KEY=VALUE strings [nsets] (owned array) */
   int part, parts;   /* sweep --part K/N, or 0 */
-  int resume;        /* sweep --resume */
+  int resume;        /* sweep or fit --resume */
   const rs_mpi *mpi; /* this process's MPI session (rank 0 of 1 without a launcher) */
 } cli_args;
 
@@ -128,8 +128,9 @@ static int parse_args(int argc, char **argv, cli_args *a)
         return RS_ERR_INPUT;
       }
     } else if (!strcmp(arg, "--resume")) {
-      if (strcmp(a->cmd, "sweep")) {
-        fprintf(stderr, "rollsim %s: --resume applies to 'rollsim sweep' only\n", a->cmd);
+      if (strcmp(a->cmd, "sweep") && strcmp(a->cmd, "fit")) {
+        fprintf(stderr, "rollsim %s: --resume applies to 'rollsim sweep' and 'rollsim fit' only\n",
+                a->cmd);
         return RS_ERR_INPUT;
       }
       a->resume = 1;
@@ -435,7 +436,8 @@ static int run_command(int argc, char **argv, cli_args *ap)
                             .progress = o.progress,
                             .interrupt_flag = &interrupted,
                             .mpi_rank = a.mpi->rank,
-                            .mpi_size = a.mpi->size};
+                            .mpi_size = a.mpi->size,
+                            .resume = a.resume};
     status = !strcmp(a.cmd, "sweep") ? cmd_sweep(&c, &a, &sw, &o)
              : !strcmp(a.cmd, "fit") ? rs_cli_fit(&c, &fo)
                                      : cmd_run(&c, &a, &o);

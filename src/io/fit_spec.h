@@ -64,4 +64,20 @@ typedef struct rs_fit_output {
 } rs_fit_output;
 int rs_fit_output_write(const rs_fit_output *o, char *backup, size_t backup_len, rs_msg *msg);
 
+/* What rollsim fit --resume continues from: an existing FIT.nc of the same fit. */
+typedef struct rs_fit_previous {
+  double *start, *fitted; /* [nparams] as stored (fitted: the best point so far) */
+  double residual_norm;
+  long evaluations;
+  int complete; /* status "complete": nothing to resume */
+  char *history;
+} rs_fit_previous;
+/* Read FIT.nc at path for a resume of the fit f of the case whose text is case_text. Refused
+ * (RS_ERR_INPUT, "PATH: cannot resume: why"; the file only read) when it is missing,
+ * truncated, not a fit file, or of another case text, other parameters or bounds, or other
+ * data. */
+int rs_fit_output_read_previous(const char *path, const rs_fit_spec *f, const char *case_text,
+                                rs_fit_previous *prev, rs_msg *msg);
+void rs_fit_previous_free(rs_fit_previous *prev);
+
 #endif

@@ -181,3 +181,152 @@ int rs_fit_output_write(const rs_fit_output *o, char *backup, size_t backup_len,
   free(col_id);
   return status;
 }
+
+void rs_fit_previous_free(rs_fit_previous *prev)
+{
+  free(prev->start);
+  free(prev->fitted);
+  free(prev->history);
+  memset(prev, 0, sizeof *prev);
+}
+
+/* Whether the variable `name` of the open file holds exactly the m values of column col of
+ * the fit's table (1 for col -1: no weights). */
+static int same_column(int ncid, const char *name, const rs_fit_spec *f, int col, double *buf)
+{
+  int id;
+  if (nc_inq_varid(ncid, name, &id) || nc_get_var_double(ncid, id, buf)) return 0;
+  for (size_t i = 0; i < f->npoints; i++) {
+    const double want = col >= 0 ? f->table[i * (size_t)f->ncols + (size_t)col] : 1.0;
+    if (memcmp(&buf[i], &want, sizeof want) && !(isnan(buf[i]) && isnan(want))) return 0;
+  }
+  return 1;
+}
+
+/* Why the open file cannot be resumed as the fit f of case_text ("" when it can); fills
+ * prev from it. */
+static void previous_check(int ncid, const rs_fit_spec *f, const char *case_text,
+                           rs_fit_previous *prev, double *buf, char *why, size_t len)
+{
+  const int n = f->nparams;
+  int v_name, v_start, v_fit, v_lo, v_hi, dpar, dpt;
+  size_t np = 0, m = 0;
+  if (nc_inq_varid(ncid, "parameter_name", &v_name) || nc_inq_varid(ncid, "start", &v_start) ||
+      nc_inq_varid(ncid, "fitted", &v_fit) || nc_inq_varid(ncid, "lower_bound", &v_lo) ||
+      nc_inq_varid(ncid, "upper_bound", &v_hi) || nc_inq_dimid(ncid, "parameter", &dpar) ||
+      nc_inq_dimid(ncid, "point", &dpt) || nc_inq_dimlen(ncid, dpar, &np) ||
+      nc_inq_dimlen(ncid, dpt, &m)) {
+    snprintf(why, len, "not a fit file (no parameter_name, start, fitted and bounds)");
+    return;
+  }
+  char *text = rs_output_get_text(ncid, NC_GLOBAL, "case");
+  const int same_case = text && !strcmp(text, case_text ? case_text : "");
+  free(text);
+  if (!same_case) {
+    snprintf(why, len,
+             "the file is of another case or other --set values (its `case` attribute "
+             "differs from the case as run now)");
+    return;
+  }
+  if (np != (size_t)n) {
+    snprintf(why, len, "the file fits %zu parameters, the case %d", np, n);
+    return;
+  }
+  for (int k = 0; k < n; k++) {
+    char name[NAME_LEN + 1] = {0};
+    const size_t start[2] = {(size_t)k, 0}, count[2] = {1, NAME_LEN};
+    double lo = NAN, hi = NAN;
+    const size_t at = (size_t)k;
+    if (nc_get_vara_text(ncid, v_name, start, count, name) ||
+        nc_get_var1_double(ncid, v_lo, &at, &lo) || nc_get_var1_double(ncid, v_hi, &at, &hi) ||
+        strcmp(name, f->params[k].key) || lo != f->params[k].lo || hi != f->params[k].hi) {
+      snprintf(why, len, "its parameter %d is not %s with bounds [%g, %g]", k + 1, f->params[k].key,
+               f->params[k].lo, f->params[k].hi);
+      return;
+    }
+  }
+  char *measured = rs_output_get_text(ncid, NC_GLOBAL, "measured");
+  const int same_measured = measured && !strcmp(measured, f->measured);
+  free(measured);
+  int same_data = same_measured && m == f->npoints &&
+                  same_column(ncid, "measured", f, f->measured_col, buf) &&
+                  same_column(ncid, "weight", f, f->weight_col, buf);
+  for (int j = 0; same_data && j < f->ncols; j++) {
+    char name[NC_MAX_NAME], vname[NC_MAX_NAME + 8];
+    var_name(f->columns[j], name, sizeof name);
+    snprintf(vname, sizeof vname, "%s%s", name,
+             !strcmp(name, "measured") || !strcmp(name, "simulated") || !strcmp(name, "weight")
+                 ? "_column"
+                 : "");
+    same_data = same_column(ncid, vname, f, j, buf);
+  }
+  if (!same_data) {
+    snprintf(why, len,
+             "its data differ from %s (%zu points; the file holds %zu): the measurements "
+             "changed since the fit began",
+             f->data_path, f->npoints, m);
+    return;
+  }
+  int ev = 0;
+  if (nc_get_var_double(ncid, v_start, prev->start) ||
+      nc_get_var_double(ncid, v_fit, prev->fitted) ||
+      nc_get_att_double(ncid, NC_GLOBAL, "residual_norm", &prev->residual_norm) ||
+      nc_get_att_int(ncid, NC_GLOBAL, "evaluations", &ev)) {
+    snprintf(why, len, "cannot read its start, fitted, residual_norm and evaluations");
+    return;
+  }
+  for (int k = 0; k < n; k++)
+    if (!(prev->fitted[k] >= f->params[k].lo && prev->fitted[k] <= f->params[k].hi)) {
+      snprintf(why, len, "its fitted %s = %g is not inside the bounds", f->params[k].key,
+               prev->fitted[k]);
+      return;
+    }
+  prev->evaluations = ev;
+  char *status = rs_output_get_text(ncid, NC_GLOBAL, "status");
+  prev->complete = status && !strcmp(status, "complete");
+  free(status);
+  prev->history = rs_output_get_text(ncid, NC_GLOBAL, "history");
+  if (!prev->history) snprintf(why, len, "out of memory");
+}
+
+int rs_fit_output_read_previous(const char *path, const rs_fit_spec *f, const char *case_text,
+                                rs_fit_previous *prev, rs_msg *msg)
+{
+  memset(prev, 0, sizeof *prev);
+  long long data_end = 0, file_size = 0;
+  FILE *fp = fopen(path, "rb");
+  if (!fp)
+    return rs_msg_set(msg, RS_ERR_INPUT,
+                      "%s: cannot resume: no such file (run the fit without --resume)", path);
+  fclose(fp);
+  if (rs_nc_classic_data_end(path, &data_end, &file_size) != 0)
+    return rs_msg_set(msg, RS_ERR_INPUT,
+                      "%s: cannot resume: not a readable fit file (netCDF 64-bit offset)", path);
+  if (file_size < data_end)
+    return rs_msg_set(msg, RS_ERR_INPUT,
+                      "%s: cannot resume: the file is truncated (%lld of %lld bytes)", path,
+                      file_size, data_end);
+  const size_t m = f->npoints, n = (size_t)f->nparams;
+  prev->start = calloc(n, sizeof *prev->start);
+  prev->fitted = calloc(n, sizeof *prev->fitted);
+  double *buf = calloc(m > 0 ? m : 1, sizeof *buf);
+  if (!prev->start || !prev->fitted || !buf) {
+    free(buf);
+    rs_fit_previous_free(prev);
+    return rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory");
+  }
+  int ncid;
+  const int err = nc_open(path, NC_NOWRITE, &ncid);
+  if (err) {
+    free(buf);
+    rs_fit_previous_free(prev);
+    return rs_msg_set(msg, RS_ERR_INPUT, "%s: cannot resume: %s", path, nc_strerror(err));
+  }
+  char why[512] = "";
+  previous_check(ncid, f, case_text, prev, buf, why, sizeof why);
+  nc_close(ncid);
+  free(buf);
+  if (!why[0]) return RS_OK;
+  rs_fit_previous_free(prev);
+  return rs_msg_set(msg, RS_ERR_INPUT, "%s: cannot resume: %s", path, why);
+}

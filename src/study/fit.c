@@ -67,6 +67,8 @@ typedef struct fit_run {
   int written;
   char backup[1040];
   const char *path;
+  const double *start; /* the file's start values: the case's, or the resumed file's */
+  const char *history; /* the file's history attribute */
 } fit_run;
 
 static double residuals(const fit_run *r, const double *sim, double *fvec)
@@ -83,18 +85,14 @@ static int write_file(fit_run *r, const char *status, const double *fitted, cons
                       const double *cov, const double *sim, double norm, const char *notes,
                       rs_msg *msg)
 {
-  const int n = r->f->nparams;
-  double *start = malloc((size_t)n * sizeof *start);
-  if (!start) return rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory");
-  for (int k = 0; k < n; k++) start[k] = r->f->params[k].start;
   const rs_fit_output out = {.path = r->path,
                              .title = r->base->title,
                              .case_text = r->base->yaml_text,
-                             .history = r->o->history,
+                             .history = r->history,
                              .status = status,
                              .notes = notes,
                              .spec = r->f,
-                             .start = start,
+                             .start = r->start,
                              .fitted = fitted,
                              .std_error = se,
                              .covariance = cov,
@@ -104,7 +102,6 @@ static int write_file(fit_run *r, const char *status, const double *fitted, cons
                              .keep_old = !r->written,
                              .dimension = r->base->dimension};
   const int s = rs_fit_output_write(&out, r->backup, sizeof r->backup, msg);
-  free(start);
   if (s == RS_OK) r->written = 1;
   return s;
 }
@@ -378,22 +375,49 @@ int rs_fit_run(const rs_fit_spec *f, const rs_case *c, const rs_fit_opts *o, rs_
   double *diag = calloc((size_t)n, sizeof *diag), *qtf = calloc((size_t)n, sizeof *qtf);
   double *wa = calloc(3 * (size_t)n + (size_t)m, sizeof *wa);
   int *ipvt = calloc((size_t)n, sizeof *ipvt);
+  double *start = calloc((size_t)n, sizeof *start);
   if (!r.path)
     status = rs_msg_set(msg, RS_ERR_INPUT, "%s: no output file (give -o FIT.nc)", case_path);
   else if (!res->fitted || !res->std_error || !res->covariance || !res->simulated || !r.p ||
            !r.sim || !r.w || !r.meas || !r.best_u || !r.best_p || !r.best_sim || !u || !fvec ||
-           !fjac || !diag || !qtf || !wa || !ipvt)
+           !fjac || !diag || !qtf || !wa || !ipvt || !start)
     status = rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory");
   if (status == RS_OK) status = rs_fit_eval_init(&r.e, f, c, msg);
   if (status == RS_OK)
     status = rs_fit_columns_create(&r.cols, f, 0, o->mpi_size > 1 ? o->mpi_size : 1, msg);
-  if (status == RS_OK) {
+  /* --resume: the file's best point is lmder's start, its evaluations are counted on; a file
+   * that is not this fit's is refused before anything is run or written */
+  rs_fit_previous prev = {0};
+  char *history = NULL;
+  if (status == RS_OK && o->resume &&
+      (status = rs_fit_output_read_previous(r.path, f, c->yaml_text, &prev, msg)) == RS_OK) {
+    res->already_complete = prev.complete;
+    res->resumed = !prev.complete;
+    res->evaluations_before = prev.evaluations;
+    const size_t hl = strlen(prev.history) + strlen(o->history ? o->history : "") + 96;
+    if (!(history = malloc(hl)))
+      status = rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory");
+    else
+      snprintf(history, hl, "%s%s%s (resumed from %ld evaluations, residual %.6g)", prev.history,
+               *prev.history ? "\n" : "", o->history ? o->history : "", prev.evaluations,
+               prev.residual_norm);
+  }
+  for (int k = 0; status == RS_OK && k < n; k++) {
+    start[k] = o->resume ? prev.start[k] : f->params[k].start;
+    res->fitted[k] = o->resume ? prev.fitted[k] : f->params[k].start;
+  }
+  res->residual_norm = prev.residual_norm;
+  r.start = start;
+  r.history = history ? history : o->history;
+  r.e.evaluations = prev.evaluations;
+  r.written = res->resumed; /* a resume rewrites its own file: no PATH~ */
+  if (status == RS_OK && !res->already_complete) {
     for (int i = 0; i < m; i++) {
       const double *row = f->table + (size_t)i * (size_t)f->ncols;
       r.meas[i] = row[f->measured_col];
       r.w[i] = f->weight_col >= 0 ? row[f->weight_col] : 1.0;
     }
-    for (int k = 0; k < n; k++) u[k] = to_u(&f->params[k], f->params[k].start);
+    for (int k = 0; k < n; k++) u[k] = to_u(&f->params[k], res->fitted[k]);
     int nfev = 0, njev = 0;
     const int info =
         lmder(lm_function, &r, m, n, u, fvec, fjac, m, FIT_FTOL, FIT_XTOL, FIT_GTOL, 100 * (n + 1),
@@ -414,7 +438,7 @@ int rs_fit_run(const rs_fit_spec *f, const rs_case *c, const rs_fit_opts *o, rs_
     memcpy(res->simulated, r.best_sim, (size_t)m * sizeof *r.best_sim);
     res->residual_norm = r.best_norm;
   }
-  if (status == RS_OK) {
+  if (status == RS_OK && !res->already_complete) {
     status = analyse(&r, res);
     if (status != RS_OK) snprintf(msg->text, sizeof msg->text, "%s", r.msg.text);
   }
@@ -423,7 +447,7 @@ int rs_fit_run(const rs_fit_spec *f, const rs_case *c, const rs_fit_opts *o, rs_
       res->covariance[k] = NAN;
       if (k < n) res->std_error[k] = NAN;
     }
-  res->evaluations = r.e.evaluations;
+  res->evaluations = res->already_complete ? prev.evaluations : r.e.evaluations;
   if (r.have_best) {
     char why[RS_FINAL_STATUS_LEN];
     rs_msg tmp;
@@ -451,5 +475,8 @@ int rs_fit_run(const rs_fit_spec *f, const rs_case *c, const rs_fit_opts *o, rs_
   free(qtf);
   free(wa);
   free(ipvt);
+  free(start);
+  free(history);
+  rs_fit_previous_free(&prev);
   return status;
 }

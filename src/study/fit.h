@@ -16,6 +16,7 @@ typedef struct rs_fit_opts {
   int progress;                          /* evaluation count and residual on stderr */
   volatile sig_atomic_t *interrupt_flag; /* Ctrl-C: stop, keep the best point */
   int mpi_rank, mpi_size; /* under MPI: the Jacobian's columns over the ranks (else 0, 1) */
+  int resume; /* continue the fit in FIT.nc from its best point (rollsim fit --resume) */
 } rs_fit_opts;
 
 typedef struct rs_fit_result {
@@ -25,7 +26,10 @@ typedef struct rs_fit_result {
   double *covariance;         /* [nparams][nparams] */
   double *simulated;          /* [npoints] at the fitted values */
   double residual_norm;       /* |W (simulated - measured)| */
-  long evaluations;           /* model evaluations (whole data sets) */
+  long evaluations;           /* model evaluations (whole data sets), the resumed file's included */
+  long evaluations_before;    /* --resume: those the file held (0 otherwise) */
+  int resumed;                /* --resume: continued from the file's best point */
+  int already_complete;       /* --resume of a complete file: nothing run, the file untouched */
   int minpack_info;           /* lmder's info */
   double wall_seconds;
   char stop_reason[256];
