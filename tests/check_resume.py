@@ -12,6 +12,8 @@ the file must exit 2 and leave it untouched (same bytes and modification time).
       resume, comparison
   check_resume.py refuse BIN CASE DIR -- SETS...
       bad resumes: other --set, other case, other part, not a sweep file, a truncated file
+  check_resume.py term BIN CASE DIR -- SETS...
+      SIGTERM (a batch system's time limit) during a serial sweep, then resume, comparison
   check_resume.py status BIN CASE DIR [--no-python] -- SETS...
       rollsim status and rollsim.status (Python) of a complete, a killed and a failed sweep
       (cases/startup.yaml with solver.max_steps 3: every transient point stops before its
@@ -293,6 +295,40 @@ def status(b, case, d, sets, python=True):
     both(failed, "failed: 2 of 2 points did not converge (NaN in the file)", "failed", 2, 2, 2)
 
 
+def term(b, case, d, sets):
+    """SIGTERM (a batch system's time limit) during a serial sweep: exit 4, status
+    "interrupted", every finished point kept (the batch is written at close); the resume
+    then gives the uninterrupted file bit for bit."""
+    ref = os.path.join(d, "term_ref.nc")
+    out = os.path.join(d, "term.nc")
+    cmd = [b, "sweep", case, "--quiet"] + sets
+    t0 = time.monotonic()
+    subprocess.run(cmd + ["-o", ref], check=True, stdout=subprocess.DEVNULL)
+    t = round(0.45 * (time.monotonic() - t0), 2)
+    for attempt in range(4):  # a busy machine: the run may end before the signal, send earlier
+        for name in (out, out + "~"):
+            if os.path.exists(name):
+                os.remove(name)
+        p = subprocess.Popen(cmd + ["-o", out], stdout=subprocess.DEVNULL,
+                             stderr=subprocess.DEVNULL)
+        time.sleep(t)
+        running = p.poll() is None
+        p.send_signal(signal.SIGTERM)
+        rc = p.wait(timeout=120)
+        if running and rc != 0:
+            break
+        t = round(t * 0.6, 2)
+    check(f"SIGTERM at {t} s: exit 4 (interrupted)", rc == 4, f"exit {rc}")
+    with netCDF4.Dataset(out) as f:
+        st = f.getncattr("status")
+    check("the file's status is 'interrupted'", st == "interrupted", st)
+    n, m = counts(out)
+    check(f"SIGTERM at {t} s: {n} of {m} points in the file, some missing", 0 < n < m)
+    r = subprocess.run(cmd + ["-o", out, "--resume"], capture_output=True, text=True)
+    check(f"resume after SIGTERM: exit {r.returncode}", r.returncode == 0, r.stderr.strip())
+    same(ref, out)
+
+
 if __name__ == "__main__":
     args = sys.argv[1:]
     sets = args[args.index("--") + 1:] if "--" in args else []
@@ -304,6 +340,8 @@ if __name__ == "__main__":
     os.makedirs(d, exist_ok=True)
     if mode == "kill":
         kill(b, case, d, part, mpirun, sets)
+    elif mode == "term":
+        term(b, case, d, sets)
     elif mode == "status":
         status(b, case, d, sets, python="--no-python" not in opts)
     else:

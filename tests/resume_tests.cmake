@@ -29,6 +29,10 @@ add_test(NAME sweep_resume_merge
   COMMAND ${CMAKE_COMMAND} -E chdir ${RS_RESUME}/part sh -c
     "rm -f p1.nc p3.nc whole.nc merged.nc && '${RS_BIN}' sweep '${RS_CASES}/creep_curves.yaml' --quiet -o whole.nc ${RS_RESUME_QSETS} && '${RS_BIN}' sweep '${RS_CASES}/creep_curves.yaml' --quiet --part 1/3 -o p1.nc ${RS_RESUME_QSETS} && '${RS_BIN}' sweep '${RS_CASES}/creep_curves.yaml' --quiet --part 3/3 -o p3.nc ${RS_RESUME_QSETS} && '${RS_BIN}' merge merged.nc p1.nc part2of3_resumed.nc p3.nc && ${SYSTEM_PYTHON3} ${RS_TESTS}/check_sweep_dist.py same whole.nc merged.nc")
 set_tests_properties(sweep_resume_merge PROPERTIES FIXTURES_REQUIRED resumed_part TIMEOUT 120)
+# SIGTERM, as a batch system sends at a time limit: exit 4, status interrupted, points kept
+add_test(NAME sweep_resume_sigterm
+  COMMAND ${RS_RESUME_CHECK} term ${RS_BIN} ${RS_CASES}/creep_curves.yaml ${RS_RESUME}/term
+    -- ${RS_RESUME_SETS})
 add_test(NAME sweep_resume_refused
   COMMAND ${RS_RESUME_CHECK} refuse ${RS_BIN} ${RS_CASES}/creep_curves.yaml ${RS_RESUME}/refuse
     -- ${RS_RESUME_SETS})
