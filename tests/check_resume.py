@@ -141,8 +141,8 @@ def kill(b, case, d, part, mpirun, sets):
                 killed = p.poll() is None
                 p.send_signal(signal.SIGKILL)
             rc = p.wait(timeout=60)
-            if killed and rc != 0:
-                break
+            if killed and rc != 0 and counts(out)[0] < counts(out)[1]:
+                break  # killed with points missing (a slow machine may have written them all)
             print(f"the run ended before the kill at {t} s: again, killed earlier")
             t = round(t * 0.6, 2)
         check(f"killed at {t} s (exit {rc})", killed and rc != 0)
@@ -274,11 +274,19 @@ def status(b, case, d, sets, python=True):
         os.remove(killed)
     p = subprocess.Popen([b, "sweep", case, "--quiet", "-o", killed] + sets,
                          stdout=subprocess.DEVNULL)
-    time.sleep(1.0)
+    # killed as soon as the file holds a point (its first batch), however slow the machine
+    deadline = time.monotonic() + 120
+    while p.poll() is None and time.monotonic() < deadline:
+        try:
+            if counts(killed)[0] > 0:
+                break
+        except (OSError, RuntimeError, KeyError):
+            pass  # not created yet, or its header is being written
+        time.sleep(0.05)
     p.send_signal(signal.SIGKILL)
     p.wait()
     n, m = counts(killed)
-    check(f"killed after 1 s: {n} of {m} points", 0 < n < m)
+    check(f"killed after its first batch: {n} of {m} points", 0 < n < m)
     both(killed, f"incomplete: {n} of {m} points (status: running: the writer was killed, or is "
          "still running), last written at ", "incomplete", n, m, 0)
     part = os.path.join(d, "part.nc")
@@ -315,7 +323,7 @@ def term(b, case, d, sets):
         running = p.poll() is None
         p.send_signal(signal.SIGTERM)
         rc = p.wait(timeout=120)
-        if running and rc != 0:
+        if running and rc != 0 and counts(out)[0] < counts(out)[1]:
             break
         t = round(t * 0.6, 2)
     check(f"SIGTERM at {t} s: exit 4 (interrupted)", rc == 4, f"exit {rc}")
