@@ -287,6 +287,14 @@ char *rs_output_get_text(int ncid, int varid, const char *name)
   return text;
 }
 
+int rs_output_same_case(int ncid, const char *case_text)
+{
+  char *text = rs_output_get_text(ncid, NC_GLOBAL, "case");
+  const int same = text && !strcmp(text, case_text ? case_text : "");
+  free(text);
+  return same;
+}
+
 const char *rs_output_backup(const rs_output *out)
 {
   return out && out->backup[0] ? out->backup : NULL;

@@ -219,13 +219,8 @@ static void previous_check(int ncid, const rs_fit_spec *f, const char *case_text
     snprintf(why, len, "not a fit file (no parameter_name, start, fitted and bounds)");
     return;
   }
-  char *text = rs_output_get_text(ncid, NC_GLOBAL, "case");
-  const int same_case = text && !strcmp(text, case_text ? case_text : "");
-  free(text);
-  if (!same_case) {
-    snprintf(why, len,
-             "the file is of another case or other --set values (its `case` attribute "
-             "differs from the case as run now)");
+  if (!rs_output_same_case(ncid, case_text)) {
+    snprintf(why, len, "%s", RS_OUTPUT_OTHER_CASE);
     return;
   }
   if (np != (size_t)n) {

@@ -77,6 +77,12 @@ int rs_output_keep_old(const char *path, char *backup, size_t len, rs_msg *msg);
 /* Text of a global text attribute (malloc'ed, NUL-terminated; "" when absent), NULL
  * when out of memory. */
 char *rs_output_get_text(int ncid, int varid, const char *name);
+/* 1 when the file's `case` attribute equals case_text (the case as run, after --set): the
+ * identity test of a file a run resumes; RS_OUTPUT_OTHER_CASE says why not. */
+int rs_output_same_case(int ncid, const char *case_text);
+#define RS_OUTPUT_OTHER_CASE                                                                       \
+  "the file is of another case or other --set values (its `case` attribute differs from the "      \
+  "case as run now)"
 /* The end of a classic/64-bit-offset file's fixed-size data according to its header, and
  * the file's size: 0, or -1 when the file cannot be read or is not such a file
  * (io/nc_classic.c). A file shorter than its data is truncated (netCDF would read the

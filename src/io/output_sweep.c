@@ -207,6 +207,25 @@ static int batch_alloc(batch *b, size_t nx)
              : RS_ERR_INTERNAL;
 }
 
+/* A writer for spec without its file: path, axes, fields none yet, an empty batch (NULL: out
+ * of memory). */
+static rs_sweep_output *output_new(const rs_sweep_output_spec *spec)
+{
+  rs_sweep_output *o = calloc(1, sizeof *o);
+  if (!o || !(o->path = strdup(spec->path))) {
+    free(o);
+    return NULL;
+  }
+  o->naxes = spec->naxes;
+  o->nx = spec->fields ? spec->nx : 0;
+  for (int f = 0; f < RS_N_FIELDS; f++) o->field_id[f] = -1;
+  if (batch_alloc(&o->b, o->nx) != RS_OK) {
+    free_output(o);
+    return NULL;
+  }
+  return o;
+}
+
 int rs_sweep_output_create(rs_sweep_output **outp, const rs_sweep_output_spec *spec, rs_msg *msg)
 {
   *outp = NULL;
@@ -216,18 +235,8 @@ int rs_sweep_output_create(rs_sweep_output **outp, const rs_sweep_output_spec *s
     return rs_msg_set(msg, RS_ERR_INTERNAL, "sweep output: fields without a grid");
   int status = rs_output_make_parent_dirs(spec->path, msg);
   if (status != RS_OK) return status;
-  rs_sweep_output *o = calloc(1, sizeof *o);
-  if (!o || !(o->path = strdup(spec->path))) {
-    free(o);
-    return rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory");
-  }
-  o->naxes = spec->naxes;
-  o->nx = spec->fields ? spec->nx : 0;
-  for (int f = 0; f < RS_N_FIELDS; f++) o->field_id[f] = -1;
-  if (batch_alloc(&o->b, o->nx) != RS_OK) {
-    free_output(o);
-    return rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory");
-  }
+  rs_sweep_output *o = output_new(spec);
+  if (!o) return rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory");
   status = rs_output_keep_old(spec->path, o->backup, sizeof o->backup, msg);
   if (status != RS_OK) {
     free_output(o);
@@ -350,13 +359,8 @@ static void resume_check(int ncid, const rs_sweep_output_spec *spec, int *conver
              spec->naxes == 1 ? "" : "s");
     return;
   }
-  char *text = rs_output_get_text(ncid, NC_GLOBAL, "case");
-  const int same_case = text && !strcmp(text, spec->case_text ? spec->case_text : "");
-  free(text);
-  if (!same_case) {
-    snprintf(why, len,
-             "the file is of another case or other --set values (its `case` attribute "
-             "differs from the case as run now)");
+  if (!rs_output_same_case(ncid, spec->case_text)) {
+    snprintf(why, len, "%s", RS_OUTPUT_OTHER_CASE);
     return;
   }
   for (int a = 0; a < spec->naxes; a++) {
@@ -431,18 +435,9 @@ int rs_sweep_output_resume(rs_sweep_output **outp, const rs_sweep_output_spec *s
   for (int a = 0; a < spec->naxes; a++) npoints *= (size_t)spec->sizes[a];
   for (size_t k = 0; k < npoints; k++) *kept += converged[k] != NC_FILL_INT;
 
-  rs_sweep_output *o = calloc(1, sizeof *o);
-  if (!o || !(o->path = strdup(spec->path))) {
-    free(o);
-    return rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory");
-  }
-  o->naxes = spec->naxes;
-  o->nx = spec->fields ? spec->nx : 0;
+  rs_sweep_output *o = output_new(spec);
+  if (!o) return rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory");
   for (int a = 0; a < spec->naxes; a++) o->sizes[a] = (size_t)spec->sizes[a];
-  if (batch_alloc(&o->b, o->nx) != RS_OK) {
-    free_output(o);
-    return rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory");
-  }
   size_t chunk = SWEEP_IO_CHUNK;
   err = nc__open(spec->path, NC_WRITE, &chunk, &o->ncid);
   for (size_t v = 0; v < N_SWEEP_VARS && !err; v++)
