@@ -151,7 +151,8 @@ def kill(b, case, d, part, mpirun, sets):
         s = subprocess.run([b, "status", out], capture_output=True, text=True)
         check(f"rollsim status of the killed file: {s.stdout.strip()}",
               s.returncode == 0 and s.stdout.startswith(f"incomplete: {n} of {m} points")
-              and "status: running: the writer was killed" in s.stdout
+              and "status: running, but its writer, process " in s.stdout
+              and "is gone: killed" in s.stdout
               and "last written at " in s.stdout)
         r = subprocess.run(launch + cmd + ["-o", out, "--resume"], capture_output=True, text=True)
         check(f"resume after the kill at {t} s: exit {r.returncode}", r.returncode == 0,
@@ -283,12 +284,17 @@ def status(b, case, d, sets, python=True):
         except (OSError, RuntimeError, KeyError):
             pass  # not created yet, or its header is being written
         time.sleep(0.05)
+    # while it runs: its writer, this very process, is named
+    s = subprocess.run([b, "status", killed], capture_output=True, text=True)
+    check(f"rollsim status while the sweep runs: {s.stdout.strip()}",
+          p.poll() is not None
+          or f"(status: running: process {p.pid} on this host is writing it)" in s.stdout)
     p.send_signal(signal.SIGKILL)
     p.wait()
     n, m = counts(killed)
     check(f"killed after its first batch: {n} of {m} points", 0 < n < m)
-    both(killed, f"incomplete: {n} of {m} points (status: running: the writer was killed, or is "
-         "still running), last written at ", "incomplete", n, m, 0)
+    both(killed, f"incomplete: {n} of {m} points (status: running, but its writer, process "
+         f"{p.pid} on this host, is gone: killed), last written at ", "incomplete", n, m, 0)
     part = os.path.join(d, "part.nc")
     subprocess.run([b, "sweep", case, "--quiet", "-o", part, "--part", "3/4"] + sets, check=True,
                    stdout=subprocess.DEVNULL)
@@ -337,6 +343,41 @@ def term(b, case, d, sets):
     same(ref, out)
 
 
+def ranks(b, case, d, mpirun, sets):
+    """The ranks attribute over resumes with other rank counts: it is the most ranks any
+    run of the file had (the range of its rank variable), and the resumed points' rank
+    values lie in the resuming run's range. A line is made incomplete by resetting its
+    converged flags to the fill value, as a killed writer leaves them."""
+    def run(n, out, resume):
+        launch = [mpirun, "--oversubscribe", "--allow-run-as-root", "-n", str(n)] if n > 1 else []
+        r = subprocess.run(launch + [b, "sweep", case, "--quiet", "-o", out] + sets
+                           + (["--resume"] if resume else []), capture_output=True, text=True)
+        check(f"{'resume' if resume else 'sweep'} on {n} rank(s): exit {r.returncode}",
+              r.returncode == 0, r.stderr.strip())
+
+    def drop_last_line(out):
+        with netCDF4.Dataset(out, "a") as f:
+            f.variables["converged"][-1, -1, :] = netCDF4.default_fillvals["i4"]
+
+    def attrs(out):
+        with netCDF4.Dataset(out) as f:
+            f.set_auto_mask(False)
+            return int(f.getncattr("ranks")), f.variables["rank"][:]
+
+    ref, out = os.path.join(d, "ranks_ref.nc"), os.path.join(d, "ranks.nc")
+    run(2, ref, False)
+    run(2, out, False)
+    for n, want in ((3, 3), (1, 3)):
+        drop_last_line(out)
+        run(n, out, True)
+        got, rank = attrs(out)
+        check(f"resumed on {n} rank(s): ranks attribute {got}, expected {want}", got == want)
+        last = rank[-1, -1, :]
+        check(f"resumed on {n} rank(s): the recomputed line's ranks {sorted(set(last.tolist()))} "
+              f"within 0 .. {n - 1}", bool(((last >= 0) & (last < n)).all()))
+    same(ref, out)
+
+
 if __name__ == "__main__":
     args = sys.argv[1:]
     sets = args[args.index("--") + 1:] if "--" in args else []
@@ -350,6 +391,8 @@ if __name__ == "__main__":
         kill(b, case, d, part, mpirun, sets)
     elif mode == "term":
         term(b, case, d, sets)
+    elif mode == "ranks":
+        ranks(b, case, d, mpirun, sets)
     elif mode == "status":
         status(b, case, d, sets, python="--no-python" not in opts)
     else:

@@ -56,6 +56,11 @@ if(RS_MPI)
       --mpi ${RS_MPIRUN} -- ${RS_RESUME_SETS}
       --set "sweep.rolling.creepage={linspace: [0, -0.02, 61]}")
   set_tests_properties(sweep_resume_mpi PROPERTIES TIMEOUT 120)
+  # resumed on 3 ranks, then serially: the ranks attribute keeps the most ranks of any run
+  add_test(NAME sweep_resume_ranks
+    COMMAND ${RS_RESUME_CHECK} ranks ${RS_BIN} ${RS_CASES}/creep_curves.yaml ${RS_RESUME}/ranks
+      --mpi ${RS_MPIRUN} -- ${RS_RESUME_SETS})
+  set_tests_properties(sweep_resume_ranks PROPERTIES TIMEOUT 120)
   # refused under MPI: rank 0 checks, tells the other ranks to stop, exit 2, file unchanged
   add_test(NAME sweep_resume_mpi_refused
     COMMAND ${CMAKE_COMMAND} -E chdir ${RS_RESUME}/refuse sh -c
@@ -63,3 +68,13 @@ if(RS_MPI)
   set_tests_properties(sweep_resume_mpi_refused PROPERTIES FIXTURES_REQUIRED resume_refuse
     TIMEOUT 60)
 endif()
+# A full disk, imitated by a file-size limit: a sweep stops before its first point with no
+# file (its file is allocated whole at creation), a transient keeps its records with status
+# "failed" and continues with --restart --append, a fit leaves no file (check_full_disk.py).
+set(RS_FULL_DISK ${SYSTEM_PYTHON3} ${RS_TESTS}/check_full_disk.py)
+add_test(NAME full_disk_sweep
+  COMMAND ${RS_FULL_DISK} sweep ${RS_BIN} ${RS_CASES}/creep_curves.yaml ${RS_RESUME}/full_sweep)
+add_test(NAME full_disk_run
+  COMMAND ${RS_FULL_DISK} run ${RS_BIN} ${RS_CASES}/default.yaml ${RS_RESUME}/full_run)
+add_test(NAME full_disk_fit
+  COMMAND ${RS_FULL_DISK} fit ${RS_BIN} ${RS_CASES}/fit_creep_curve.yaml ${RS_RESUME}/full_fit)

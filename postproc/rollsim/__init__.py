@@ -244,8 +244,8 @@ def check(case, set=None):
 
 def status(path):
     """rollsim status FILE.nc: how far a sweep file got, as a dict: state ("complete",
-    "incomplete": interrupted, or its writer was killed and the status attribute still reads
-    "running"; "failed": points that did not converge; "not a sweep"), points, written,
+    "incomplete": interrupted, still being written, or its writer was killed and the status
+    attribute still reads "running" (the summary says which, on the writer's host); "failed": points that did not converge; "not a sweep"), points, written,
     failed (ints; of the part in a part file), part, parts, status (the attribute),
     last_written (ISO 8601 UTC) and summary (the line rollsim status prints). An incomplete
     sweep is finished by rollsim sweep CASE.yaml -o FILE.nc --resume."""

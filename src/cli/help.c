@@ -118,11 +118,12 @@ static const rs_command_help commands[] = {
      "nothing is written.\n"},
     {"status", "status FILE.nc...", "how far a sweep file got (complete, incomplete, failed)",
      "Prints one line per sweep file: \"complete: M of M points\"; \"incomplete: N of M\n"
-     "points (status: ...), last written at DATE\" for a sweep that was interrupted or whose\n"
-     "writer was killed (its status attribute still reads \"running\"): rollsim sweep CASE -o\n"
-     "FILE.nc --resume finishes it; \"failed: F of M points did not converge\". A part file\n"
-     "(--part K/N) counts the points of its part. Exit 0, or 2 for a file that cannot be read\n"
-     "or is truncated.\n"},
+     "points (status: ...), last written at DATE\" for a sweep that was interrupted, whose\n"
+     "writer was killed (\"running, but its writer, process PID on this host, is gone\") or\n"
+     "that is still being written (\"running: process PID on this host is writing it\"):\n"
+     "rollsim sweep CASE -o FILE.nc --resume finishes it; \"failed: F of M points did not\n"
+     "converge\". A part file (--part K/N) counts the points of its part. Exit 0, or 2 for a\n"
+     "file that cannot be read or is truncated.\n"},
     {"help", "help [COMMAND]", "this overview, or the help of one command",
      "Prints the overview of rollsim's commands, or the help of COMMAND (the same as\n"
      "rollsim COMMAND --help).\n"},

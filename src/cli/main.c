@@ -198,6 +198,7 @@ static int cmd_sweep(const rs_case *c, const cli_args *a, const rs_sweep *sw, co
     return status;
   }
   if (status != RS_OK) fprintf(stderr, "rollsim: %s: %s\n", a->case_path, msg.text);
+  if (status == RS_ERR_OUTPUT && !*sres.file) return status; /* no file: nothing was run */
   if (a->mpi->size > 1)
     printf("sweep on %d MPI ranks (task farm over continuation lines; the solver statistics below "
            "are rank 0's)\n",
@@ -223,8 +224,9 @@ static int cmd_sweep(const rs_case *c, const cli_args *a, const rs_sweep *sw, co
     printf("  steady check: %ld Newton solutions refused as not physical (recomputed by "
            "rolling the material)\n",
            sres.refused);
-  printf("  output: %s%s%s%s\n", sres.file, *sres.backup ? " (the previous file kept as " : "",
-         sres.backup, *sres.backup ? ")" : "");
+  printf("  output: %s%s%s%s%s\n", sres.file, *sres.backup ? " (the previous file kept as " : "",
+         sres.backup, *sres.backup ? ")" : "",
+         status == RS_OK ? "" : " -- incomplete, see `rollsim status`");
   return status;
 }
 

@@ -644,6 +644,25 @@ int rs_output_set_status(rs_output *out, const char *status, rs_msg *msg)
   return RS_OK;
 }
 
+int rs_output_abandon(rs_output *out, const char *status, rs_msg *msg)
+{
+  if (!out) return RS_OK;
+  (void)nc_close(out->ncid); /* fails again on the pending write; the handle is freed anyway */
+  char text[RS_OUTPUT_STATUS_LEN];
+  rs_output_status_text(text, status);
+  int ncid, err = nc_open(out->path, NC_WRITE, &ncid);
+  if (!err) {
+    err = nc_put_att_text(ncid, NC_GLOBAL, "status", RS_OUTPUT_STATUS_LEN, text);
+    const int err2 = nc_close(ncid);
+    if (!err) err = err2;
+  }
+  const int rc =
+      err ? rs_output_nc_failure(msg, out->path, "setting the status attribute", err) : RS_OK;
+  free(out->path);
+  free(out);
+  return rc;
+}
+
 int rs_output_close(rs_output *out, rs_msg *msg)
 {
   if (!out) return RS_OK;

@@ -98,11 +98,17 @@ size_t rs_output_records(const rs_output *out);
  * truncated to RS_OUTPUT_STATUS_LEN - 1 characters), so that rewriting it never changes
  * the size of the file header: a kill during the rewrite cannot tear the header. */
 #define RS_OUTPUT_STATUS_LEN 256
+/* The sweep file's writer attribute ("HOST PID"), fixed length like the status. */
+#define RS_SWEEP_WRITER_LEN  160
 
 /* Set the status attribute ("running", "complete", "failed: <why>", "interrupted") and sync. */
 int rs_output_set_status(rs_output *out, const char *status, rs_msg *msg);
 /* Close the file (status is left as it is) and free. NULL is allowed. */
 int rs_output_close(rs_output *out, rs_msg *msg);
+/* Close a file whose writes failed (a full disk, a file-size limit) and free: the records
+ * before the failure stay, and the status attribute is rewritten in place through a fresh
+ * handle, since the failed handle's own sync keeps retrying the failed write. */
+int rs_output_abandon(rs_output *out, const char *status, rs_msg *msg);
 
 /* ---- Sweep files: one dimension per swept key, scalar results over them ---- */
 typedef struct rs_sweep_output rs_sweep_output;

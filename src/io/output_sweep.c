@@ -18,12 +18,14 @@
  * as xarray turn them into floats; instead valid_min (valid_range for flags) excludes the
  * markers: -1 for a failed point, netCDF's default fill for a point not computed. */
 #define _POSIX_C_SOURCE 200809L
+#include <errno.h>
 #include <math.h>
 #include <netcdf.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
+#include <unistd.h>
 
 #include "io/output_internal.h"
 #include "io/case.h"
@@ -226,6 +228,17 @@ static rs_sweep_output *output_new(const rs_sweep_output_spec *spec)
   return o;
 }
 
+/* The writer attribute: "HOST PID" of the process writing the file, NUL-padded to a fixed
+ * length so that a resume rewrites it in place; rollsim status checks whether it still runs. */
+static void writer_text(char buf[RS_SWEEP_WRITER_LEN])
+{
+  char host[RS_SWEEP_WRITER_LEN - 24];
+  if (gethostname(host, sizeof host) != 0) snprintf(host, sizeof host, "unknown");
+  host[sizeof host - 1] = '\0';
+  memset(buf, 0, RS_SWEEP_WRITER_LEN);
+  snprintf(buf, RS_SWEEP_WRITER_LEN, "%s %ld", host, (long)getpid());
+}
+
 int rs_sweep_output_create(rs_sweep_output **outp, const rs_sweep_output_spec *spec, rs_msg *msg)
 {
   *outp = NULL;
@@ -237,13 +250,15 @@ int rs_sweep_output_create(rs_sweep_output **outp, const rs_sweep_output_spec *s
   if (status != RS_OK) return status;
   rs_sweep_output *o = output_new(spec);
   if (!o) return rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory");
-  status = rs_output_keep_old(spec->path, o->backup, sizeof o->backup, msg);
-  if (status != RS_OK) {
+  /* The layout is written to PATH.part (netCDF fills every point: the file has its full size
+   * from here on) and renamed over PATH, so a full disk leaves no file and the old one kept. */
+  char part[sizeof o->backup];
+  if ((size_t)snprintf(part, sizeof part, "%s.part", spec->path) >= sizeof part) {
     free_output(o);
-    return status;
+    return rs_msg_set(msg, RS_ERR_OUTPUT, "output file %s: name too long", spec->path);
   }
   size_t chunk = SWEEP_IO_CHUNK;
-  int err = nc__create(spec->path, NC_CLOBBER | NC_64BIT_OFFSET, 0, &chunk, &o->ncid);
+  int err = nc__create(part, NC_CLOBBER | NC_64BIT_OFFSET, 0, &chunk, &o->ncid);
   if (err) {
     free_output(o);
     return rs_output_nc_failure(msg, spec->path, "cannot create", err);
@@ -307,6 +322,9 @@ int rs_sweep_output_create(rs_sweep_output **outp, const rs_sweep_output_spec *s
   if (!err)
     err = rs_output_put_text(o->ncid, NC_GLOBAL, "case", spec->case_text ? spec->case_text : "");
   if (!err) err = nc_put_att_text(o->ncid, NC_GLOBAL, "status", RS_OUTPUT_STATUS_LEN, status_buf);
+  char writer[RS_SWEEP_WRITER_LEN];
+  writer_text(writer);
+  if (!err) err = nc_put_att_text(o->ncid, NC_GLOBAL, "writer", RS_SWEEP_WRITER_LEN, writer);
   /* room in the header for the history lines of resumes (rs_sweep_output_resume) */
   if (!err) err = nc__enddef(o->ncid, SWEEP_HEADER_FREE, 1, 0, 1);
   for (int a = 0; a < spec->naxes && !err; a++)
@@ -316,7 +334,14 @@ int rs_sweep_output_create(rs_sweep_output **outp, const rs_sweep_output_spec *s
   o->b.last_write = monotonic_seconds();
   if (err) {
     status = rs_output_nc_failure(msg, spec->path, "cannot write the sweep layout", err);
-    nc_close(o->ncid);
+  } else if ((status = rs_output_keep_old(spec->path, o->backup, sizeof o->backup, msg)) == RS_OK &&
+             rename(part, spec->path) != 0) {
+    status = rs_msg_set(msg, RS_ERR_OUTPUT, "output file %s: cannot rename %s to it: %s",
+                        spec->path, part, strerror(errno));
+  }
+  if (status != RS_OK) {
+    (void)nc_close(o->ncid);
+    (void)remove(part);
     free_output(o);
     return status;
   }
@@ -453,18 +478,28 @@ int rs_sweep_output_resume(rs_sweep_output **outp, const rs_sweep_output_spec *s
   char *old = err ? NULL : rs_output_get_text(o->ncid, NC_GLOBAL, "history");
   if (!err && !old) err = NC_ENOMEM;
   if (!err) {
-    const size_t hl = strlen(old) + strlen(spec->history ? spec->history : "") + 96;
+    const size_t hl = strlen(old) + strlen(spec->history ? spec->history : "") + 160;
     char *history = malloc(hl);
     if (!history) err = NC_ENOMEM;
     if (!err) {
-      snprintf(history, hl, "%s%s%s (resumed: %zu of %zu points were there)", old, *old ? "\n" : "",
-               spec->history ? spec->history : "", *kept, npoints);
+      char on[48] = "";
+      if (spec->ranks > 1) snprintf(on, sizeof on, "; resumed on %d MPI ranks", spec->ranks);
+      snprintf(history, hl, "%s%s%s (resumed: %zu of %zu points were there%s)", old,
+               *old ? "\n" : "", spec->history ? spec->history : "", *kept, npoints, on);
       char status_buf[RS_OUTPUT_STATUS_LEN];
       rs_output_status_text(status_buf, "running");
       err = nc_redef(o->ncid);
       if (!err) err = rs_output_put_text(o->ncid, NC_GLOBAL, "history", history);
       if (!err)
         err = nc_put_att_text(o->ncid, NC_GLOBAL, "status", RS_OUTPUT_STATUS_LEN, status_buf);
+      char writer[RS_SWEEP_WRITER_LEN];
+      writer_text(writer);
+      if (!err) err = nc_put_att_text(o->ncid, NC_GLOBAL, "writer", RS_SWEEP_WRITER_LEN, writer);
+      /* ranks: the most ranks any run of the file had (the rank variable's range) */
+      int ranks = 0;
+      if (!err && o->rank_id >= 0 && !nc_get_att_int(o->ncid, NC_GLOBAL, "ranks", &ranks) &&
+          spec->ranks > ranks)
+        err = nc_put_att_int(o->ncid, NC_GLOBAL, "ranks", NC_INT, 1, &spec->ranks);
       if (!err) err = nc__enddef(o->ncid, SWEEP_HEADER_FREE, 1, 0, 1);
       if (!err) err = nc_sync(o->ncid);
     }
@@ -632,7 +667,21 @@ int rs_sweep_output_close(rs_sweep_output *o, const char *status, rs_msg *msg)
   if (!err) err = nc_put_att_text(o->ncid, NC_GLOBAL, "status", RS_OUTPUT_STATUS_LEN, buf);
   int err2 = nc_close(o->ncid);
   int rc = RS_OK;
-  if (err || err2) rc = rs_output_nc_failure(msg, o->path, "cannot finish", err ? err : err2);
+  if (err || err2) {
+    rc = rs_output_nc_failure(msg, o->path, "cannot write the last points", err ? err : err2);
+    /* A full disk: the batches written before stay, and the status says so, rewritten in
+     * place through a fresh handle (the failed one keeps retrying its write). */
+    if (!strncmp(status, "complete", 8) || !strncmp(status, "running", 7)) {
+      char why[sizeof msg->text + 16];
+      snprintf(why, sizeof why, "failed: %s", msg->text);
+      rs_output_status_text(buf, why);
+    }
+    int ncid;
+    if (!nc_open(o->path, NC_WRITE, &ncid)) {
+      (void)nc_put_att_text(ncid, NC_GLOBAL, "status", RS_OUTPUT_STATUS_LEN, buf);
+      (void)nc_close(ncid);
+    }
+  }
   free_output(o);
   return rc;
 }

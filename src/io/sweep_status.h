@@ -15,6 +15,9 @@ typedef struct rs_sweep_file_status {
   char status[256];       /* the status attribute */
   time_t mtime;           /* the file's last modification */
   int state;              /* RS_SWEEP_COMPLETE, _FAILED or _INCOMPLETE */
+  char writer_host[160];  /* the writer attribute's host ("" in files without one) */
+  long writer_pid;
+  int writer_alive; /* 1 runs, 0 gone (both on this host), -1 cannot be checked */
 } rs_sweep_file_status;
 
 enum { RS_SWEEP_COMPLETE, RS_SWEEP_FAILED, RS_SWEEP_INCOMPLETE };

@@ -401,8 +401,13 @@ int rs_run(const rs_case *c, const rs_run_opts *o, rs_run_result *res, rs_msg *m
   rs_final_status(status, msg, why);
   rs_msg tmp;
   res->file_records = rs_output_records(s.out);
-  if (s.out && status != RS_ERR_OUTPUT) rs_output_set_status(s.out, why, &tmp);
-  int close_status = rs_output_close(s.out, status == RS_OK ? msg : &tmp);
+  int close_status;
+  if (status == RS_ERR_OUTPUT) {
+    close_status = rs_output_abandon(s.out, why, &tmp);
+  } else {
+    if (s.out) rs_output_set_status(s.out, why, &tmp);
+    close_status = rs_output_close(s.out, status == RS_OK ? msg : &tmp);
+  }
   if (status == RS_OK) status = close_status;
   res->wall_seconds = rs_wall_clock() - started;
   if (rig) rs_rig_run_free(rig);

@@ -384,6 +384,7 @@ int rs_sweep_run_dist(const rs_sweep *s, const rs_case *c, const rs_run_opts *o,
     else
       status = rs_sweep_output_create(&r.out, &spec, msg);
     if (status != RS_OK) {
+      res->file[0] = '\0'; /* none written, or the resumed one left as it was */
       /* the workers are waiting for lines: tell them to stop */
       r.next_line = r.nlines;
       while (r.stopped < size - 1 && serve(&r, 1) == RS_OK) {

@@ -103,8 +103,9 @@ def check_disk_full(rollsim, case, workdir):
         stdout, msg = expect_output_error(rollsim, case, path, "No space left on device", out)
         assert os.path.exists(path), f"{path}: the records written before the disk filled are gone"
         with netCDF4.Dataset(path) as ds:
-            # the run did not end normally; the status is not rewritten on a full disk
-            assert ds.status == "running", f"{path}: status {ds.status!r}"
+            # the status says why, rewritten in place (the header's bytes exist already)
+            assert ds.status.startswith("failed: ") and "No space left on device" in ds.status, \
+                f"{path}: status {ds.status!r}"
             nrec = check_records(ds, DT, MU, path)
         assert nrec >= 2, f"{path}: {nrec} records, expected the disk to fill later"
         assert summary_records(stdout) == nrec, \
@@ -112,6 +113,21 @@ def check_disk_full(rollsim, case, workdir):
         assert f"writing record {nrec} " in msg, f"the message names another record: {msg}"
         assert os.listdir(mnt) == ["full.nc"], f"left in {mnt}: {os.listdir(mnt)}"
         print(f"ok: disk full after {nrec} records: the file holds them, complete")
+    finally:
+        umount(mnt)
+
+    try:  # a sweep's file (77 KB) is allocated at creation: no point computed, no file
+        ok, why = mount_tmpfs(mnt, "size=64k")
+        assert ok, why
+        sweep_case = os.path.join(os.path.dirname(case), "creep_curves.yaml")
+        path = os.path.join(mnt, "sweep.nc")
+        p = subprocess.run([rollsim, "sweep", sweep_case, "-o", path, "--quiet"],
+                           capture_output=True, text=True)
+        assert p.returncode == 1 and "No space left on device" in p.stderr, \
+            f"sweep on a full disk: exit {p.returncode}: {p.stderr}"
+        assert "points solved" not in p.stdout, f"a summary without a file: {p.stdout}"
+        assert not os.listdir(mnt), f"left in {mnt}: {os.listdir(mnt)}"
+        print("ok: a sweep on a full disk: exit 1, nothing left")
     finally:
         umount(mnt)
 
