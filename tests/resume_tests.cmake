@@ -61,6 +61,11 @@ if(RS_MPI)
     COMMAND ${RS_RESUME_CHECK} ranks ${RS_BIN} ${RS_CASES}/creep_curves.yaml ${RS_RESUME}/ranks
       --mpi ${RS_MPIRUN} -- ${RS_RESUME_SETS})
   set_tests_properties(sweep_resume_ranks PROPERTIES TIMEOUT 120)
+  # Ctrl-C of an MPI sweep (SIGINT to the job's process group), then --resume
+  add_test(NAME sweep_resume_mpi_ctrlc
+    COMMAND ${RS_RESUME_CHECK} term ${RS_BIN} ${RS_CASES}/creep_curves.yaml ${RS_RESUME}/ctrlc
+      --mpi ${RS_MPIRUN} -- ${RS_RESUME_SETS})
+  set_tests_properties(sweep_resume_mpi_ctrlc PROPERTIES TIMEOUT 180)
   # refused under MPI: rank 0 checks, tells the other ranks to stop, exit 2, file unchanged
   add_test(NAME sweep_resume_mpi_refused
     COMMAND ${CMAKE_COMMAND} -E chdir ${RS_RESUME}/refuse sh -c
