@@ -56,3 +56,21 @@ rs_unit_test(test_3d_transient)
 rs_unit_test(test_3d_friction)
 # Hou's single element with a change of loading direction (the disk law, flow parallel to p).
 rs_unit_test(test_hou_element)
+
+# Energy balance of steady rolling (docs/model.md §7): the deficit of the frictional plus
+# plastic dissipation against the rigid slip's work rate is the first-order upwind scheme's
+# numerical dissipation, so it halves with the cell size (observed order in [0.8, 1.2]),
+# elastic and plastic, 2D and 3D (with lateral creepage and spin).
+set(RS_ENERGY ${SYSTEM_PYTHON3} ${RS_TESTS}/check_energy_balance.py ${RS_BIN})
+add_test(NAME energy_balance_order_2d
+  COMMAND ${RS_ENERGY} ${RS_CASES}/carter2d.yaml ${CMAKE_CURRENT_BINARY_DIR}/energy/2d 100 200 400)
+add_test(NAME energy_balance_order_2d_plastic
+  COMMAND ${RS_ENERGY} ${RS_CASES}/carter_plast.yaml ${CMAKE_CURRENT_BINARY_DIR}/energy/2dp
+    100 200 400 -- --set plasticity.k_rel=0.6)
+add_test(NAME energy_balance_order_3d
+  COMMAND ${RS_ENERGY} ${PROJECT_SOURCE_DIR}/bench/cases/hertz3d.yaml
+    ${CMAKE_CURRENT_BINARY_DIR}/energy/3d 16x16 32x32 64x64)
+add_test(NAME energy_balance_order_3d_plastic
+  COMMAND ${RS_ENERGY} ${PROJECT_SOURCE_DIR}/bench/cases/hertz3d.yaml
+    ${CMAKE_CURRENT_BINARY_DIR}/energy/3dp 16x16 32x32 64x64
+    -- --set plasticity.tau_c0=150 --set plasticity.k_rel=0.3)
