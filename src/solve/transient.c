@@ -47,13 +47,11 @@ static void ida_counters(const rs_transient *tr, rs_stats *st)
   IDAGetNumResEvals(tr->ida, &st->res_evals);
 }
 
-/* IDA's error weights in 3D: 1/(rtol |v| + atol) with |v| the length of the cell's traction
- * (or plastic displacement) vector for both of its components, instead of each component's
- * own size. A component that is zero by symmetry (p_y of a slipping cell on the centre line
- * under longitudinal creepage) otherwise gets the weight 1/atol: its direction, set by a
- * slip velocity that is 1e-5 of |v_s| across the slip, then carries Newton's inexactness
- * of 1e-3 N/mm^2 into the error test, which fails at every step size (docs/model.md §9).
- * The length is what the component errors are compared with in a rotated frame too. */
+/* IDA's error weights in 3D: 1/(rtol |v| + atol) for both components of a cell's traction
+ * (and plastic displacement), |v| the vector's length, instead of each component's own size.
+ * A component that is zero by symmetry (p_y of a slipping cell on the centre line) would be
+ * held to atol, while its direction follows the slip direction and so the Newton solve's
+ * inexactness: the error test then fails at every step size (docs/model.md §9). */
 static int error_weights(N_Vector yv, N_Vector ewt, void *data)
 {
   const rs_transient *tr = data;
