@@ -11,3 +11,12 @@ endforeach()
 add_test(NAME threed_weak_hardening
          COMMAND ${SYSTEM_PYTHON3} ${RS_TESTS}/check_weak_hardening.py ${RS_BIN}
                  ${CMAKE_CURRENT_BINARY_DIR}/threed/weak_hardening)
+# Issue 42: a 3D transient in heavy sliding with softening (xi -25 %, k_rel -0.001, 22 x 22 and
+# 44 x 44 cells) finishes within a step budget and its limit is the steady state
+# (tests/check_heavy_sliding.py).
+foreach(cells 22 44)
+  add_test(NAME threed_heavy_sliding_${cells}
+           COMMAND ${SYSTEM_PYTHON3} ${RS_TESTS}/check_heavy_sliding.py ${RS_BIN}
+                   ${CMAKE_CURRENT_BINARY_DIR}/threed/heavy_sliding_${cells} ${cells})
+  set_tests_properties(threed_heavy_sliding_${cells} PROPERTIES TIMEOUT 150)
+endforeach()

@@ -143,6 +143,25 @@ static int check_cells(const rs_model *m, const rs_work *w, const double *y, dou
     if (r * fabs(w->dustar[i] - fa) > tol)
       return refuse(msg, m, i, "u* does not grow with |Du_pl/Dt|", px, w->dustar[i], "Du*/Dt",
                     "mm/s");
+    /* Softening: a flowing cell whose upstream neighbour does not flow and whose bound lies
+     * below the yield limit of the material entering it. That material slides before it
+     * can yield; the cell yields only because its own flow, through the jump of u* across
+     * one cell of the upwind difference, lowers tau_c below g. A zero of the discrete
+     * equations (the cell keeps itself soft) that no transient from fresh material reaches
+     * and that has no continuum counterpart (u* is continuous along the material path). */
+    if (m->par.plasticity.k_tau < 0.0 && r * fa > tol) {
+      const int up = rs_grid_upstream(&m->grid, i);
+      const int iy = i / m->grid.nx;
+      double up_flow = 0.0;
+      for (int c = 0; c < nc && up >= 0; c++) up_flow += w->dupl[c * n + up] * w->dupl[c * n + up];
+      const double us_up = up >= 0 ? y[rs_at_ustar(L, up)] : w->inflow[iy * (nc + 1) + nc];
+      const double tauc_up = rs_model_yield_limit(m, us_up);
+      if (!(r * sqrt(up_flow) > tol) && g < tauc_up - tol)
+        return refuse(msg, m, i,
+                      "plastic flow where the material entering the cell slides before it "
+                      "yields (softening within one cell)",
+                      px, tauc_up, "tau_c upstream", "N/mm^2");
+    }
   }
   return RS_OK;
 }

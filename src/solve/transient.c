@@ -20,6 +20,7 @@ struct rs_transient {
   SUNContext own_ctx; /* created here when the caller gave none */
   void *ida;
   N_Vector y, yp, atol;
+  double rtol;
   SUNNonlinearSolver nls;
   rs_linsys ls;
   SUNLinearSolver gmres; /* 3D: Newton-Krylov with kry */
@@ -44,6 +45,34 @@ static void ida_counters(const rs_transient *tr, rs_stats *st)
   IDAGetNumNonlinSolvConvFails(tr->ida, &st->nonlin_fails);
   IDAGetNumErrTestFails(tr->ida, &st->err_test_fails);
   IDAGetNumResEvals(tr->ida, &st->res_evals);
+}
+
+/* IDA's error weights in 3D: 1/(rtol |v| + atol) for both components of a cell's traction
+ * (and plastic displacement), |v| the vector's length, instead of each component's own size.
+ * A component that is zero by symmetry (p_y of a slipping cell on the centre line) would be
+ * held to atol, while its direction follows the slip direction and so the Newton solve's
+ * inexactness: the error test then fails at every step size (docs/model.md §9). */
+static int error_weights(N_Vector yv, N_Vector ewt, void *data)
+{
+  const rs_transient *tr = data;
+  const rs_layout *L = &tr->m->lay;
+  const double *y = N_VGetArrayPointer(yv), *at = N_VGetArrayPointer(tr->atol);
+  double *w = N_VGetArrayPointer(ewt);
+  for (int k = 0; k < L->neq; k++) w[k] = tr->rtol * fabs(y[k]) + at[k];
+  for (int I = 0; I < L->n; I++) {
+    const int vec[2][2] = {{rs_at_p(L, 0, I), rs_at_p(L, 1, I)},
+                           {rs_at_upl(L, 0, I), rs_at_upl(L, 1, I)}};
+    for (int q = 0; q < 2; q++) {
+      const double len = sqrt(y[vec[q][0]] * y[vec[q][0]] + y[vec[q][1]] * y[vec[q][1]]);
+      w[vec[q][0]] = tr->rtol * len + at[vec[q][0]];
+      w[vec[q][1]] = tr->rtol * len + at[vec[q][1]];
+    }
+  }
+  for (int k = 0; k < L->neq; k++) {
+    if (!(w[k] > 0.0)) return -1;
+    w[k] = 1.0 / w[k];
+  }
+  return 0;
 }
 
 /* The inputs at time t (held ones when frozen). */
@@ -180,8 +209,12 @@ int rs_transient_create(rs_transient **out, const rs_model *m, SUNContext ctx, d
   tr->ida = IDACreate(ctx);
   RS_SUN_CHECK(tr->ida == NULL, msg, what);
   RS_SUN_CHECK(IDAInit(tr->ida, dae_residual, t0, tr->y, tr->yp), msg, what);
-  RS_SUN_CHECK(IDASVtolerances(tr->ida, o->rtol, tr->atol), msg, what);
   RS_SUN_CHECK(IDASetUserData(tr->ida, tr), msg, what);
+  tr->rtol = o->rtol;
+  if (L->ncomp == 2)
+    RS_SUN_CHECK(IDAWFtolerances(tr->ida, error_weights), msg, what);
+  else
+    RS_SUN_CHECK(IDASVtolerances(tr->ida, o->rtol, tr->atol), msg, what);
   RS_SUN_CHECK(IDASetNonlinearSolver(tr->ida, tr->nls), msg, what);
   RS_SUN_CHECK(IDASetMaxOrd(tr->ida, o->max_order), msg, what);
   RS_SUN_CHECK(IDASetMaxNumSteps(tr->ida, o->max_steps > 0 ? o->max_steps : 1000000), msg, what);
