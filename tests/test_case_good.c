@@ -131,7 +131,7 @@ static void test_minimal_defaults(void)
         c.creepage.value == -0.0004 && c.shift_velocity.value == 0.0);
   CHECK(c.mode == RS_MODE_TRANSIENT && c.end_time == 0.0004 && c.rolled_distance < 0 &&
         c.output_interval == 1.0e-6 && c.initial_state == RS_START_REST);
-  CHECK(c.rtol == 1.0e-6 && c.atol == 1.0e-9 && c.max_order == 5);
+  CHECK(c.rtol == 0.0 && c.atol == 1.0e-9 && c.max_order == 5); /* rtol 0: auto */
   CHECK(c.scaling == RS_SCALING_AUTO && c.max_steps == 1000000);
   CHECK(!strcmp(c.output_file, "results/minimal.nc"));
   CHECK(c.fields == 0x7fu);
@@ -215,6 +215,16 @@ static void test_sets(void)
   CHECK(c.rolled_distance == 3.0 && fabs(c.end_time - 1e-4) < 1e-18);
   rs_case_free(&c);
 
+  /* solver.rtol: auto (stored as 0, resolved per run) and back to a number */
+  const char *rtol_auto[] = {"solver.rtol=auto"};
+  if (load(&c, "full.yaml", rtol_auto, 1) != RS_OK) return;
+  CHECK(c.rtol == 0.0);
+  rs_case_free(&c);
+  const char *rtol_number[] = {"solver.rtol=3e-3"};
+  if (load(&c, "minimal.yaml", rtol_number, 1) != RS_OK) return;
+  CHECK(c.rtol == 3e-3);
+  rs_case_free(&c);
+
   /* plasticity=null switches the block off */
   const char *off[] = {"plasticity=null"};
   if (load(&c, "full.yaml", off, 1) != RS_OK) return;
@@ -294,6 +304,7 @@ static void test_print(void)
                         "\nmaterial.shear_modulus: 82000  # N/mm^2\n",
                         "\ncontact.normal_load: 178.9  # N/mm\n",
                         "\nsolver.scaling: auto\n",
+                        "\nsolver.rtol: auto  # 1 (2D: 1e-6; 3D: 0.06 dx/a within [1e-6, 3e-3])\n",
                         "\nsolver.max_steps: 1000000",
                         "\noutput.file: \"results/k_rel.nc\"\n",
                         "\noutput.fields: [px, pn, slip, upl, ustar, tauc, regime]\n"};

@@ -20,3 +20,10 @@ foreach(cells 22 44)
                    ${CMAKE_CURRENT_BINARY_DIR}/threed/heavy_sliding_${cells} ${cells})
   set_tests_properties(threed_heavy_sliding_${cells} PROPERTIES TIMEOUT 150)
 endforeach()
+
+# Issue 47: a 3D start-up at the default tolerance (auto), 22 x 22 cells over 10 contact
+# lengths: the rule's rtol, steps per cell passage, Newton iterations per step and near-field
+# factorisations per iteration (tests/check_transient_counts_3d.py).
+add_test(NAME threed_transient_counts
+         COMMAND ${SYSTEM_PYTHON3} ${RS_TESTS}/check_transient_counts_3d.py ${RS_BIN}
+                 ${CMAKE_CURRENT_BINARY_DIR}/threed/transient_counts)

@@ -47,7 +47,7 @@ static void set_defaults(rs_case_input *in)
   c->rolled_distance = -1.0;
   c->output_interval = 1.0e-6;
   c->initial_state = RS_START_REST;
-  c->rtol = 1.0e-6;
+  c->rtol = 0.0; /* auto */
   c->atol = 1.0e-9;
   c->max_order = 5;
   c->threads = 1;
@@ -977,6 +977,10 @@ void rs_case_print(const rs_case *c, FILE *out)
     }
     if (!strcmp(k->path, "grid.extent") && c->grid_from_range) {
       fprintf(out, "%s: null  # Hertz half-widths (not given: grid.x_range)\n", k->path);
+      continue;
+    }
+    if (!strcmp(k->path, "solver.rtol") && c->rtol == 0.0) {
+      fprintf(out, "%s: auto  # 1 (2D: 1e-6; 3D: 0.06 dx/a within [1e-6, 3e-3])\n", k->path);
       continue;
     }
     if (!strcmp(k->path, "simulation.rolled_distance") && c->rolled_distance < 0) {

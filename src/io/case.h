@@ -109,7 +109,7 @@ typedef struct rs_case {
   rs_initial_state initial_state;
 
   /* solver: */
-  double rtol, atol; /* atol in N/mm^2 (tractions) */
+  double rtol, atol; /* atol in N/mm^2 (tractions); rtol 0: auto (rs_transient_auto_rtol) */
   int max_order;
   int threads;        /* solver.threads: 1, or 2 for the 3D work a solve splits in two */
   rs_scaling scaling; /* solver.scaling: auto | difference | self */

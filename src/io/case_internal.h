@@ -97,6 +97,7 @@ enum {
   RS_KEY_DERIVED = 1 << 3,   /* not stored as given (k_rel), printed from the case */
   RS_KEY_HI_ABSURD = 1 << 4, /* hi is a sanity bound, not a physical one */
   RS_KEY_WHOLE = 1 << 5,     /* RS_KEY_VECTOR of whole numbers */
+  RS_KEY_AUTO = 1 << 7,      /* RS_KEY_NUMBER that may be `auto` (stored as 0) */
   RS_KEY_XY = 1 << 6         /* RS_KEY_HISTORY that may be a list [x, y] of two histories (3D),
                                 the second into the rs_history after the field */
 };

@@ -142,7 +142,8 @@ const rs_case_key rs_case_keys[] = {
      initial_state_names},
 
     {"solver", RS_KEY_SECTION, 0, "", 0, 0, 0, NULL},
-    {"solver.rtol", RS_KEY_NUMBER, F(c.rtol), "", 0, 1, RS_KEY_LO_OPEN | RS_KEY_HI_OPEN, NULL},
+    {"solver.rtol", RS_KEY_NUMBER, F(c.rtol), "", 0, 1,
+     RS_KEY_LO_OPEN | RS_KEY_HI_OPEN | RS_KEY_AUTO, NULL},
     {"solver.atol", RS_KEY_NUMBER, F(c.atol), "N/mm^2", 0, BIG, RS_KEY_LO_OPEN | RS_KEY_HI_ABSURD,
      NULL},
     {"solver.max_order", RS_KEY_INTEGER, F(c.max_order), "", 1, 5, 0, NULL},
@@ -327,6 +328,17 @@ int rs_case_parse_value(const rs_case_doc *d, const rs_case_key *spec, const yam
   int status, choice = 0;
   switch (spec->kind) {
   case RS_KEY_NUMBER:
+    if ((spec->flags & RS_KEY_AUTO) && n->type == YAML_SCALAR_NODE &&
+        n->data.scalar.style == YAML_PLAIN_SCALAR_STYLE &&
+        !strcmp((const char *)n->data.scalar.value, "auto")) {
+      *(double *)field = 0.0;
+      return RS_OK;
+    }
+    if ((spec->flags & RS_KEY_AUTO) && rs_case_number(d, n, spec->path, &x) != RS_OK) {
+      char got[96];
+      return rs_case_error(d, n, spec->path, "expected a number or auto, got %s",
+                           rs_case_describe(n, got, sizeof got));
+    }
     if ((status = rs_case_number(d, n, spec->path, &x)) != RS_OK ||
         (status = rs_case_check_range(d, n, spec, spec->path, x)) != RS_OK)
       return status;

@@ -361,6 +361,10 @@ static int define_file(rs_output *out, const rs_output_spec *spec, const char **
        (err = nc_put_att_double(ncid, NC_GLOBAL, "hertz_load", NC_DOUBLE, 1, &spec->hertz_load))))
     return err;
 
+  if (spec->rtol > 0.0 &&
+      (err = nc_put_att_double(ncid, NC_GLOBAL, "solver_rtol", NC_DOUBLE, 1, &spec->rtol)))
+    return err;
+
   *what = "defining coordinate variables";
   if ((err = nc_def_var(ncid, "time", NC_DOUBLE, 1, &time_dim, &out->time_id)) ||
       (err = rs_output_put_text(ncid, out->time_id, "units", "s")) ||

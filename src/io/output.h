@@ -41,6 +41,9 @@ typedef struct rs_output_spec {
   /* 3D: the Hertz semi-axes (mm) at the load hertz_load (N, the run's largest), written as
    * the global attributes hertz_a, hertz_b, hertz_load (0: none written). */
   double hertz_a, hertz_b, hertz_load;
+  /* Transient runs: IDA's relative tolerance as run (solver.rtol, `auto` resolved), written
+   * as the global attribute solver_rtol (0: none written). */
+  double rtol;
 } rs_output_spec;
 
 /* One record. Scalars per docs/model.md §7; field arrays have n = nx (3D: nx ny, y slowest)

@@ -25,6 +25,7 @@ typedef struct nls_content {
   N_Vector uscale, fscale;
   double *ybuf, *ypbuf;
   long last_iters, last_fails; /* of the last solve only: IDA accumulates both */
+  double forcing, tol_cur;     /* Krylov: the largest forcing term; IDA's tolerance of this solve */
   /* Direct path (no kry): the Newton iteration's own vectors, and what the factorisation
    * held by ls was set up at: its c_j and the branches of its cells. */
   N_Vector fval, delta, rhs;
@@ -35,10 +36,32 @@ typedef struct nls_content {
 
 #define CONTENT(nls) ((nls_content *)(nls)->content)
 
+/* Largest |v_i| s_i. */
+static double scaled_max_norm(N_Vector v, N_Vector scale)
+{
+  const double *x = N_VGetArrayPointer(v), *s = N_VGetArrayPointer(scale);
+  const sunindextype len = N_VGetLength(v);
+  double norm = 0.0;
+  for (sunindextype i = 0; i < len; i++) norm = fmax(norm, fabs(x[i]) * s[i]);
+  return norm;
+}
+
+/* Newton-Krylov's forcing term from the residual of a new iterate: GMRES reduces the scaled
+ * residual to about the Newton test (eta = tol / |F|_max), so that an iteration in an
+ * unchanged regime set is the last one, within [ETA_MIN, forcing]: the constant term forcing
+ * alone stopped short of the test and cost another Newton iteration (a residual with its laws
+ * and a set-up). KINSOL reads the term at the start of an iteration, so it is set at each
+ * residual. */
+#define ETA_MIN 1e-3
 static int kin_residual(N_Vector ycor, N_Vector f, void *data)
 {
   nls_content *c = data;
   const int flag = c->sysfn(ycor, f, c->ida_mem);
+  if (flag == 0) {
+    const double fmax_norm = scaled_max_norm(f, c->fscale);
+    const double eta = fmax_norm > 0.0 ? c->tol_cur / fmax_norm : c->forcing;
+    KINSetEtaConstValue(c->kmem, fmin(fmax(eta, ETA_MIN), c->forcing));
+  }
   return flag < 0 ? -1 : (flag > 0 ? 1 : 0); /* > 0 recoverable: KINSOL/IDA try again */
 }
 
@@ -99,16 +122,6 @@ static SUNNonlinearSolver_Type nls_gettype(SUNNonlinearSolver nls)
 {
   (void)nls;
   return SUNNONLINEARSOLVER_ROOTFIND;
-}
-
-/* Largest |v_i| s_i. */
-static double scaled_max_norm(N_Vector v, N_Vector scale)
-{
-  const double *x = N_VGetArrayPointer(v), *s = N_VGetArrayPointer(scale);
-  const sunindextype len = N_VGetLength(v);
-  double norm = 0.0;
-  for (sunindextype i = 0; i < len; i++) norm = fmax(norm, fabs(x[i]) * s[i]);
-  return norm;
 }
 
 /* The length of a Newton step d from the point u as KINSOL measures it (its scaled step
@@ -250,6 +263,7 @@ static int nls_solve(SUNNonlinearSolver nls, N_Vector y0, N_Vector ycor, N_Vecto
    * GMRES solves and stop at tol itself: the max norm bounds IDA's weighted RMS norm, so
    * this is still IDA's own Newton test at least, and the forces stay as close to a
    * tight-tolerance run as before. */
+  c->tol_cur = tol;
   KINSetFuncNormTol(c->kmem, tol);
   KINSetScaledStepTol(c->kmem, tol);
   N_VConst(0.0, ycor);
@@ -379,6 +393,7 @@ SUNNonlinearSolver rs_nls_kinsol_create(const rs_model *m, rs_work *w, rs_linsys
     return nls;
   }
   c->kmem = KINCreate(ctx);
+  c->forcing = forcing;
   c->kry = kry;
   /* each set-up call on its own (the caller reports a NULL solver) */
   if (!c->kmem || KINInit(c->kmem, kin_residual, tmpl) != 0 || KINSetUserData(c->kmem, c) != 0 ||

@@ -4,7 +4,8 @@
  * linear algebra (ls, linsys.h: KLU on the whole matrix, or the Schur-complement solver
  * of linsys_reduced.h): modified Newton that keeps a factorisation across iterations and
  * steps while no cell changes regime and c_j stays within a factor 4, and sets up a fresh
- * one otherwise. Newton-Krylov (kry): KINSOL's exact Newton. */
+ * one otherwise. Newton-Krylov (kry): KINSOL's exact Newton,
+ * its linear solves as precise as the Newton test needs. */
 #ifndef ROLLSIM_NLS_KINSOL_H
 #define ROLLSIM_NLS_KINSOL_H
 
@@ -24,8 +25,9 @@ typedef struct rs_nls_host {
 
 /* The linear algebra: ls (direct: KLU or the Schur complement), or Newton-Krylov with
  * kry's near-field preconditioner and exact products in the SPGMR solver gmres (kry
- * non-NULL; ls then unused), GMRES stopping at the fraction forcing of the residual's
- * norm. max_iters: Newton iterations per step before the step is declared failed. */
+ * non-NULL; ls then unused), GMRES reducing the residual to about the Newton test, by a
+ * factor forcing at least. max_iters: Newton iterations per step before the step is
+ * declared failed. */
 SUNNonlinearSolver rs_nls_kinsol_create(const rs_model *m, rs_work *w, rs_linsys *ls,
                                         rs_krylov *kry, SUNLinearSolver gmres, double forcing,
                                         rs_nls_host host, int max_iters, N_Vector tmpl,

@@ -66,6 +66,12 @@ typedef struct rs_transient_opts {
   const rs_inputs *frozen;
 } rs_transient_opts;
 
+/* solver.rtol: auto (docs/model.md §9, "Tolerances"): the relative tolerance that keeps the
+ * time integration's error below the grid's own discretisation error. 2D: 1e-6; 3D:
+ * 0.06 dx/a (dx the cell length along x, a the Hertz semi-axis along x), at most 3e-3 (the
+ * 44 x 44 grid over 1.1 a each way) and at least 1e-6. */
+double rs_transient_auto_rtol(const rs_model *m);
+
 /* y0, yp0: a consistent initial state (see rs_model_consistent_rates). */
 int rs_transient_create(rs_transient **tr, const rs_model *m, SUNContext ctx, double t0,
                         const double *y0, const double *yp0, const rs_transient_opts *opts,

@@ -114,7 +114,7 @@ static int run_transient(run_state *s, const rs_run_opts *o, rs_run_result *res,
                          double started, rs_rig_run *rig, rs_msg *msg)
 {
   const rs_case *c = s->c;
-  rs_transient_opts topts = {.rtol = c->rtol,
+  rs_transient_opts topts = {.rtol = res->rtol,
                              .atol = c->atol,
                              .max_order = c->max_order,
                              .max_steps = c->max_steps,
@@ -273,6 +273,7 @@ int rs_run(const rs_case *c, const rs_run_opts *o, rs_run_result *res, rs_msg *m
   const int n = s.m.grid.n, neq = s.m.lay.neq;
   res->mu = s.m.par.friction.mu;
   res->dx = s.m.grid.dx;
+  res->rtol = c->rtol > 0.0 ? c->rtol : rs_transient_auto_rtol(&s.m);
   s.y = calloc((size_t)neq, sizeof *s.y);
   s.yp = calloc((size_t)neq, sizeof *s.yp);
   s.slip = calloc((size_t)n * (size_t)s.m.lay.ncomp, sizeof *s.slip);
@@ -349,7 +350,8 @@ int rs_run(const rs_case *c, const rs_run_opts *o, rs_run_result *res, rs_msg *m
                          .rig = rig ? &rig_spec : NULL,
                          .hertz_a = s.m.hertz_a,
                          .hertz_b = s.m.hertz_b,
-                         .hertz_load = s.m.normal_load};
+                         .hertz_load = s.m.normal_load,
+                         .rtol = c->mode == RS_MODE_TRANSIENT ? res->rtol : 0.0};
   if (o->no_output)
     status = RS_OK;
   else if (o->append)

@@ -59,6 +59,7 @@ typedef struct rs_run_result {
   double rig_revolutions;
   double dx;           /* cell size, mm */
   double rolled;       /* transient: distance rolled from the start to the last record, mm */
+  double rtol;         /* transient: the relative tolerance run (solver.rtol, auto resolved) */
   char backup[1040];   /* an older file at the output path kept under this name, or "" */
   size_t file_records; /* records in the output file (more than records with append) */
 } rs_run_result;
