@@ -25,21 +25,6 @@ int rs_krylov_create(rs_krylov *k, const rs_model *m, int band, int band_y)
   k->sig_factored = malloc((size_t)m->lay.n * sizeof *k->sig_factored);
   k->y_ev = malloc((size_t)neq * sizeof *k->y_ev);
   k->yp_ev = malloc((size_t)neq * sizeof *k->yp_ev);
-  /* the coarse space: 3D with two components and no extra unknowns, two aggregates or more
-   * each way */
-  const int wide = m->grid.nx > m->grid.ny ? m->grid.nx : m->grid.ny;
-  int size = (wide + RS_KRYLOV_COARSE_MAX - 1) / RS_KRYLOV_COARSE_MAX;
-  if (size < RS_KRYLOV_COARSE_CELLS) size = RS_KRYLOV_COARSE_CELLS;
-  if (m->el.dim == 3 && m->lay.ncomp == 2 && m->lay.nextra == 0 && m->grid.nx >= 2 * size &&
-      m->grid.ny >= 2 * size) {
-    k->zc = calloc((size_t)neq, sizeof *k->zc);
-    k->jzc = malloc((size_t)neq * sizeof *k->jzc);
-    if (!k->zc || !k->jzc || rs_coarse_create(&k->coarse, m, size, size) != RS_OK) {
-      rs_krylov_free(k);
-      return RS_ERR_INTERNAL;
-    }
-    k->coarse_on = 1;
-  }
   if (!k->near.rowptr || !k->near.col || !k->near.val || !k->rp_old || !k->sig_factored ||
       !k->y_ev || !k->yp_ev || rs_work_create(&k->w, m) != RS_OK ||
       rs_work_create_kinematics(&k->wlin, m) != RS_OK) {
@@ -81,9 +66,6 @@ static void parts_free(rs_krylov *k)
 
 void rs_krylov_free(rs_krylov *k)
 {
-  if (k->coarse_on) rs_coarse_free(&k->coarse);
-  free(k->zc);
-  free(k->jzc);
   parts_free(k);
   rs_ylink_free(&k->yl);
   rs_work_free(&k->w);
@@ -361,12 +343,7 @@ int rs_krylov_setup(rs_krylov *k, const rs_inputs *in, const double *y, const do
   k->ev_valid = 0;
   if (!evaluated) k->w_at_ev = 0;
   int status = evaluated ? RS_OK : rs_model_linearise(k->m, &k->w, in, y, yp, cj);
-  k->refreshed_all = 0;
   if (status == RS_OK) status = setup_linearised(k, in, cj);
-  /* the coarse operator lags as the near field does: rebuilt when every line is refactored */
-  k->coarse_use = k->coarse_on && cj > 0.0;
-  if (status == RS_OK && k->coarse_use && (k->refreshed_all || !k->coarse.ready))
-    status = rs_coarse_setup(&k->coarse, k->m, &k->w, cj, in->velocity);
   /* the line Gauss-Seidel's couplings of this linearisation, gathered once for the solves
    * (each read the cells' local laws and the kernel's entries before) */
   if (status == RS_OK && k->ylink && k->nparts > 1)
@@ -457,7 +434,6 @@ static int setup_linearised(rs_krylov *k, const rs_inputs *in, double cj)
     }
     mark_refresh(k, all);
   }
-  k->refreshed_all = all;
   for (int q = 0; q < k->nparts; q++) {
     const int i0 = lines ? q * nx : 0, i1 = lines ? i0 + nx : m->lay.n;
     for (int i = i0; i < i1 && k->refresh[q]; i++)
@@ -545,57 +521,7 @@ static int solve_part(rs_klu_part *p, double *v)
   return RS_OK;
 }
 
-/* Jy = J y for a y with traction entries only (the coarse correction Z e), as rs_model_jv
- * computes it (the same sums bit for bit): the elastic product of the tractions, their
- * kinematics (v_s = cj u - V/dx (u_up - u), u = A p + h3/G3 p; no plastic displacements),
- * the local Jacobians' entries in p and v_s. */
-static void times_traction(rs_krylov *k, const double *y, double *Jy)
-{
-  const rs_model *m = k->m;
-  const rs_layout *L = &m->lay;
-  const rs_work *w = &k->w;
-  const int nx = m->grid.nx, ny = m->grid.ny, px = nx + 1, mem = L->memory;
-  rs_work *wl = &k->wlin;
-  rs_elastic_op_tang(&m->el, &wl->ew, y + rs_at_p(L, 0, 0), wl->uel, 1);
-  const double c3 = m->layer_flex, a = k->in.velocity / m->grid.dx, cj = k->cj;
-  for (int iy = 0; iy < ny; iy++)
-    for (int ix = 0; ix < nx; ix++) {
-      const int I = iy * nx + ix;
-      double d[RS_LAW_NVAR] = {0.0};
-      for (int c = 0; c < 2; c++) {
-        const double *u = wl->uel + (size_t)c * px * ny + (size_t)iy * px,
-                     *p = y + rs_at_p(L, c, 0);
-        const double ui = u[ix] + c3 * p[I], uup = u[ix + 1] + (ix + 1 < nx ? c3 * p[I + 1] : 0.0);
-        d[rs_law_var_p(c)] = p[I];
-        d[rs_law_var_vs(2, c)] = cj * ui - a * (uup - ui);
-      }
-      double sum[RS_LAW_NROW] = {0.0};
-      for (int e = w->jv_start[I]; e < w->jv_start[I + 1]; e++)
-        sum[w->jv_idx[e] >> 4] += w->jv_val[e] * d[w->jv_idx[e] & 15];
-      for (int c = 0; c < 2; c++) {
-        Jy[rs_at_p(L, c, I)] = sum[c];
-        Jy[rs_at_upl(L, c, I)] = sum[2 + c];
-      }
-      Jy[rs_at_ustar(L, I)] = sum[4];
-      if (mem) Jy[rs_at_mu(L, I)] = sum[5];
-    }
-}
-
-static int near_psolve(rs_krylov *k, double *v);
-
 int rs_krylov_psolve(rs_krylov *k, double *v)
-{
-  if (!k->coarse_use || !k->coarse.ready) return near_psolve(k, v);
-  const int neq = k->m->lay.neq;
-  rs_coarse_solve(&k->coarse, k->m, v, k->zc);
-  times_traction(k, k->zc, k->jzc);
-  for (int i = 0; i < neq; i++) v[i] -= k->jzc[i];
-  const int status = near_psolve(k, v);
-  for (int i = 0; i < neq; i++) v[i] += k->zc[i];
-  return status;
-}
-
-static int near_psolve(rs_krylov *k, double *v)
 {
   if (k->nparts == 1) return solve_part(&k->part[0], v);
   if (k->nparts < 2) return RS_ERR_SOLVER;

@@ -17,7 +17,6 @@
 #include <stdint.h>
 
 #include "physics/model.h"
-#include "solve/linsys_coarse.h"
 #include "solve/linsys_lanes.h"
 
 /* A part of the near field that KLU factors on its own: the whole matrix, or (3D) the
@@ -74,11 +73,6 @@ typedef struct rs_krylov {
   rs_inputs in_ev;
   int ev_valid;
   int w_at_ev; /* w holds the evaluation at that point (until a set-up elsewhere) */
-  /* the coarse space (coarse_on: the model has one; coarse_use: the last set-up's cj > 0),
-   * rebuilt with every set-up that refactors every line; zc, jzc: Z e and J Z e */
-  rs_coarse coarse;
-  int coarse_on, coarse_use, refreshed_all;
-  double *zc, *jzc;
 } rs_krylov;
 
 /* 3D near field: the cell's own line along x, 4 cells each way. The steady rolling
@@ -95,12 +89,6 @@ enum { RS_KRYLOV_BAND_3D = 4, RS_KRYLOV_BAND_3D_Y = 0 };
  * a product of O(n band). Truncating the kernel in y inside the factored matrix makes the
  * preconditioner ill-conditioned; here the couplings only enter a right-hand side. The
  * sweep saves about a third of the GMRES iterations. */
-/* 3D set-ups with cj > 0 (transient steps, the steady solver's pseudo-time) add a coarse
- * space (linsys_coarse.h): y = Z E^-1 Z^T v, then the near field on what it leaves,
- * P^-1 v = y + M^-1 (v - J y) (two-level, multiplicative; J y costs one elastic product).
- * RS_KRYLOV_COARSE_CELLS: cells per aggregate side, at least; grids wider than
- * RS_KRYLOV_COARSE_MAX aggregates take larger ones (E is dense). */
-enum { RS_KRYLOV_COARSE_CELLS = 4, RS_KRYLOV_COARSE_MAX = 24 };
 /* The transient's near field: half width 2 along x. With c_j in the iteration matrix the
  * GMRES count hardly depends on the width (within 5 % from 1 to 4 cells), and the narrower
  * band halves KLU's triangular solves. */
