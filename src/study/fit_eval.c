@@ -14,6 +14,8 @@
 #include "study/run.h"
 #include "study/sweep_lines.h"
 
+#define FIT_RTOL 1e-6
+
 /* Relative forward-difference step in p: about the square root of the accuracy of a
  * steady solution (Newton converged to ~1e-12 relative), times the parameter's scale. */
 #define FD_STEP 1e-6
@@ -47,7 +49,11 @@ int rs_fit_eval_init(rs_fit_eval *e, const rs_fit_spec *f, const rs_case *base, 
   memset(e, 0, sizeof *e);
   e->f = f;
   e->base = base;
-  e->ov = calloc((size_t)(f->nparams + f->ncols), sizeof *e->ov);
+  e->ov = calloc((size_t)(1 + f->nparams + f->ncols), sizeof *e->ov);
+  /* Forward differences need the time integration's error far below a parameter step's
+   * effect: a transient case's solver.rtol auto (3D: up to 3e-3) becomes FIT_RTOL. */
+  e->rtol_key =
+      base->mode == RS_MODE_TRANSIENT && base->rtol == 0.0 ? rs_case_key_index("solver.rtol") : -1;
   e->param_key = calloc((size_t)f->nparams, sizeof *e->param_key);
   e->input_key = calloc((size_t)f->ncols, sizeof *e->input_key);
   e->xs = calloc(f->npoints, sizeof *e->xs);
@@ -112,6 +118,7 @@ int rs_fit_eval_at(rs_fit_eval *e, const double *p, double *sim, rs_msg *msg)
   const rs_fit_spec *f = e->f;
   int n = 0;
   for (int k = 0; k < f->nparams; k++) e->ov[n++] = (rs_case_override){e->param_key[k], p[k]};
+  if (e->rtol_key >= 0) e->ov[n++] = (rs_case_override){e->rtol_key, FIT_RTOL};
   int status = RS_OK;
   if (f->kind == RS_FIT_STEADY) {
     for (size_t l = 0; l < e->nlines && status == RS_OK; l++) {

@@ -12,7 +12,9 @@
 typedef struct rs_fit_eval {
   const rs_fit_spec *f;
   const rs_case *base;  /* the loaded case */
-  rs_case_override *ov; /* [nparams + ncols]: the parameters, then a line's other inputs */
+  rs_case_override *ov; /* [1 + nparams + ncols]: the parameters, the tolerance, then a
+                         * line's other inputs */
+  int rtol_key;         /* solver.rtol when a transient case leaves it auto, else -1 */
   int *param_key;       /* [nparams] key index of each parameter */
   int *input_key;       /* [ncols] key index of each input column (-1 for others) */
   int key_col;          /* the continued input column (steady fits) */
