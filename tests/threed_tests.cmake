@@ -11,3 +11,9 @@ endforeach()
 add_test(NAME threed_weak_hardening
          COMMAND ${SYSTEM_PYTHON3} ${RS_TESTS}/check_weak_hardening.py ${RS_BIN}
                  ${CMAKE_CURRENT_BINARY_DIR}/threed/weak_hardening)
+# Issue 42: a low yield limit (tau_c0 = 0.2 mu p0, k_rel 0.01 and 0.003) in steady 3D creep
+# curves from full sliding within 3 x the elastic curve's Newton iterations
+# (tests/check_low_yield.py).
+add_test(NAME threed_low_yield
+         COMMAND ${SYSTEM_PYTHON3} ${RS_TESTS}/check_low_yield.py ${RS_BIN}
+                 ${CMAKE_CURRENT_BINARY_DIR}/threed/low_yield)

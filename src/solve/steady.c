@@ -578,10 +578,21 @@ static int weak_hardening(const rs_model *m)
          !rs_friction_varies(&m->par.friction) && !m->lay.memory && !m->par.force_control;
 }
 
+/* u* times f. A step of the continuation in k_tau keeps each cell's yield limit
+ * tau_c0 + k_tau u*, so u* scales with 1/k_tau: a cell that hardened up to the friction
+ * bound stays there (tau_c = mu p_n), where the solution of the last step taken as it is
+ * would put it 1/K_REL_STEP times too far below (k_rel 0.01, tau_c0 0.2 mu p0, 22 x 22
+ * cells from rest at -25 %: the step to 0.027 stalled, bench/RESULTS.md, issue 42). */
+static void rescale_ustar(const rs_model *m, double *y, double f)
+{
+  for (int i = 0; i < m->lay.n; i++) y[rs_at_ustar(&m->lay, i)] *= f;
+}
+
 /* The start of a weak-hardening model from rest: the steady states of the same model with
  * k_rel = K_REL_START, K_REL_STEP times that, ... while above K_REL_STEP_MIN times the
- * model's, each from the last (the model's copy shares its grid, operator and normal
- * solution, read only). RS_OK with the last in y, else RS_ERR_SOLVER (y unchanged). */
+ * model's, each from the last with u* rescaled to its k_tau (the model's copy shares its
+ * grid, operator and normal solution, read only). RS_OK with the last in y (u* rescaled to
+ * the model's k_tau), else RS_ERR_SOLVER (y unchanged). */
 static int harder_start(rs_steady *s, double *y, rs_stats *stats)
 {
   rs_model hard = *s->m;
@@ -594,8 +605,11 @@ static int harder_start(rs_steady *s, double *y, rs_stats *stats)
   const double k_rel = k_tau / (G + k_tau);
   int status = z ? RS_OK : RS_ERR_INTERNAL;
   if (z) memcpy(z, y, (size_t)neq * sizeof *z);
+  double k_prev = 0.0; /* the k_tau of the last step */
   for (double kr = K_REL_START; status == RS_OK && kr > K_REL_STEP_MIN * k_rel; kr *= K_REL_STEP) {
     hard.par.plasticity.k_tau = G * kr / (1.0 - kr);
+    if (k_prev > 0.0) rescale_ustar(s->m, z, k_prev / hard.par.plasticity.k_tau);
+    k_prev = hard.par.plasticity.k_tau;
     status = rs_steady_create(&hs, &hard, s->ctx, &hmsg);
     if (status == RS_OK) status = rs_steady_solve(hs, s->in.t, z, &hst, &hmsg);
     rs_steady_free(hs);
@@ -608,6 +622,7 @@ static int harder_start(rs_steady *s, double *y, rs_stats *stats)
     stats->lin_solves += hst.lin_solves;
   }
   s->coarse_jac_evals += hst.jac_evals;
+  if (status == RS_OK && k_prev > 0.0) rescale_ustar(s->m, z, k_prev / k_tau);
   if (status == RS_OK) memcpy(y, z, (size_t)neq * sizeof *y);
   rs_steady_free(hs);
   free(z);
