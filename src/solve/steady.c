@@ -588,11 +588,12 @@ static void rescale_ustar(const rs_model *m, double *y, double f)
   for (int i = 0; i < m->lay.n; i++) y[rs_at_ustar(&m->lay, i)] *= f;
 }
 
-/* The start of a weak-hardening model from rest: the steady states of the same model with
- * k_rel = K_REL_START, K_REL_STEP times that, ... while above K_REL_STEP_MIN times the
- * model's, each from the last with u* rescaled to its k_tau (the model's copy shares its
- * grid, operator and normal solution, read only). RS_OK with the last in y (u* rescaled to
- * the model's k_tau), else RS_ERR_SOLVER (y unchanged). */
+/* The start of a weak-hardening model from rest or from a state where its own Newton
+ * failed: the steady states of the same model with k_rel = K_REL_START, K_REL_STEP times
+ * that, ... while above K_REL_STEP_MIN times the model's, the first from y, each from the
+ * last, with u* rescaled to its k_tau (the model's copy shares its grid, operator and normal
+ * solution, read only). RS_OK with the last in y (u* rescaled to the model's k_tau), else
+ * RS_ERR_SOLVER (y unchanged). */
 static int harder_start(rs_steady *s, double *y, rs_stats *stats)
 {
   rs_model hard = *s->m;
@@ -605,10 +606,10 @@ static int harder_start(rs_steady *s, double *y, rs_stats *stats)
   const double k_rel = k_tau / (G + k_tau);
   int status = z ? RS_OK : RS_ERR_INTERNAL;
   if (z) memcpy(z, y, (size_t)neq * sizeof *z);
-  double k_prev = 0.0; /* the k_tau of the last step */
+  double k_prev = k_tau; /* the k_tau of z */
   for (double kr = K_REL_START; status == RS_OK && kr > K_REL_STEP_MIN * k_rel; kr *= K_REL_STEP) {
     hard.par.plasticity.k_tau = G * kr / (1.0 - kr);
-    if (k_prev > 0.0) rescale_ustar(s->m, z, k_prev / hard.par.plasticity.k_tau);
+    rescale_ustar(s->m, z, k_prev / hard.par.plasticity.k_tau);
     k_prev = hard.par.plasticity.k_tau;
     status = rs_steady_create(&hs, &hard, s->ctx, &hmsg);
     if (status == RS_OK) status = rs_steady_solve(hs, s->in.t, z, &hst, &hmsg);
@@ -622,7 +623,7 @@ static int harder_start(rs_steady *s, double *y, rs_stats *stats)
     stats->lin_solves += hst.lin_solves;
   }
   s->coarse_jac_evals += hst.jac_evals;
-  if (status == RS_OK && k_prev > 0.0) rescale_ustar(s->m, z, k_prev / k_tau);
+  if (status == RS_OK) rescale_ustar(s->m, z, k_prev / k_tau);
   if (status == RS_OK) memcpy(y, z, (size_t)neq * sizeof *y);
   rs_steady_free(hs);
   free(z);
@@ -682,6 +683,16 @@ static int solve_at(rs_steady *s, double *y, rs_stats *stats, rs_msg *msg)
                "creepage by continuation, e.g. a sweep from a lower one)",
                rs_model_creepage(m, &s->in, y), rs_friction_name(m->par.friction.kind));
   }
+  /* Weak hardening at a continuation point where Newton failed on every grid: continuation
+   * in k_rel from the last start (the interpolated coarse solution when there is one), as
+   * from rest. The line search and the fine grid's Newton after sequencing can both stall
+   * there, and the pseudo-time steps' steady Newton cycle as well (tau_c0 = 0.2 mu p0, k_rel
+   * 0.01, 44 x 44 cells, lateral creepage and spin, xi -2 % -> -1 %: 22270 iterations
+   * through the pseudo-transient, 164 this way; bench/RESULTS.md, issue 42). From rest the
+   * coarsest grid has continued in k_rel already. */
+  if (status != RS_OK && !s->failed && !cold && weak_hardening(m) &&
+      harder_start(s, y, stats) == RS_OK)
+    status = newton(s, y, 0, 40, stats, &kin_flag);
   if (status != RS_OK && !s->failed) status = pseudo_time_steps(s, y, stats);
   int rolled = varies; /* the result comes from rolling the material (the physical path) */
   if (status == RS_ERR_SOLVER && !s->failed) {
