@@ -27,3 +27,10 @@ endforeach()
 add_test(NAME threed_transient_counts
          COMMAND ${SYSTEM_PYTHON3} ${RS_TESTS}/check_transient_counts_3d.py ${RS_BIN}
                  ${CMAKE_CURRENT_BINARY_DIR}/threed/transient_counts)
+
+# Issue 42: a low yield limit (tau_c0 = 0.2 mu p0, k_rel 0.01 and 0.003) in steady 3D creep
+# curves from full sliding within 3 x the elastic curve's Newton iterations
+# (tests/check_low_yield.py).
+add_test(NAME threed_low_yield
+         COMMAND ${SYSTEM_PYTHON3} ${RS_TESTS}/check_low_yield.py ${RS_BIN}
+                 ${CMAKE_CURRENT_BINARY_DIR}/threed/low_yield)

@@ -488,6 +488,7 @@ void rs_model_cell_flags(const rs_model *m, rs_work *w, int i, int *e)
  * a 3D hardening model, in units of r (rs_model_evaluate). */
 #define FRICTION_WEIGHT           0.7
 #define FRICTION_WEIGHT_PER_K_REL 10.0
+#define TAU_C_FLOOR               0.1
 
 int rs_model_evaluate(const rs_model *m, rs_work *w, const rs_inputs *in, const double *y,
                       const double *yp, double cj, double *F, int jac)
@@ -507,15 +508,21 @@ int rs_model_evaluate(const rs_model *m, rs_work *w, const rs_inputs *in, const 
   const int hardening = in->newton && cj == 0.0 && m->el.dim == 3 && m->par.plasticity.on &&
                         m->par.plasticity.k_tau > 0.0 && !rs_friction_varies(&m->par.friction) &&
                         !L->memory;
-  /* Weak hardening (k_rel = k_tau/(G + k_tau) below 0.07): the weight falls with k_rel, to
-   * FRICTION_WEIGHT_PER_K_REL k_rel r. A cell that hardened up to the friction bound slips
-   * and flows at once, its u* pinned by tau_c(u*) = mu p_n, so a change of its traction moves
-   * u* by that change over k_tau, and the flow and u* of every cell downstream with it. With
-   * the slip velocity weighed by 0.7 r the slip test of such cells flipped with these moves
-   * and Newton cycled between the slip + yield and the yield-only branch; a weight in
-   * proportion to k_rel keeps the test on the traction (bench/RESULTS.md, issue 42). */
+  /* Weak hardening (10 k_rel tau_c0/g_max below 0.7, with g_max the largest bound mu p_n):
+   * the weight falls with k_rel and tau_c0, to FRICTION_WEIGHT_PER_K_REL k_rel
+   * tau_c0/g_max r. A cell that hardened up to the friction bound slips and flows at once,
+   * its u* pinned by tau_c(u*) = mu p_n, so a change of its traction moves u* by that change
+   * over k_tau, and the flow and u* of every cell downstream with it. With the slip velocity
+   * weighed by 0.7 r the slip test of such cells flipped with these moves and Newton cycled
+   * between the slip + yield and the yield-only branch; a weight in proportion to k_rel keeps
+   * the test on the traction. A low tau_c0 makes the hardened zone longer (from tau_c0 up to
+   * mu p_n) and asks for a smaller weight still (bench/RESULTS.md, issue 42). The factor
+   * tau_c0/g_max is kept above TAU_C_FLOOR: r must stay positive. */
   const double k_tau = m->par.plasticity.k_tau, k_rel = k_tau / (m->par.shear_modulus + k_tau);
-  w->r = hardening ? fmin(FRICTION_WEIGHT, FRICTION_WEIGHT_PER_K_REL * k_rel) * r0 : r0;
+  double g_max = 0.0;
+  for (int i = 0; i < n && hardening; i++) g_max = fmax(g_max, m->bound[i]);
+  const double margin = g_max > 0.0 ? fmax(m->par.plasticity.tau_c0 / g_max, TAU_C_FLOOR) : 1.0;
+  w->r = hardening ? fmin(FRICTION_WEIGHT, FRICTION_WEIGHT_PER_K_REL * k_rel * margin) * r0 : r0;
   /* The yield projections of steady evaluations (cj = 0) weigh the flow with a fraction of
    * r. Any r > 0 gives the same zeros (a projection is exact for every r); r sets how
    * Newton's linearisation weighs the flow against the traction, and a smaller weight lets

@@ -582,10 +582,22 @@ static int weak_hardening(const rs_model *m)
          !rs_friction_varies(&m->par.friction) && !m->lay.memory && !m->par.force_control;
 }
 
-/* The start of a weak-hardening model from rest: the steady states of the same model with
- * k_rel = K_REL_START, K_REL_STEP times that, ... while above K_REL_STEP_MIN times the
- * model's, each from the last (the model's copy shares its grid, operator and normal
- * solution, read only). RS_OK with the last in y, else RS_ERR_SOLVER (y unchanged). */
+/* u* times f. A step of the continuation in k_tau keeps each cell's yield limit
+ * tau_c0 + k_tau u*, so u* scales with 1/k_tau: a cell that hardened up to the friction
+ * bound stays there (tau_c = mu p_n), where the solution of the last step taken as it is
+ * would put it 1/K_REL_STEP times too far below (k_rel 0.01, tau_c0 0.2 mu p0, 22 x 22
+ * cells from rest at -25 %: the step to 0.027 stalled, bench/RESULTS.md, issue 42). */
+static void rescale_ustar(const rs_model *m, double *y, double f)
+{
+  for (int i = 0; i < m->lay.n; i++) y[rs_at_ustar(&m->lay, i)] *= f;
+}
+
+/* The start of a weak-hardening model from rest or from a state where its own Newton
+ * failed: the steady states of the same model with k_rel = K_REL_START, K_REL_STEP times
+ * that, ... while above K_REL_STEP_MIN times the model's, the first from y, each from the
+ * last, with u* rescaled to its k_tau (the model's copy shares its grid, operator and normal
+ * solution, read only). RS_OK with the last in y (u* rescaled to the model's k_tau), else
+ * RS_ERR_SOLVER (y unchanged). */
 static int harder_start(rs_steady *s, double *y, rs_stats *stats)
 {
   rs_model hard = *s->m;
@@ -598,8 +610,11 @@ static int harder_start(rs_steady *s, double *y, rs_stats *stats)
   const double k_rel = k_tau / (G + k_tau);
   int status = z ? RS_OK : RS_ERR_INTERNAL;
   if (z) memcpy(z, y, (size_t)neq * sizeof *z);
+  double k_prev = k_tau; /* the k_tau of z */
   for (double kr = K_REL_START; status == RS_OK && kr > K_REL_STEP_MIN * k_rel; kr *= K_REL_STEP) {
     hard.par.plasticity.k_tau = G * kr / (1.0 - kr);
+    rescale_ustar(s->m, z, k_prev / hard.par.plasticity.k_tau);
+    k_prev = hard.par.plasticity.k_tau;
     status = rs_steady_create(&hs, &hard, s->ctx, &hmsg);
     if (status == RS_OK) status = rs_steady_solve(hs, s->in.t, z, &hst, &hmsg);
     rs_steady_free(hs);
@@ -612,6 +627,7 @@ static int harder_start(rs_steady *s, double *y, rs_stats *stats)
     stats->lin_solves += hst.lin_solves;
   }
   s->coarse_jac_evals += hst.jac_evals;
+  if (status == RS_OK) rescale_ustar(s->m, z, k_prev / k_tau);
   if (status == RS_OK) memcpy(y, z, (size_t)neq * sizeof *y);
   rs_steady_free(hs);
   free(z);
@@ -637,14 +653,18 @@ static int solve_at(rs_steady *s, double *y, rs_stats *stats, rs_msg *msg)
   if (cold && weak_hardening(m) && !can_coarsen(m) && harder_start(s, y, stats) == RS_OK) cold = 0;
   const int plastic = m->par.plasticity.on, three_plastic = m->el.dim == 3 && plastic;
   const int sequence_first = plastic && cold && can_coarsen(m);
-  int status = sequence_first ? grid_sequencing(s, y, 10, stats) : RS_ERR_SOLVER;
+  /* 3D: the fine grid's Newton from the interpolated coarse solution with the line search at
+   * once; plain Newton took its 10 iterations without converging from full sliding (k_rel
+   * 0.3, 44 x 44 cells from rest at -25 %: 4 coarse + 10 + 6 iterations, 4 + 6 this way). */
+  int status =
+      sequence_first ? grid_sequencing(s, y, three_plastic ? 0 : 10, stats) : RS_ERR_SOLVER;
   /* Plastic models from a continuation start: plain Newton briefly, then the line
    * search, which converges in a few iterations where plain Newton cycles. In 3D the line
    * search at once: with the inexact early steps of the Eisenstat-Walker forcing term plain
    * Newton takes many more iterations at most continuation points; 3D plastic models from
-   * rest too (on the coarsest grid of the sequence plain Newton cycles). The finer grids'
-   * Newton after sequencing still starts plain: from the interpolated coarse solution it
-   * needs fewer iterations than the line search. */
+   * rest too (on the coarsest grid of the sequence plain Newton cycles), and the finer
+   * grids' Newton after sequencing (above). 2D's finer grids start plain: from the
+   * interpolated coarse solution plain Newton needs fewer iterations than the line search. */
   const int plain = three_plastic ? 0 : !plastic || cold ? 50 : 8;
   /* 3D plastic continuation points on grids that can be coarsened: a stalled line
    * search goes to grid sequencing at once, whose fine-grid Newton then starts with the
@@ -671,6 +691,16 @@ static int solve_at(rs_steady *s, double *y, rs_stats *stats, rs_msg *msg)
                "creepage by continuation, e.g. a sweep from a lower one)",
                rs_model_creepage(m, &s->in, y), rs_friction_name(m->par.friction.kind));
   }
+  /* Weak hardening at a continuation point where Newton failed on every grid: continuation
+   * in k_rel from the last start (the interpolated coarse solution when there is one), as
+   * from rest. The line search and the fine grid's Newton after sequencing can both stall
+   * there, and the pseudo-time steps' steady Newton cycle as well (tau_c0 = 0.2 mu p0, k_rel
+   * 0.01, 44 x 44 cells, lateral creepage and spin, xi -2 % -> -1 %: 22270 iterations
+   * through the pseudo-transient, 164 this way; bench/RESULTS.md, issue 42). From rest the
+   * coarsest grid has continued in k_rel already. */
+  if (status != RS_OK && !s->failed && !cold && weak_hardening(m) &&
+      harder_start(s, y, stats) == RS_OK)
+    status = newton(s, y, 0, 40, stats, &kin_flag);
   if (status != RS_OK && !s->failed) status = pseudo_time_steps(s, y, stats);
   int rolled = varies; /* the result comes from rolling the material (the physical path) */
   if (status == RS_ERR_SOLVER && !s->failed) {

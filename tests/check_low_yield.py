@@ -1,0 +1,101 @@
+#!/usr/bin/env python3
+"""Issue 42: a steady 3D creep curve with a low yield limit costs about what the elastic curve costs.
+
+The Eurosprinter contact of bench/cases/tractcurve_plast.yaml (a/b = 0.5, F_n = 106.7 kN,
+mu = 0.33, mu p0 = 212 N/mm^2) with tau_c0 = 42 N/mm^2 = 0.2 mu p0, the low end of the
+issue's range, on 22 x 22 cells: one sweep over k_rel = 0.01 and 0.003 and the bench's 30
+creepages from -25 % (from rest: the whole contact slides) down to -0.001 %. Cells yield
+almost at once and harden up to the friction bound over a zone from tau_c0 to mu p_n, where
+the friction weight of weak hardening alone left steady Newton cycling (thousands of
+iterations at the start from rest and at -2 % and -1 %). The budget: each of the two plastic
+lines within 3 times the Newton iterations of the elastic line over the same creepages
+(issue 42: no series above 3 x the elastic one), so the sweep within 6 x the elastic count.
+Also checked: every point solved; F_x/(mu F_n) falls with |xi| on each line and stays at
+most 1; the weaker hardening's traction is nowhere above the stronger's (its yield limit is
+lower at every u*); at -25 % the contact is near full sliding, F_x/(mu F_n) within 5 % of 1:
+only a zone at the leading edge does not slide, where the flow takes up the creepage until
+u* reaches (mu p_n - tau_c0)/k_tau, at most 0.68 mm at k_rel 0.003 over |xi| = 0.25, i.e. 2.7 mm
+of 2a = 12.6 mm, which carries 11 % of the load (Hertz) at tractions from tau_c0 up to mu p_n.
+Usage: check_low_yield.py ROLLSIM WORKDIR
+"""
+import os
+import re
+import subprocess
+import sys
+
+import netCDF4
+
+CREEPAGES = [-0.25, -0.225, -0.2, -0.175, -0.15, -0.125, -0.1, -0.075, -0.05, -0.04, -0.03,
+             -0.02, -0.01, -0.008, -0.006, -0.0056, -0.0052, -0.0048, -0.0044, -0.004,
+             -0.0036, -0.0032, -0.0028, -0.0024, -0.002, -0.0016, -0.0012, -0.0008, -0.0004,
+             -1.0e-5]
+CASE = f"""title: "low yield limit: Eurosprinter contact, tau_c0 = 0.2 mu p0, 22 x 22 cells"
+contact: {{dimension: 3, normal_load: 106700.0, radius: [625.0, 1776.72]}}
+grid: {{cells: [22, 22], extent: [1.1, 1.1]}}
+material: {{shear_modulus: 82000.0, poisson_ratio: 0.28}}
+friction: {{mu: 0.33}}
+plasticity: {{tau_c0: 42.0, k_rel: 0.3}}
+rolling: {{velocity: 10000.0, creepage: 0.0}}
+simulation: {{mode: steady}}
+output: {{fields: []}}
+sweep:
+  plasticity.k_rel: [0.01, 0.003]
+  rolling.creepage: [{", ".join(repr(x) for x in CREEPAGES)}]
+"""
+failures = 0
+
+
+def check(what, ok, detail=""):
+    global failures
+    print(f"{'ok  ' if ok else 'FAIL'} {what}{': ' + detail if detail else ''}")
+    if not ok:
+        failures += 1
+
+
+def sweep(binary, path, out, extra):
+    try:
+        p = subprocess.run([binary, "sweep", path, "-o", out, "--quiet"] + extra,
+                           capture_output=True, text=True, timeout=300)
+    except subprocess.TimeoutExpired:
+        print("timed out after 300 s")
+        return None
+    m = re.search(r"(\d+) points solved, (\d+) failed, Newton iterations (\d+)", p.stdout)
+    if p.returncode != 0 or not m:
+        print(p.stdout, p.stderr)
+        return None
+    return int(m.group(1)), int(m.group(2)), int(m.group(3))
+
+
+def main():
+    binary, work = sys.argv[1], sys.argv[2]
+    os.makedirs(work, exist_ok=True)
+    path = os.path.join(work, "low_yield.yaml")
+    with open(path, "w") as f:
+        f.write(CASE)
+    plastic_nc = os.path.join(work, "low_yield.nc")
+    elastic = sweep(binary, path, os.path.join(work, "elastic.nc"),
+                    ["--set", "plasticity=null", "--set", "sweep.plasticity.k_rel=null"])
+    plastic = sweep(binary, path, plastic_nc, [])
+    check("the elastic sweep ran", elastic is not None)
+    check("the plastic sweep ran", plastic is not None)
+    if plastic is None or elastic is None:
+        return 1
+    n = len(CREEPAGES)
+    check("every plastic point solved", plastic[0] == 2 * n and plastic[1] == 0, f"{plastic}")
+    budget = 2 * 3 * elastic[2]
+    check("Newton iterations within 3 x the elastic line's per line", plastic[2] <= budget,
+          f"{plastic[2]} against {budget} (elastic line {elastic[2]})")
+    with netCDF4.Dataset(plastic_nc) as d:
+        tc = d["traction_coefficient"][:] / 0.33
+    for k, row in zip(["0.01", "0.003"], tc):
+        check(f"k_rel {k}: near full sliding at -25 %", 0.95 <= row[0] <= 1.0 + 1e-9,
+              f"{row[0]:.8f}")
+        falling = all(a >= b for a, b in zip(row[:-1], row[1:]))
+        check(f"k_rel {k}: F_x/(mu F_n) falls with |xi| falling and stays at most 1",
+              falling and max(row) <= 1.0 + 1e-9, " ".join(f"{v:.5f}" for v in row))
+    check("k_rel 0.003 nowhere above k_rel 0.01", all(b <= a + 1e-9 for a, b in zip(*tc)))
+    return 1 if failures else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
