@@ -11,6 +11,12 @@ endforeach()
 add_test(NAME threed_weak_hardening
          COMMAND ${SYSTEM_PYTHON3} ${RS_TESTS}/check_weak_hardening.py ${RS_BIN}
                  ${CMAKE_CURRENT_BINARY_DIR}/threed/weak_hardening)
+# Issue 42: 3D plastic points from rest far beyond saturation (xi -25 % and -4 %, k_rel 0.3 ...
+# -0.001, 44 x 44 cells) within 3 x the elastic point's Newton iterations, and k_rel 0 at the
+# closed-form full-sliding force (tests/check_cold_start.py).
+add_test(NAME threed_cold_start
+         COMMAND ${SYSTEM_PYTHON3} ${RS_TESTS}/check_cold_start.py ${RS_BIN}
+                 ${CMAKE_CURRENT_BINARY_DIR}/threed/cold_start)
 # Issue 42: a 3D transient in heavy sliding with softening (xi -25 %, k_rel -0.001, 22 x 22 and
 # 44 x 44 cells) finishes within a step budget and its limit is the steady state
 # (tests/check_heavy_sliding.py).

@@ -256,6 +256,14 @@ int rs_model_consistent_rates(const rs_model *m, rs_work *w, const rs_inputs *in
  * friction memory mu = mu_law(0)), extras 0. */
 void rs_model_rest_state(const rs_model *m, double *y);
 
+/* The steady state of full sliding into y [neq] (3D plastic models with Coulomb friction, no
+ * memory, no force control): each material path from the leading edge with the elastic slip
+ * neglected against the rigid slip, |p| = min(g, tau_c) against the rigid slip's direction,
+ * u* and u_pl grown by the rigid slip while a cell yields (docs/model.md §13). RS_OK, or
+ * RS_ERR_SOLVER (y untouched) where it does not apply: another model, or a rigid slip below
+ * SLIDE_FACTOR times the largest bound over G somewhere in the contact. */
+int rs_model_sliding_state(const rs_model *m, rs_work *w, const rs_inputs *in, double *y);
+
 /* Make the tractions of y admissible (after a jump of an input history): p = 0 outside
  * the contact, |p| <= g inside (a cell whose bound dropped keeps its direction). */
 int rs_model_project_state(const rs_model *m, rs_work *w, const rs_inputs *in, double *y,

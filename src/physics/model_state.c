@@ -380,3 +380,64 @@ int rs_model_interpolate_state(const rs_model *from, const double *y_from, const
         k < from->lay.nextra ? y_from[rs_at_extra(&from->lay, k)] : 0.0;
   return rs_model_project_state(to, w_to, in, y_to, msg);
 }
+
+/* Full sliding: the rigid slip over every contact cell at least this many times the largest
+ * bound over G (the elastic slip across the contact is of the order of that ratio, so the
+ * adhesion zone and the elastic part of the slip are a few per cent at most). */
+#define SLIDE_FACTOR 10.0
+
+int rs_model_sliding_state(const rs_model *m, rs_work *w, const rs_inputs *in, double *y)
+{
+  const rs_layout *L = &m->lay;
+  const rs_grid *g = &m->grid;
+  const rs_plasticity *pl = &m->par.plasticity;
+  if (L->ncomp != 2 || !pl->on || L->memory || L->nextra || m->par.force_control ||
+      rs_friction_varies(&m->par.friction) || m->memory || !(in->velocity > 0.0))
+    return RS_ERR_SOLVER;
+  rs_msg msg = {{0}};
+  if (rs_model_normal_at(m, w, in, &msg) != RS_OK) return RS_ERR_SOLVER;
+  const int nx = g->nx, ny = g->ny;
+  const double V = in->velocity;
+  double gmax = 0.0, wmin = INFINITY;
+  for (int iy = 0; iy < ny; iy++)
+    for (int ix = 0; ix < nx; ix++) {
+      const int I = iy * nx + ix;
+      if (!(w->pn[I] > 0.0)) continue;
+      const double wx = in->creepage - in->spin * g->y[iy] + in->shift_velocity / V;
+      const double wy = in->lateral_creepage + in->spin * g->x[ix];
+      gmax = fmax(gmax, w->bound[I]);
+      wmin = fmin(wmin, hypot(wx, wy));
+    }
+  if (!(gmax > 0.0) || !(wmin >= SLIDE_FACTOR * gmax / m->par.shear_modulus)) return RS_ERR_SOLVER;
+  rs_model_rest_state(m, y);
+  for (int iy = 0; iy < ny; iy++) {
+    double us = 0.0, upl[2] = {0.0, 0.0}; /* carried from the leading edge (fresh material) */
+    for (int ix = nx - 1; ix >= 0; ix--) {
+      const int I = iy * nx + ix;
+      if (w->pn[I] > 0.0) {
+        const double wx = in->creepage - in->spin * g->y[iy] + in->shift_velocity / V;
+        const double wy = in->lateral_creepage + in->spin * g->x[ix];
+        const double wn = hypot(wx, wy), b = w->bound[I], tau_up = rs_yield_limit(pl, us);
+        const double full = us + g->dx * wn; /* u* when the flow takes the whole slip */
+        /* plastic (the flow takes the whole slip), hardening up to the bound within the cell
+         * and then sliding, or sliding without flow (|p| = g, u* carried) */
+        double t = b, us_new = us;
+        if (tau_up < b && rs_yield_limit(pl, full) <= b) {
+          t = rs_yield_limit(pl, full);
+          us_new = full;
+        } else if (tau_up < b && pl->k_tau > 0.0) {
+          us_new = fmax(us, (b - pl->tau_c0) / pl->k_tau);
+        }
+        for (int c = 0; c < 2; c++) { /* flow and traction against the rigid slip */
+          const double dir = (c == 0 ? wx : wy) / wn;
+          upl[c] -= (us_new - us) * dir;
+          y[rs_at_p(L, c, I)] = -t * dir;
+        }
+        us = us_new;
+      }
+      for (int c = 0; c < 2; c++) y[rs_at_upl(L, c, I)] = upl[c];
+      y[rs_at_ustar(L, I)] = us;
+    }
+  }
+  return RS_OK;
+}

@@ -650,14 +650,30 @@ static int solve_at(rs_steady *s, double *y, rs_stats *stats, rs_msg *msg)
    * first, from the caller's start (continuation). */
   int cold = 1;
   for (int k = 0; k < m->lay.ncomp * m->lay.n && cold; k++) cold = y[k] == 0.0;
-  if (cold && weak_hardening(m) && !can_coarsen(m) && harder_start(s, y, stats) == RS_OK) cold = 0;
   const int plastic = m->par.plasticity.on, three_plastic = m->el.dim == 3 && plastic;
+  /* 3D plastic from rest far beyond saturation: Newton (line search, stopped when it stalls)
+   * from the full-sliding state first, whose active set is nearly the solution's; from rest
+   * or through grid sequencing the coarse grids' work, the k_rel continuation of weak
+   * hardening and the pseudo-time fallbacks cost 10-38 iterations and more (44 x 44 cells,
+   * xi -25 %; 2-6 this way; bench/RESULTS.md, issue 42). If it fails, from rest as before. */
+  int status = RS_ERR_SOLVER;
+  if (cold && three_plastic && rs_model_sliding_state(m, &s->work, &s->in, y) == RS_OK) {
+    s->watch = 1;
+    status = newton(s, y, 0, 40, stats, &kin_flag);
+    s->watch = 0;
+    if (status == RS_OK) {
+      cold = 0;
+    } else {
+      memcpy(y, start, (size_t)neq * sizeof *y);
+      s->failed = 0;
+    }
+  }
+  if (cold && weak_hardening(m) && !can_coarsen(m) && harder_start(s, y, stats) == RS_OK) cold = 0;
   const int sequence_first = plastic && cold && can_coarsen(m);
   /* 3D: the fine grid's Newton from the interpolated coarse solution with the line search at
    * once; plain Newton took its 10 iterations without converging from full sliding (k_rel
    * 0.3, 44 x 44 cells from rest at -25 %: 4 coarse + 10 + 6 iterations, 4 + 6 this way). */
-  int status =
-      sequence_first ? grid_sequencing(s, y, three_plastic ? 0 : 10, stats) : RS_ERR_SOLVER;
+  if (sequence_first) status = grid_sequencing(s, y, three_plastic ? 0 : 10, stats);
   /* Plastic models from a continuation start: plain Newton briefly, then the line
    * search, which converges in a few iterations where plain Newton cycles. In 3D the line
    * search at once: with the inexact early steps of the Eisenstat-Walker forcing term plain
