@@ -584,9 +584,8 @@ static int weak_hardening(const rs_model *m)
 
 /* u* times f. A step of the continuation in k_tau keeps each cell's yield limit
  * tau_c0 + k_tau u*, so u* scales with 1/k_tau: a cell that hardened up to the friction
- * bound stays there (tau_c = mu p_n), where the solution of the last step taken as it is
- * would put it 1/K_REL_STEP times too far below (k_rel 0.01, tau_c0 0.2 mu p0, 22 x 22
- * cells from rest at -25 %: the step to 0.027 stalled, bench/RESULTS.md, issue 42). */
+ * bound stays there (tau_c = mu p_n), where the last step's solution taken as it is would
+ * put it 1/K_REL_STEP times too far below, and Newton can stall (bench/RESULTS.md, issue 42). */
 static void rescale_ustar(const rs_model *m, double *y, double f)
 {
   for (int i = 0; i < m->lay.n; i++) y[rs_at_ustar(&m->lay, i)] *= f;
@@ -652,10 +651,9 @@ static int solve_at(rs_steady *s, double *y, rs_stats *stats, rs_msg *msg)
   for (int k = 0; k < m->lay.ncomp * m->lay.n && cold; k++) cold = y[k] == 0.0;
   const int plastic = m->par.plasticity.on, three_plastic = m->el.dim == 3 && plastic;
   /* 3D plastic from rest far beyond saturation: Newton (line search, stopped when it stalls)
-   * from the full-sliding state first, whose active set is nearly the solution's; from rest
-   * or through grid sequencing the coarse grids' work, the k_rel continuation of weak
-   * hardening and the pseudo-time fallbacks cost 10-38 iterations and more (44 x 44 cells,
-   * xi -25 %; 2-6 this way; bench/RESULTS.md, issue 42). If it fails, from rest as before. */
+   * from the full-sliding state first, whose active set is nearly the solution's, instead of
+   * the coarse grids, the k_rel continuation and the fallbacks (bench/RESULTS.md, issue 42).
+   * If it fails, from rest as before. */
   int status = RS_ERR_SOLVER;
   if (cold && three_plastic && rs_model_sliding_state(m, &s->work, &s->in, y) == RS_OK) {
     s->watch = 1;
@@ -671,8 +669,7 @@ static int solve_at(rs_steady *s, double *y, rs_stats *stats, rs_msg *msg)
   if (cold && weak_hardening(m) && !can_coarsen(m) && harder_start(s, y, stats) == RS_OK) cold = 0;
   const int sequence_first = plastic && cold && can_coarsen(m);
   /* 3D: the fine grid's Newton from the interpolated coarse solution with the line search at
-   * once; plain Newton took its 10 iterations without converging from full sliding (k_rel
-   * 0.3, 44 x 44 cells from rest at -25 %: 4 coarse + 10 + 6 iterations, 4 + 6 this way). */
+   * once; from full sliding plain Newton uses up its iterations without converging. */
   if (sequence_first) status = grid_sequencing(s, y, three_plastic ? 0 : 10, stats);
   /* Plastic models from a continuation start: plain Newton briefly, then the line
    * search, which converges in a few iterations where plain Newton cycles. In 3D the line
@@ -710,10 +707,9 @@ static int solve_at(rs_steady *s, double *y, rs_stats *stats, rs_msg *msg)
   /* Weak hardening at a continuation point where Newton failed on every grid: continuation
    * in k_rel from the last start (the interpolated coarse solution when there is one), as
    * from rest. The line search and the fine grid's Newton after sequencing can both stall
-   * there, and the pseudo-time steps' steady Newton cycle as well (tau_c0 = 0.2 mu p0, k_rel
-   * 0.01, 44 x 44 cells, lateral creepage and spin, xi -2 % -> -1 %: 22270 iterations
-   * through the pseudo-transient, 164 this way; bench/RESULTS.md, issue 42). From rest the
-   * coarsest grid has continued in k_rel already. */
+   * there, and the pseudo-time steps' steady Newton cycle as well (a low tau_c0 with weak
+   * hardening: bench/RESULTS.md, issue 42). From rest the coarsest grid has continued in k_rel
+   * already. */
   if (status != RS_OK && !s->failed && !cold && weak_hardening(m) &&
       harder_start(s, y, stats) == RS_OK)
     status = newton(s, y, 0, 40, stats, &kin_flag);
