@@ -228,10 +228,9 @@ static void disk_law(const rs_plasticity *pl, const rs_law_in *in, int jac, rs_l
    * solution (the flow is parallel to p, or zero), but |m| has a cone at m = 0, where a
    * cell that has just hardened up to g sits (slip and yield both active, flow -> 0):
    * Newton's linearisation m^.m there follows the direction of the last iterate's small
-   * flow, and semismooth Newton cycled between the slip and the slip + yield branch of
-   * such cells (plastic ellipse, k_rel = 0.3, 22 x 22 cells from rest: 303 iterations,
-   * against 17 with m.p^, same solution to 5e-14). m.p^ is smooth in m and p for p != 0;
-   * |m| where p = 0 (exterior). */
+   * flow, and semismooth Newton cycles between the slip and the slip + yield branch of
+   * such cells (bench/RESULTS.md). m.p^ is smooth in m and p for p != 0; |m| where p = 0
+   * (exterior). */
   const int along_p = pnorm > 0.0;
   const double mrate = along_p ? (m[0] * p[0] + m[1] * p[1]) / pnorm : mnorm;
   out->R[rs_law_row_star(NC)] = r * (in->dustar - mrate);

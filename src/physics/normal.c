@@ -71,9 +71,8 @@ int rs_normal2d_solve_direct(const rs_elastic2d *el, rs_elastic2d_work *w, const
     }
     /* Column-major (m+1)x(m+1) system; unknowns p_C then delta/A(0), the load row
      * sum p_C = load/dx times A(0): a border of the size of the coefficients. With the
-     * border -1 and dx against coefficients of 1e-7 (Carter's case) LU lost accuracy
-     * as the grid grew: the bound ||gap residual||_2 / lambda_min on the pressure
-     * error was 2.2e-9 p_max on 1600 cells (6.2e-11 on 300), scaled 1.0e-10 (3.8e-12). */
+     * border -1 and dx against coefficients of 1e-7 (Carter's case) LU loses accuracy
+     * as the grid grows; scaling the border to the coefficients keeps it (bench/RESULTS.md). */
     const int ld = m + 1;
     const double scale = rs_elastic2d_norm(el, 0) != 0.0 ? fabs(rs_elastic2d_norm(el, 0)) : 1.0;
     for (int c = 0; c < m; c++) {

@@ -512,8 +512,8 @@ static int pseudo_transient(rs_steady *s, double *y, rs_stats *stats, rs_msg *ms
  * iteration. */
 enum { COARSE_MIN_CELLS = 40, COARSE_MIN_CELLS_3D = 12 };
 /* Whether the grid is fine enough to be solved through a coarser one (cells along x; in
- * 3D the grid halves along x and y, and plastic Newton from rest already cycles from
- * about 28 x 28 cells: 446 iterations there, against 16 at 24 x 24). */
+ * 3D the grid halves along x and y, and plastic Newton from rest cycles from about 28 x 28
+ * cells on). */
 static int can_coarsen(const rs_model *m)
 {
   const int min = m->el.dim == 3 ? COARSE_MIN_CELLS_3D : COARSE_MIN_CELLS;

@@ -349,14 +349,10 @@ void rs_transient_get_stats(const rs_transient *tr, rs_stats *st)
   st->lin_solves = tr->kry.lin_iters; /* Newton-Krylov: GMRES iterations (else 0) */
 }
 
-/* The rule's measurement (bench/startup_accuracy, docs/model.md §9): the 44 x 44 start-up of
- * bench/cases/hertz3d.yaml over 10 contact lengths at rtol 3e-3 deviates from an rtol 1e-6 run
- * by at most 0.33 of the grid's error (steady forces at 44², 88², extrapolated to zero cell
- * size at the scheme's first order). The grid's error falls with dx, the integration's with
- * rtol (about as rtol^0.6): with rtol in proportion to dx the ratio grows only slowly on finer
- * grids (0.41 at 64²); coarser grids keep 3e-3. In
- * 2D 1e-6 stays: a transient costs well under 2 s there, its error (1.6e-6 of F_x on
- * cases/default.yaml) is far inside the grid's (8e-3), and shipped results compare at it. */
+/* solver.rtol auto: in 3D in proportion to the cell size, so that the time integration's
+ * error stays a fraction of the grid's (first order in dx), within [1e-6, 3e-3]; in 2D 1e-6,
+ * whose error is far inside the grid's at a small cost. The measurement behind the factor is
+ * in docs/model.md §9 (bench/startup_accuracy). */
 double rs_transient_auto_rtol(const rs_model *m)
 {
   if (m->el.dim != 3 || !(m->hertz_a > 0.0)) return 1e-6;
