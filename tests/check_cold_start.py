@@ -19,31 +19,19 @@ Usage: check_cold_start.py ROLLSIM WORKDIR
 """
 import math
 import os
-import re
-import subprocess
 import sys
 
 import netCDF4
 
-CASE = """title: "cold start: Eurosprinter contact, 44 x 44 cells"
-contact: {dimension: 3, normal_load: 106700.0, radius: [625.0, 1776.72]}
-grid: {cells: [44, 44], extent: [1.1, 1.1]}
-material: {shear_modulus: 82000.0, poisson_ratio: 0.28}
-friction: {mu: 0.33}
-plasticity: {tau_c0: 150.0, k_rel: 0.3}
+from solver_checks import Checks, eurosprinter, sweep_counts
+
+CASE = eurosprinter("cold start: Eurosprinter contact, 44 x 44 cells", 44) + """plasticity: {tau_c0: 150.0, k_rel: 0.3}
 rolling: {velocity: 10000.0, creepage: -0.25}
 simulation: {mode: steady}
 output: {fields: []}
 """
 MU, TAU_C0 = 0.33, 150.0
-failures = 0
-
-
-def check(what, ok, detail=""):
-    global failures
-    print(f"{'ok  ' if ok else 'FAIL'} {what}{': ' + detail if detail else ''}")
-    if not ok:
-        failures += 1
+check = Checks()
 
 
 def point(binary, path, out, xi, plastic):
@@ -51,19 +39,13 @@ def point(binary, path, out, xi, plastic):
     sets = ["--set", f"sweep.rolling.creepage=[{xi}]"]
     sets += ["--set", "plasticity=null"] if plastic is None else ["--set",
                                                                    f"plasticity.k_rel={plastic}"]
-    try:
-        p = subprocess.run([binary, "sweep", path, "-o", out, "--quiet"] + sets,
-                           capture_output=True, text=True, timeout=120)
-    except subprocess.TimeoutExpired:
-        return None
-    m = re.search(r"(\d+) points solved, (\d+) failed, Newton iterations (\d+)", p.stdout)
-    if p.returncode != 0 or not m or m.group(1) != "1":
-        print(p.stdout, p.stderr)
+    counts = sweep_counts(binary, path, out, sets, timeout=120)
+    if counts is None or counts[0] != 1:
         return None
     with netCDF4.Dataset(out) as d:
         fn, a, b = float(d["Fn"][0]), float(d["hertz_a"][0]), float(d["hertz_b"][0])
         tc = float(d["traction_coefficient"][0]) / MU
-    return int(m.group(3)), tc, 1.5 * fn / (math.pi * a * b)
+    return counts[2], tc, 1.5 * fn / (math.pi * a * b)
 
 
 def main():
@@ -94,7 +76,7 @@ def main():
             if k_rel == "-0.001" and xi == -0.25:
                 check("xi -0.25, k_rel -0.001: the transient's limit", abs(r[1] - 0.520932) <= 1e-5,
                       f"{r[1]:.6f} against 0.520932")
-    return 1 if failures else 0
+    return 1 if check.failures else 0
 
 
 if __name__ == "__main__":

@@ -36,29 +36,19 @@ import sys
 
 import netCDF4
 
+from solver_checks import Checks, eurosprinter
+
 G, K_REL, TAU_C0, MU = 82000.0, -0.001, 150.0, 0.33
 K_TAU = G * K_REL / (1.0 - K_REL)
 TAU_C_MIN = 0.1 * TAU_C0
-CASE = """title: "heavy sliding with softening: Eurosprinter contact, CELLS x CELLS cells, xi -25 %"
-contact: {dimension: 3, normal_load: 106700.0, radius: [625.0, 1776.72]}
-grid: {cells: [CELLS, CELLS], extent: [1.1, 1.1]}
-material: {shear_modulus: 82000.0, poisson_ratio: 0.28}
-friction: {mu: 0.33}
-plasticity: {tau_c0: 150.0, k_rel: -0.001}
+CASE = """plasticity: {tau_c0: 150.0, k_rel: -0.001}
 rolling: {velocity: 10000.0, creepage: -0.25}
 simulation: {mode: transient, initial_state: rest, rolled_distance: 189.1,
   output_interval: 6.304e-4}
 solver: {rtol: 1.0e-3}
 output: {fields: [pn, ustar, regime]}
 """
-failures = 0
-
-
-def check(what, ok, detail=""):
-    global failures
-    print(f"{'ok  ' if ok else 'FAIL'} {what}{': ' + detail if detail else ''}")
-    if not ok:
-        failures += 1
+check = Checks()
 
 
 def run(binary, path, out, extra):
@@ -97,7 +87,8 @@ def main():
     os.makedirs(work, exist_ok=True)
     path = os.path.join(work, "heavy_sliding.yaml")
     with open(path, "w") as f:
-        f.write(CASE.replace("CELLS", str(cells)))
+        f.write(eurosprinter(f"heavy sliding with softening: Eurosprinter contact, {cells} x {cells} "
+                             "cells, xi -25 %", cells) + CASE)
     tr_nc, st_nc = os.path.join(work, "transient.nc"), os.path.join(work, "steady.nc")
     text = run(binary, path, tr_nc, [])
     check("the transient from rest finished", text is not None)
@@ -139,7 +130,7 @@ def main():
     sat = float((pn * MU).clip(max=TAU_C0).sum() / (MU * pn.sum()))
     check("softened: F_x/(mu F_n) below the saturation without hardening",
           fx[-1] / mu_fn < sat, f"{fx[-1] / mu_fn:.6f} against {sat:.6f}")
-    return 1 if failures else 0
+    return 1 if check.failures else 0
 
 
 if __name__ == "__main__":

@@ -19,22 +19,18 @@ of 2a = 12.6 mm, which carries 11 % of the load (Hertz) at tractions from tau_c0
 Usage: check_low_yield.py ROLLSIM WORKDIR
 """
 import os
-import re
-import subprocess
 import sys
 
 import netCDF4
+
+from solver_checks import Checks, eurosprinter, sweep_counts
 
 CREEPAGES = [-0.25, -0.225, -0.2, -0.175, -0.15, -0.125, -0.1, -0.075, -0.05, -0.04, -0.03,
              -0.02, -0.01, -0.008, -0.006, -0.0056, -0.0052, -0.0048, -0.0044, -0.004,
              -0.0036, -0.0032, -0.0028, -0.0024, -0.002, -0.0016, -0.0012, -0.0008, -0.0004,
              -1.0e-5]
-CASE = f"""title: "low yield limit: Eurosprinter contact, tau_c0 = 0.2 mu p0, 22 x 22 cells"
-contact: {{dimension: 3, normal_load: 106700.0, radius: [625.0, 1776.72]}}
-grid: {{cells: [22, 22], extent: [1.1, 1.1]}}
-material: {{shear_modulus: 82000.0, poisson_ratio: 0.28}}
-friction: {{mu: 0.33}}
-plasticity: {{tau_c0: 42.0, k_rel: 0.3}}
+CASE = eurosprinter("low yield limit: Eurosprinter contact, tau_c0 = 0.2 mu p0, 22 x 22 cells",
+                    22) + f"""plasticity: {{tau_c0: 42.0, k_rel: 0.3}}
 rolling: {{velocity: 10000.0, creepage: 0.0}}
 simulation: {{mode: steady}}
 output: {{fields: []}}
@@ -42,28 +38,7 @@ sweep:
   plasticity.k_rel: [0.01, 0.003]
   rolling.creepage: [{", ".join(repr(x) for x in CREEPAGES)}]
 """
-failures = 0
-
-
-def check(what, ok, detail=""):
-    global failures
-    print(f"{'ok  ' if ok else 'FAIL'} {what}{': ' + detail if detail else ''}")
-    if not ok:
-        failures += 1
-
-
-def sweep(binary, path, out, extra):
-    try:
-        p = subprocess.run([binary, "sweep", path, "-o", out, "--quiet"] + extra,
-                           capture_output=True, text=True, timeout=300)
-    except subprocess.TimeoutExpired:
-        print("timed out after 300 s")
-        return None
-    m = re.search(r"(\d+) points solved, (\d+) failed, Newton iterations (\d+)", p.stdout)
-    if p.returncode != 0 or not m:
-        print(p.stdout, p.stderr)
-        return None
-    return int(m.group(1)), int(m.group(2)), int(m.group(3))
+check = Checks()
 
 
 def main():
@@ -73,9 +48,9 @@ def main():
     with open(path, "w") as f:
         f.write(CASE)
     plastic_nc = os.path.join(work, "low_yield.nc")
-    elastic = sweep(binary, path, os.path.join(work, "elastic.nc"),
-                    ["--set", "plasticity=null", "--set", "sweep.plasticity.k_rel=null"])
-    plastic = sweep(binary, path, plastic_nc, [])
+    elastic = sweep_counts(binary, path, os.path.join(work, "elastic.nc"),
+                           ["--set", "plasticity=null", "--set", "sweep.plasticity.k_rel=null"])
+    plastic = sweep_counts(binary, path, plastic_nc, [])
     check("the elastic sweep ran", elastic is not None)
     check("the plastic sweep ran", plastic is not None)
     if plastic is None or elastic is None:
@@ -94,7 +69,7 @@ def main():
         check(f"k_rel {k}: F_x/(mu F_n) falls with |xi| falling and stays at most 1",
               falling and max(row) <= 1.0 + 1e-9, " ".join(f"{v:.5f}" for v in row))
     check("k_rel 0.003 nowhere above k_rel 0.01", all(b <= a + 1e-9 for a, b in zip(*tc)))
-    return 1 if failures else 0
+    return 1 if check.failures else 0
 
 
 if __name__ == "__main__":

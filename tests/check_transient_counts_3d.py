@@ -24,6 +24,8 @@ import sys
 
 import netCDF4
 
+from solver_checks import Checks
+
 CASE = """title: "3D start-up counts: Hertz ellipse a/b = 1.6, 22 x 22 cells"
 contact: {dimension: 3, normal_load: 10000.0, radius: [300.0, 150.0]}
 grid: {cells: [22, 22], extent: [1.1, 1.1]}
@@ -32,14 +34,7 @@ rolling: {velocity: 30000.0, creepage: -0.001, lateral_creepage: 0.0005, spin: 0
 simulation: {mode: transient, rolled_distance: 60.2, output_interval: 2.0e-5}
 output: {fields: []}
 """
-failures = 0
-
-
-def check(what, ok, detail=""):
-    global failures
-    print(f"{'ok  ' if ok else 'FAIL'} {what}{': ' + detail if detail else ''}")
-    if not ok:
-        failures += 1
+check = Checks()
 
 
 def run(binary, path, out, extra):
@@ -85,7 +80,7 @@ def main():
         per_iter = c["factorisations"] / c["newton"]
         check(f"{name}: near-field factorisations per Newton iteration at most 0.5",
               per_iter <= 0.5, f"{c['factorisations']:.0f} / {c['newton']:.0f} = {per_iter:.3f}")
-    return 1 if failures else 0
+    return 1 if check.failures else 0
 
 
 if __name__ == "__main__":

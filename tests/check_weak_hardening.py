@@ -12,18 +12,13 @@ point solved, and F_x/(mu F_n) rising with |xi| on each line (a creep curve) and
 Usage: check_weak_hardening.py ROLLSIM WORKDIR
 """
 import os
-import re
-import subprocess
 import sys
 
 import netCDF4
 
-CASE = """title: "weak hardening: Eurosprinter contact, 22 x 22 cells"
-contact: {dimension: 3, normal_load: 106700.0, radius: [625.0, 1776.72]}
-grid: {cells: [22, 22], extent: [1.1, 1.1]}
-material: {shear_modulus: 82000.0, poisson_ratio: 0.28}
-friction: {mu: 0.33}
-plasticity: {tau_c0: 150.0, k_rel: 0.3}
+from solver_checks import Checks, eurosprinter, sweep_counts
+
+CASE = eurosprinter("weak hardening: Eurosprinter contact, 22 x 22 cells", 22) + """plasticity: {tau_c0: 150.0, k_rel: 0.3}
 rolling: {velocity: 10000.0, creepage: 0.0}
 simulation: {mode: steady}
 output: {fields: []}
@@ -31,24 +26,7 @@ sweep:
   plasticity.k_rel: [0.01, 0.003]
   rolling.creepage: [-0.04, -0.03, -0.02, -0.01, -0.008, -0.006, -0.004]
 """
-failures = 0
-
-
-def check(what, ok, detail=""):
-    global failures
-    print(f"{'ok  ' if ok else 'FAIL'} {what}{': ' + detail if detail else ''}")
-    if not ok:
-        failures += 1
-
-
-def sweep(binary, path, out, extra):
-    p = subprocess.run([binary, "sweep", path, "-o", out, "--quiet"] + extra,
-                       capture_output=True, text=True, timeout=300)
-    m = re.search(r"(\d+) points solved, (\d+) failed, Newton iterations (\d+)", p.stdout)
-    if p.returncode != 0 or not m:
-        print(p.stdout, p.stderr)
-        return None
-    return int(m.group(1)), int(m.group(2)), int(m.group(3))
+check = Checks()
 
 
 def main():
@@ -58,9 +36,9 @@ def main():
     with open(path, "w") as f:
         f.write(CASE)
     plastic_nc = os.path.join(work, "weak_hardening.nc")
-    plastic = sweep(binary, path, plastic_nc, [])
-    elastic = sweep(binary, path, os.path.join(work, "elastic.nc"),
-                    ["--set", "plasticity=null", "--set", "sweep.plasticity.k_rel=null"])
+    plastic = sweep_counts(binary, path, plastic_nc, [])
+    elastic = sweep_counts(binary, path, os.path.join(work, "elastic.nc"),
+                           ["--set", "plasticity=null", "--set", "sweep.plasticity.k_rel=null"])
     check("the plastic sweep ran", plastic is not None)
     check("the elastic sweep ran", elastic is not None)
     if plastic is None or elastic is None:
@@ -75,7 +53,7 @@ def main():
         rising = all(a > b for a, b in zip(row[:-1], row[1:]))
         check(f"k_rel {k}: F_x/(mu F_n) falls with |xi| falling and stays at most 1",
               rising and max(row) <= 1.0 + 1e-9, " ".join(f"{v:.5f}" for v in row))
-    return 1 if failures else 0
+    return 1 if check.failures else 0
 
 
 if __name__ == "__main__":

@@ -1,0 +1,42 @@
+"""Shared by the 3D solver checks (check_weak_hardening, check_low_yield, check_cold_start,
+check_heavy_sliding, check_transient_counts_3d): the pass/fail line, the contact of
+bench/cases/tractcurve_plast.yaml as case text, and a sweep's counts."""
+import re
+import subprocess
+
+
+class Checks:
+    """check(what, ok, detail) prints one line per check; failures counts the failed ones."""
+
+    def __init__(self):
+        self.failures = 0
+
+    def __call__(self, what, ok, detail=""):
+        print(f"{'ok  ' if ok else 'FAIL'} {what}{': ' + detail if detail else ''}")
+        if not ok:
+            self.failures += 1
+
+
+def eurosprinter(title, cells):
+    """The first lines of a case on the Eurosprinter contact of CONTACT's tractcurve_plast
+    (a/b = 0.5, F_n = 106.7 kN, G = 82000 N/mm^2, nu = 0.28, mu = 0.33) on cells x cells."""
+    return (f'title: "{title}"\n'
+            "contact: {dimension: 3, normal_load: 106700.0, radius: [625.0, 1776.72]}\n"
+            f"grid: {{cells: [{cells}, {cells}], extent: [1.1, 1.1]}}\n"
+            "material: {shear_modulus: 82000.0, poisson_ratio: 0.28}\n"
+            "friction: {mu: 0.33}\n")
+
+
+def sweep_counts(binary, path, out, extra, timeout=300):
+    """(points solved, failed, Newton iterations) of `rollsim sweep`, or None (printed why)."""
+    try:
+        p = subprocess.run([binary, "sweep", path, "-o", out, "--quiet"] + extra,
+                           capture_output=True, text=True, timeout=timeout)
+    except subprocess.TimeoutExpired:
+        print(f"timed out after {timeout} s")
+        return None
+    m = re.search(r"(\d+) points solved, (\d+) failed, Newton iterations (\d+)", p.stdout)
+    if p.returncode != 0 or not m:
+        print(p.stdout, p.stderr)
+        return None
+    return int(m.group(1)), int(m.group(2)), int(m.group(3))
