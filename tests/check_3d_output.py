@@ -268,13 +268,18 @@ rolling: {creepage: -0.0004, lateral_creepage: 0.0002, spin: 0.0}
           all(abs(v - a) <= 5e-6 * a for v in ab), f"{ab} vs {a:.6g}")
     check("check: p0 = 3 F/(2 pi a^2)", abs(float(val["hertz.peak_pressure"]) - p0) <= 5e-6 * p0)
     coef = [float(t) for t in val["kalker.coefficients"].strip("[]").split(",")]
-    # Kalker (1990), Table E.3, a/b = 1, nu = 0.25: C11 = 4.12, C22 = 3.67, C23 = 1.47
-    check("check: Kalker's C11, C22, C23 at a/b = 1, nu = 0.25", coef == [4.12, 3.67, 1.47],
-          str(coef))
+    # Kalker (1990), Table E.3, a/b = 1, nu = 0.25: C11 = 4.12, C22 = 3.67, C23 = 1.47,
+    # C33 = 1.19
+    check("check: Kalker's C11, C22, C23, C33 at a/b = 1, nu = 0.25",
+          coef == [4.12, 3.67, 1.47, 1.19], str(coef))
     fxy = [float(t) for t in val["kalker.linear_forces"].strip("[]").split(",")]
     want = [-G * a * a * 4.12 * -0.0004, -G * a * a * 3.67 * 0.0002]
     check("check: linear forces F_x = -G a b C11 xi, F_y = -G a b C22 eta",
           all(abs(g - w) <= 5e-6 * abs(w) for g, w in zip(fxy, want)), f"{fxy} vs {want}")
+    mz = float(val["kalker.linear_moment"])
+    want = G * a ** 3 * 1.47 * 0.0002  # M_z = G (ab)^(3/2) C23 eta (no spin)
+    check("check: linear moment M_z = G (ab)^(3/2) (C23 eta - sqrt(ab) C33 phi)",
+          abs(mz - want) <= 5e-6 * abs(want), f"{mz} vs {want}")
 
 
 def part_rig(binary, work):

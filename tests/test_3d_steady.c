@@ -6,8 +6,9 @@
  *    ellipse of the discrete contact adds a part that does not fall evenly, so the test
  *    asks: every error at most 2 % on the finest grid (target 10), the errors of F_x and of
  *    F_y(eta) falling on every refinement, those of the C23 terms (F_y(phi), M_z(eta)) not
- *    larger on the finest grid than on the coarsest. The spin moment's coefficient C33 is
- *    not in the table available here (physics/kalker.h), so M_z(phi) is not checked.
+ *    larger on the finest grid than on the coarsest. The spin moment M_z(phi) against C33
+ *    (tabulated for a <= b, physics/kalker.h): at most 2.5 % on 88^2, and its first-order
+ *    extrapolation from 88^2 and 176^2 within 1 %.
  *  - the 2D limit: a patch with b/a = 18 (Ry = 100 Rx) at pure xi carries on its centre
  *    line the 2D line-contact traction of the same a and p0 (Hertz pressure in both, so
  *    that only the tangential kernels differ): the finite length changes the kernel by
@@ -60,7 +61,7 @@ static int solve(rs_case *c, rs_model *m, rs_diag *d, double **ys)
 static void kalker(double ratio)
 {
   const int grids[3] = {22, 44, 88};
-  double err[4][3]; /* F_x(xi), F_y(eta), M_z(eta), F_y(phi) on each grid */
+  double err[5][3]; /* F_x(xi), F_y(eta), M_z(eta), F_y(phi), M_z(phi) on each grid */
   double a_over_b = 0.0;
   for (int g = 0; g < 3; g++) {
     const double small = 1e-7; /* creepage; spin in 1/mm */
@@ -86,7 +87,10 @@ static void kalker(double ratio)
         err[1][g] = d.Fy / (G * ab * k.c22 * small) - 1.0;
         err[2][g] = d.Mz / (-G * pow(ab, 1.5) * k.c23 * small) - 1.0;
       }
-      if (q == 2) err[3][g] = d.Fy / (G * ab * sqrt(ab) * k.c23 * small) - 1.0;
+      if (q == 2) {
+        err[3][g] = d.Fy / (G * ab * sqrt(ab) * k.c23 * small) - 1.0;
+        err[4][g] = d.Mz / (G * ab * ab * k.c33 * small) - 1.0;
+      }
       if (d.count[RS_SLIP] + d.count[RS_PLASTIC] != 0) {
         printf("FAIL a tiny creepage must leave the contact in full adhesion\n");
         ts_failures++;
@@ -94,16 +98,18 @@ static void kalker(double ratio)
       rs_model_free(&m);
     }
   }
-  static const char *const what[4] = {"F_x(xi) vs C11", "F_y(eta) vs C22", "M_z(eta) vs C23",
-                                      "F_y(phi) vs C23"};
-  for (int q = 0; q < 4; q++) {
+  static const char *const what[5] = {"F_x(xi) vs C11", "F_y(eta) vs C22", "M_z(eta) vs C23",
+                                      "F_y(phi) vs C23", "M_z(phi) vs C33"};
+  for (int q = 0; q < 5; q++) {
     char label[160];
     printf("a/b = %.3f, %s: relative error %+.4f / %+.4f / %+.4f on 22^2 / 44^2 / 88^2 "
            "(order 44->88: %.2f)\n",
            a_over_b, what[q], err[q][0], err[q][1], err[q][2],
            log(fabs(err[q][1] / err[q][2])) / log(2.0));
+    /* M_z(phi) carries the largest first-order error (the spin's traction grows towards the
+     * patch's edge, where the staircase ellipse cuts cells): 6 % on 44^2, so 2.5 % on 88^2. */
     snprintf(label, sizeof label, "a/b = %.2f, %s: |error| on 88^2", a_over_b, what[q]);
-    ts_check(label, fabs(err[q][2]), 0.0, 0.02);
+    ts_check(label, fabs(err[q][2]), 0.0, q == 4 ? 0.025 : 0.02);
     if (q < 2) {
       snprintf(label, sizeof label, "a/b = %.2f, %s: error falls on every refinement", a_over_b,
                what[q]);
@@ -114,6 +120,28 @@ static void kalker(double ratio)
       ts_check_true(label, fabs(err[q][2]) < fabs(err[q][0]));
     }
   }
+  /* The spin moment extrapolated to zero cell size with the scheme's first order from 88^2
+   * and 176^2, M = 2 M_176 - M_88, against C33: within 1 % (the table's three digits give
+   * up to 0.4 %; the extrapolation's own error, from the part of the error that is not
+   * first order, is below 0.5 % on these grids). */
+  rs_case c;
+  const double small = 1e-7;
+  ts_ellipse_case(&c, 176, ratio, 0.0, 0.0, -small);
+  rs_model m;
+  rs_diag d;
+  if (solve(&c, &m, &d, NULL)) return;
+  rs_kalker k;
+  rs_msg msg = {{0}};
+  const double ab = m.hertz_a * m.hertz_b;
+  rs_kalker_coefficients(m.hertz_a / m.hertz_b, c.poisson_ratio, &k, &msg);
+  const double e176 = d.Mz / (c.shear_modulus * ab * ab * k.c33 * small) - 1.0;
+  rs_model_free(&m);
+  char label[160];
+  printf("a/b = %.3f, M_z(phi) vs C33: relative error %+.4f on 176^2, extrapolated %+.4f\n",
+         a_over_b, e176, 2.0 * e176 - err[4][2]);
+  snprintf(label, sizeof label, "a/b = %.2f, M_z(phi) extrapolated from 88^2, 176^2 vs C33",
+           a_over_b);
+  ts_check(label, 2.0 * e176 - err[4][2], 0.0, 0.01);
 }
 
 static void limit_2d(void)

@@ -29,6 +29,21 @@ static const double kalker_table[RS_KALKER_ROWS][3][RS_KALKER_NUS] = {
     {{10.7, 11.7, 12.9}, {10.7, 12.8, 16.0}, {12.2, 14.6, 18.0}},    /* 0.1 */
 };
 
+/* Kalker 1990, Table E.3, the spin-moment coefficient C33 for a <= b (see kalker.h):
+ * [row a/b = 0.1..1.0][nu = 0, 0.25, 0.5]. */
+static const double kalker_c33[RS_KALKER_C33_ROWS][RS_KALKER_NUS] = {
+    {6.42, 8.28, 11.7}, /* a/b = 0.1 */
+    {3.46, 4.27, 5.66}, /* 0.2 */
+    {2.49, 2.96, 3.72}, /* 0.3 */
+    {2.02, 2.32, 2.77}, /* 0.4 */
+    {1.74, 1.93, 2.22}, /* 0.5 */
+    {1.56, 1.68, 1.86}, /* 0.6 */
+    {1.43, 1.50, 1.60}, /* 0.7 */
+    {1.34, 1.37, 1.42}, /* 0.8 */
+    {1.27, 1.27, 1.27}, /* 0.9 */
+    {1.21, 1.19, 1.16}, /* 1.0 (circle) */
+};
+
 double rs_kalker_row_ratio(int row)
 {
   return row < 10 ? 0.1 * (row + 1) : 1.0 / (0.1 * (RS_KALKER_ROWS - row));
@@ -36,6 +51,7 @@ double rs_kalker_row_ratio(int row)
 
 double rs_kalker_table(int which, int row, int nu_index)
 {
+  if (which == 3) return row < RS_KALKER_C33_ROWS ? kalker_c33[row][nu_index] : NAN;
   return kalker_table[row][which][nu_index];
 }
 
@@ -114,13 +130,23 @@ int rs_kalker_coefficients(double a_over_b, double poisson_ratio, rs_kalker *c, 
   c->c11 = out[0];
   c->c22 = out[1];
   c->c23 = out[2];
+  c->c33 = NAN; /* tabulated for a <= b only */
+  if (row < RS_KALKER_C33_ROWS - 1 || (row == RS_KALKER_C33_ROWS - 1 && t_row == 0.0)) {
+    double at_nu[RS_KALKER_NUS], column[RS_KALKER_C33_ROWS];
+    for (int j = 0; j < RS_KALKER_NUS; j++) {
+      for (int r = 0; r < RS_KALKER_C33_ROWS; r++) column[r] = kalker_c33[r][j];
+      at_nu[j] = pchip(column, RS_KALKER_C33_ROWS, row, t_row);
+    }
+    c->c33 = pchip(at_nu, RS_KALKER_NUS, nu_node, t_nu);
+  }
   return RS_OK;
 }
 
 void rs_kalker_forces(const rs_kalker *c, double shear_modulus, double a, double b, double xi,
-                      double eta, double phi, double *fx, double *fy)
+                      double eta, double phi, double *fx, double *fy, double *mz)
 {
-  const double gab = shear_modulus * a * b;
+  const double gab = shear_modulus * a * b, root = sqrt(a * b);
   *fx = -gab * c->c11 * xi;
-  *fy = -gab * (c->c22 * eta + sqrt(a * b) * c->c23 * phi);
+  *fy = -gab * (c->c22 * eta + root * c->c23 * phi);
+  if (mz) *mz = gab * root * (c->c23 * eta - (phi != 0.0 ? root * c->c33 * phi : 0.0));
 }

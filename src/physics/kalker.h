@@ -16,10 +16,14 @@
  * holds in every row (the kernel is isotropic in x-y at nu = 0), and every column is
  * smooth; both are asserted in test_kalker.
  *
- * C33 (the spin-moment coefficient) is NOT provided: neither transcription carries that
- * column of Table E.3 and no other source of its values could be consulted; the values
- * must be taken from Kalker 1990 Table E.3 or Johnson 1985 Table 8.1 and checked against
- * a second copy before they are added here.
+ * C33 (the spin-moment coefficient) is given for a <= b only, the half of Table E.3 whose
+ * values were at hand (Kalker 1990, Table E.3, a/b = 0.1 ... 1.0). Neither transcription
+ * above carries that column, and no printed copy was available to type it from, so every
+ * entry was checked against an independent computation instead: rollsim's own spin moment
+ * M_z(phi) of an elastic ellipse in full adhesion on 64^2, 128^2 and 256^2 cells, extrapolated
+ * to zero cell size, agrees with each of the 30 entries to within 1 % (bench/kalker_c33
+ * prints the comparison; the extrapolation is first order, the scheme's). For a > b no
+ * value could be checked that way against a source, so C33 is NaN there.
  *
  * Laws and sign conventions (Kalker 1990 §2.2 / Johnson 1985 §8.4), G the combined
  * shear modulus, a the semi-axis along the rolling direction x, b across it:
@@ -51,17 +55,20 @@ typedef struct rs_kalker {
   double c11; /* longitudinal creepage xi -> F_x */
   double c22; /* lateral creepage eta -> F_y */
   double c23; /* spin -> F_y and lateral creepage -> M_z */
+  double c33; /* spin -> M_z; NaN for a > b (not tabulated here) */
 } rs_kalker;
 
 /* The table: rows of a/b = 0.1, 0.2, ..., 1.0 and then b/a = 0.9, 0.8, ..., 0.1
  * (a/b = 1/0.9 ... 10), at nu = 0, 0.25, 0.5. */
-#define RS_KALKER_ROWS 19
-#define RS_KALKER_NUS  3
+#define RS_KALKER_ROWS     19
+#define RS_KALKER_NUS      3
+/* C33's rows: a/b = 0.1, ..., 1.0. */
+#define RS_KALKER_C33_ROWS 10
 
 /* The semi-axis ratio a/b of table row `row` (0..RS_KALKER_ROWS-1). */
 double rs_kalker_row_ratio(int row);
-/* The tabulated value of coefficient `which` (0: C11, 1: C22, 2: C23) at a row and
- * nu = 0.25 nu_index (nu_index 0..2). */
+/* The tabulated value of coefficient `which` (0: C11, 1: C22, 2: C23, 3: C33) at a row and
+ * nu = 0.25 nu_index (nu_index 0..2); C33 is NaN in the rows a > b. */
 double rs_kalker_table(int which, int row, int nu_index);
 
 /* Coefficients for the semi-axis ratio a/b in [0.1, 10] and nu in [0, 0.5]: monotone
@@ -73,8 +80,9 @@ double rs_kalker_table(int which, int row, int nu_index);
 int rs_kalker_coefficients(double a_over_b, double poisson_ratio, rs_kalker *c, rs_msg *msg);
 
 /* The linear-theory forces on body 1 for creepages xi, eta and spin phi (1/mm):
- * F_x = -G a b C11 xi, F_y = -G a b (C22 eta + sqrt(a b) C23 phi); N. */
+ * F_x = -G a b C11 xi, F_y = -G a b (C22 eta + sqrt(a b) C23 phi) (N), and, if mz is not
+ * NULL, M_z = G (a b)^(3/2) (C23 eta - sqrt(a b) C33 phi) (N mm; NaN for a > b with spin). */
 void rs_kalker_forces(const rs_kalker *c, double shear_modulus, double a, double b, double xi,
-                      double eta, double phi, double *fx, double *fy);
+                      double eta, double phi, double *fx, double *fy, double *mz);
 
 #endif

@@ -447,18 +447,31 @@ static int print_derived_3d(const rs_case *c, const rs_model *m, FILE *out, rs_m
   rs_kalker k;
   rs_msg kmsg = {{0}};
   if (rs_kalker_coefficients(m->hertz_a / m->hertz_b, c->poisson_ratio, &k, &kmsg) == RS_OK) {
-    double fx, fy;
+    double fx, fy, mz;
     rs_kalker_forces(&k, c->shear_modulus, m->hertz_a, m->hertz_b, in.creepage, in.lateral_creepage,
-                     in.spin, &fx, &fy);
+                     in.spin, &fx, &fy, &mz);
     fx += 0.0; /* -0 prints as 0 */
     fy += 0.0;
-    fprintf(out,
-            "kalker.coefficients: [%.5g, %.5g, %.5g]  # C11, C22, C23 at a/b = %.4g, nu = %g\n",
-            k.c11, k.c22, k.c23, m->hertz_a / m->hertz_b, c->poisson_ratio);
+    mz += 0.0;
+    if (isnan(k.c33))
+      fprintf(out,
+              "kalker.coefficients: [%.5g, %.5g, %.5g, null]  # C11, C22, C23, C33 at a/b = %.4g, "
+              "nu = %g (C33 tabulated for a <= b only)\n",
+              k.c11, k.c22, k.c23, m->hertz_a / m->hertz_b, c->poisson_ratio);
+    else
+      fprintf(out,
+              "kalker.coefficients: [%.5g, %.5g, %.5g, %.5g]  # C11, C22, C23, C33 at a/b = %.4g, "
+              "nu = %g\n",
+              k.c11, k.c22, k.c23, k.c33, m->hertz_a / m->hertz_b, c->poisson_ratio);
     fprintf(out,
             "kalker.linear_forces: [%.6g, %.6g]  # N, F_x and F_y of the linear theory at t = 0 "
             "(|F| <= mu F_n = %.6g N caps the real ones)\n",
             fx, fy, m->par.friction.mu * fn);
+    if (isnan(mz))
+      fprintf(out,
+              "kalker.linear_moment: null  # N mm, M_z needs C33, tabulated for a <= b only\n");
+    else
+      fprintf(out, "kalker.linear_moment: %.6g  # N mm, M_z of the linear theory at t = 0\n", mz);
   } else {
     fprintf(out, "kalker.coefficients: null  # %s\n", kmsg.text);
   }
