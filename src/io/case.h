@@ -5,7 +5,8 @@
 
 #include <stdio.h>
 #include "physics/history.h"
-#include "physics/model.h" /* rs_normal_solution, rs_scaling */
+#include "physics/model.h"   /* rs_normal_solution, rs_scaling */
+#include "physics/thermal.h" /* rs_thermal_params */
 #include "base/status.h"
 
 typedef enum { RS_MODE_TRANSIENT = 0, RS_MODE_STEADY = 1 } rs_mode;
@@ -117,6 +118,9 @@ typedef struct rs_case {
 
   /* twin_disc: */
   rs_twin_disc rig;
+
+  /* temperature: (on = 0 when the block is absent) */
+  rs_thermal_params temperature;
 
   /* output: */
   char *output_file;

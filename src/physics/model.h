@@ -293,6 +293,12 @@ void rs_model_diagnostics_of(const rs_model *m, const rs_work *w, const rs_input
                              const double *y, rs_diag *d, double *slip, double *tauc,
                              signed char *regime);
 
+/* Per cell the frictional power density -p . v_s and the plastic one p . Du_pl/Dt
+ * (N/(mm s), i.e. mW/mm^2) from a work evaluated at (in, y) as for rs_model_diagnostics_of:
+ * their sums times the cell area are its frictional_power and plastic_power. */
+void rs_model_power_densities(const rs_model *m, const rs_work *w, const double *y,
+                              double *frictional, double *plastic);
+
 /* Checks a steady state y (y' = 0): the paper's contact conditions cell by cell (eqs.
  * 7-10: |p| <= min(g, tau_c); slip only at the bound and opposite to p; plastic flow
  * only at the yield limit and parallel to p; Dustar/Dt = |Du_pl/Dt|; nothing outside
