@@ -281,6 +281,9 @@ typedef struct rs_diag {
   int count[4];                          /* by rs_regime */
   double frictional_power, plastic_power, elastic_energy, rigid_slip_power;
   double hertz_a, hertz_b; /* 3D: Hertz semi-axes (mm) at the inputs' load (0 in 2D) */
+  /* Surface temperature (docs/model.md §18), filled by the driver when a case asks for it (0
+   * otherwise): the largest in the contact, degC, and the heat into each body, W (2D: W/mm). */
+  double T_max, heat_input_1, heat_input_2;
 } rs_diag;
 
 /* slip: ncomp blocks of one value per cell (relative slip v_s/V, or v_s when V = 0). */

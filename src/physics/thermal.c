@@ -193,7 +193,7 @@ void rs_thermal_march(rs_thermal *th, double V, const double *q, const signed ch
       T2[i] = H[1] + B[1] * qb[1];
       if (q1) q1[i] = qb[0];
       if (q2) q2[i] = qb[1];
-      T_max = fmax(T_max, fmax(T1[i], T2[i]));
+      if (contact[i]) T_max = fmax(T_max, fmax(T1[i], T2[i]));
       for (int b = 0; b < 2; b++) {
         res->heat_input[b] += qb[b] * th->area;
         for (int k = 0; k < K; k++)
@@ -202,5 +202,5 @@ void rs_thermal_march(rs_thermal *th, double V, const double *q, const signed ch
       }
     }
   }
-  res->T_max = T_max;
+  res->T_max = T_max > -INFINITY ? T_max : NAN;
 }

@@ -72,7 +72,10 @@ void rs_thermal_free(rs_thermal *th);
 
 /* What the march reports: the hottest surface point and the heat flowing into each body. */
 typedef struct rs_thermal_result {
-  double T_max;         /* degC, over both surfaces and every cell */
+  /* degC, the largest surface temperature in the contact (T1 = T2 there; outside it the
+   * surfaces take their bulk temperatures ahead and relax towards them behind); NaN without
+   * contact */
+  double T_max;
   double heat_input[2]; /* W (2D: W per mm of width): sum of q_i dA */
 } rs_thermal_result;
 
