@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Surface temperature through the whole program (docs/model.md §18, docs/verification.md 21).
+"""Surface temperature through the whole program (docs/model.md §18, docs/verification.md 26).
 
   check_temperature.py ROLLSIM CASES_DIR OUT_DIR
 

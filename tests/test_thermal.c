@@ -1,4 +1,4 @@
-/* Surface temperature (physics/thermal.h, docs/model.md §18, docs/verification.md 21):
+/* Surface temperature (physics/thermal.h, docs/model.md §18, docs/verification.md 26):
  *
  * 1. Kernel: the step response of the sum of exponentials meets 2 sqrt(l/pi) to the
  *    tolerance asked (checked here on points of its own, 200 per decade), for tolerances
