@@ -26,13 +26,19 @@
    rise (the sweep continues from point to point, the run starts afresh: two paths to the same
    steady state, to the Newton tolerance).
 6. Without a temperature: block the files hold no temperature variable.
+7. Post-processing: the creep-curve figure of a sweep with temperature draws each series' T_max
+   (its --data rows) as the file holds them, point by point; the map figure draws T1.
 """
 import os
 import subprocess
 import sys
 
+import csv
+
 import netCDF4
 import numpy as np
+
+POST = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "postproc", "rollsim_post.py")
 
 failures = 0
 
@@ -92,7 +98,7 @@ def main():
     d3 = run(rollsim, ["run", os.path.join(cases, "hertz3d_creep.yaml"), "--set",
                        "simulation.mode=steady", "--set", "grid.cells=[24, 24]",
                        "--set", "rolling.lateral_creepage=0.0005", "--set", "rolling.spin=0.0005",
-                       "--set", "rolling.creepage=-0.001",
+                       "--set", "rolling.creepage=-0.001", "--set", "output.fields=[pn]",
                        "--set", "temperature={bulk: [20, 40], conductivity: [0.05, 0.03]}"],
              os.path.join(out, "steady3d.nc"))
     energy(d3, 1.0, "3D steady with spin")
@@ -121,6 +127,26 @@ def main():
         check(abs(a - b) <= 1e-6 * (b - 20.0), f"sweep point k_rel = {float(k):g}: T_max as a run",
               a, b)
         dp.close()
+
+    cc = os.path.join(out, "creep.nc")
+    run(rollsim, ["sweep", plast] + temp + ["--set", "sweep.plasticity.k_rel=[0.6, 0]", "--set",
+                                             "sweep.rolling.creepage={linspace: [0, -0.002, 5]}"],
+        cc).close()
+    data = os.path.join(out, "creep.csv")
+    subprocess.run([sys.executable, POST, "creepcurve", cc, "-o", os.path.join(out, "creep.png"),
+                    "--data", data], check=True, capture_output=True)
+    with netCDF4.Dataset(cc) as d:
+        t_file = {(float(k), float(x)): float(d["T_max"][i, j])
+                  for i, k in enumerate(d["plasticity_k_rel"][:])
+                  for j, x in enumerate(d["rolling_creepage"][:])}
+    rows = [r for r in csv.DictReader(open(data)) if r["quantity"] == "T_max"]
+    worst = max(abs(float(r["y"]) - t_file[(float(r["plasticity.k_rel"]), float(r["x"]))])
+                for r in rows)
+    check(len(rows) == len(t_file) and worst <= 1e-12,
+          f"creep-curve figure draws T_max as stored ({len(rows)} points)", worst, 0.0)
+    r = subprocess.run([sys.executable, POST, "map", os.path.join(out, "steady3d.nc"), "--field",
+                        "T1", "-o", os.path.join(out, "T1.png")], capture_output=True, text=True)
+    check(r.returncode == 0, "map --field T1 of a 3D file", r.returncode, 0)
 
     dn = run(rollsim, ["run", plast], os.path.join(out, "none.nc"))
     names = [v for v in ("T1", "T2", "T_max", "heat_input_1", "heat_input_2") if v in dn.variables]
