@@ -26,7 +26,10 @@
    rise (the sweep continues from point to point, the run starts afresh: two paths to the same
    steady state, to the Newton tolerance).
 6. Without a temperature: block the files hold no temperature variable.
-7. Post-processing: the creep-curve figure of a sweep with temperature draws each series' T_max
+7. Restart with --append continues the temperature variables record by record; a file and a case
+   that differ in having a temperature: block are refused (exit 2, the message names T1 and the
+   block) before anything is written.
+8. Post-processing: the creep-curve figure of a sweep with temperature draws each series' T_max
    (its --data rows) as the file holds them, point by point; the map figure draws T1.
 """
 import os
@@ -147,6 +150,23 @@ def main():
     r = subprocess.run([sys.executable, POST, "map", os.path.join(out, "steady3d.nc"), "--field",
                         "T1", "-o", os.path.join(out, "T1.png")], capture_output=True, text=True)
     check(r.returncode == 0, "map --field T1 of a 3D file", r.returncode, 0)
+
+    default = os.path.join(cases, "default.yaml")
+    app = os.path.join(out, "append.nc")
+    run(rollsim, ["run", default] + temp + ["--set", "simulation.rolled_distance=3"], app).close()
+    r = subprocess.run([rollsim, "run", default] + temp + ["--set", "simulation.rolled_distance=6",
+                        "--restart", app, "--append", "--quiet"], capture_output=True, text=True)
+    with netCDF4.Dataset(app) as d:
+        n = len(d["time"])
+        ok = r.returncode == 0 and d["T1"].shape[0] == n and d["T_max"].shape[0] == n and \
+            not np.any(np.isnan(d["T_max"][1:]))
+    check(ok, f"--append continues T1, T_max ({n} records)", r.returncode, 0)
+    size = os.path.getsize(app)
+    r = subprocess.run([rollsim, "run", default, "--set", "simulation.rolled_distance=9",
+                        "--restart", app, "--append", "--quiet"], capture_output=True, text=True)
+    check(r.returncode == 2 and "T1" in r.stderr and "temperature: block" in r.stderr and
+          os.path.getsize(app) == size, "--append without the block into a file with it: refused",
+          (r.returncode, r.stderr.strip()), 2)
 
     dn = run(rollsim, ["run", plast], os.path.join(out, "none.nc"))
     names = [v for v in ("T1", "T2", "T_max", "heat_input_1", "heat_input_2") if v in dn.variables]

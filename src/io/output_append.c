@@ -125,10 +125,10 @@ static int check_layout(rs_output *out, size_t nx, const double *x, size_t ny, c
         var_over(ncid, rs_temperature_vars[v].name, field ? ndims : 1, field ? dims : &time_dim);
     if ((out->temp_id[v] >= 0) != want_t)
       return rs_msg_set(msg, RS_ERR_INPUT,
-                        "--append %s: %s variable %s, but the case %s a temperature: block "
+                        "--append %s: %s variable %s, but the case has %s temperature: block "
                         "(continue into a new file: leave out --append)",
                         path, want_t ? "has no" : "has the", rs_temperature_vars[v].name,
-                        want_t ? "has" : "has no");
+                        want_t ? "a" : "no");
   }
   out->records = nrec;
   if (nrec == 0) return layout_error(path, msg, "holds no records");
