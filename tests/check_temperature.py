@@ -24,7 +24,8 @@
    integrator's).
 5. A sweep's per-point T_max equals that of a separate steady run of each point to 1e-6 of the
    rise (the sweep continues from point to point, the run starts afresh: two paths to the same
-   steady state, to the Newton tolerance).
+   steady state, to the Newton tolerance); the sweep run in two parts and merged holds the same
+   T_max and heat inputs bit for bit.
 6. Without a temperature: block the files hold no temperature variable.
 7. Restart with --append continues the temperature variables record by record; a file and a case
    that differ in having a temperature: block are refused (exit 2, the message names T1 and the
@@ -150,6 +151,17 @@ def main():
     r = subprocess.run([sys.executable, POST, "map", os.path.join(out, "steady3d.nc"), "--field",
                         "T1", "-o", os.path.join(out, "T1.png")], capture_output=True, text=True)
     check(r.returncode == 0, "map --field T1 of a 3D file", r.returncode, 0)
+
+    parts = []
+    for k in (1, 2):
+        parts.append(os.path.join(out, f"part{k}.nc"))
+        run(rollsim, ["sweep", plast] + temp + ["--part", f"{k}/2"], parts[-1]).close()
+    merged = os.path.join(out, "merged.nc")
+    subprocess.run([rollsim, "merge", merged] + parts, check=True, capture_output=True)
+    with netCDF4.Dataset(merged) as dm:
+        same = all(np.array_equal(dm[v][:], sw[v][:]) for v in
+                   ("T_max", "heat_input_1", "heat_input_2"))
+    check(same, "parts merged: T_max, heat inputs as the whole sweep", same, True)
 
     default = os.path.join(cases, "default.yaml")
     app = os.path.join(out, "append.nc")
