@@ -500,6 +500,7 @@ int rs_run_print_derived(const rs_case *c, FILE *out, rs_msg *msg)
   fprintf(out, "# derived\n");
   if (m.lay.ncomp == 2) {
     status = print_derived_3d(c, &m, out, msg);
+    if (status == RS_OK) status = rs_temperature_print_derived(c, &m, out, msg);
     rs_model_free(&m);
     return status;
   }
@@ -526,6 +527,7 @@ int rs_run_print_derived(const rs_case *c, FILE *out, rs_msg *msg)
             "twin_disc.line_load: %.6g  # N/mm, normal_force/width\n",
             c->rig.revolution_time, c->rig.revolution_time * V / m.grid.dx,
             c->rig.normal_force / c->rig.width);
+  status = rs_temperature_print_derived(c, &m, out, msg);
   rs_model_free(&m);
-  return RS_OK;
+  return status;
 }

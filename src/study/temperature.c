@@ -39,6 +39,33 @@ void rs_temperature_run_free(rs_temperature_run *t)
   memset(t, 0, sizeof *t);
 }
 
+int rs_temperature_print_derived(const rs_case *c, const rs_model *m, FILE *out, rs_msg *msg)
+{
+  if (!c->temperature.on) return RS_OK;
+  rs_temperature_run t;
+  int status = rs_temperature_run_create(&t, c, m, msg);
+  if (status != RS_OK) return status;
+  rs_inputs in;
+  rs_model_inputs_at(m, 0.0, &in);
+  const rs_thermal_params *p = &c->temperature;
+  double pe[2];
+  for (int b = 0; b < 2; b++) /* kappa = lambda/(rho c), mm^2/s */
+    pe[b] =
+        in.velocity * m->hertz_a * p->density[b] * p->heat_capacity[b] / (2.0 * p->conductivity[b]);
+  fprintf(out, "temperature.beta: [%.6g, %.6g]  # W s^(1/2)/(mm^2 K), sqrt(lambda rho c)\n",
+          t.th.beta[0], t.th.beta[1]);
+  fprintf(out,
+          "temperature.kernel_modes: %d  # + a mode of rate 0 and an instantaneous part; step "
+          "response within %.3g\n",
+          t.th.ker.nmodes, t.th.ker.error);
+  fprintf(out,
+          "temperature.peclet: [%.4g, %.4g]  # V a/(2 kappa) at t = 0 (1D conduction into the "
+          "depth: valid for Pe >> 1)\n",
+          pe[0], pe[1]);
+  rs_temperature_run_free(&t);
+  return RS_OK;
+}
+
 void rs_temperature_run_eval(rs_temperature_run *t, const rs_model *m, const rs_work *w,
                              const rs_inputs *in, const double *y, rs_diag *d)
 {

@@ -3,6 +3,8 @@
 #ifndef ROLLSIM_STUDY_TEMPERATURE_H
 #define ROLLSIM_STUDY_TEMPERATURE_H
 
+#include <stdio.h>
+
 #include "io/case.h"
 #include "physics/model.h"
 #include "physics/thermal.h"
@@ -24,5 +26,9 @@ void rs_temperature_run_free(rs_temperature_run *t);
  * fills T1, T2 and d's T_max and heat inputs. */
 void rs_temperature_run_eval(rs_temperature_run *t, const rs_model *m, const rs_work *w,
                              const rs_inputs *in, const double *y, rs_diag *d);
+
+/* rollsim check: beta of each body, the kernel's modes and error, and the Peclet number
+ * V a/(2 kappa) of each body at t = 0 (docs/model.md §18). Nothing without the block. */
+int rs_temperature_print_derived(const rs_case *c, const rs_model *m, FILE *out, rs_msg *msg);
 
 #endif
