@@ -475,7 +475,8 @@ def build_parser():
     s.add_argument("file", metavar="FILE")
     s.add_argument("--field", default="traction", metavar="FIELD",
                    help="what to colour: traction (|p| with arrows, default), slip (|s| with "
-                        "arrows), pressure, regime, ustar, tauc, upl")
+                        "arrows), pressure, regime, ustar, tauc, upl, T1, T2 (surface "
+                        "temperatures, temperature: block)")
     s.add_argument("--time", type=float, nargs="+", metavar="T",
                    help="times in s; each picks the nearest stored record (default: the last)")
     s.add_argument("--arrows", type=int, default=25, metavar="N",

@@ -239,11 +239,14 @@ class CreepSeries:
     sources: list = field(default_factory=list)  # one "file" or "file[i,j]" per point
     values: dict = field(default_factory=dict)   # sweep files: the other swept keys' values
     elastic: bool = False                        # sweep files: the yield limit is never reached
+    t_max: object = None                         # sweep files with temperature: T_max per point
 
     def sort(self):
         order = np.argsort(self.creepage, kind="stable")
         self.creepage = self.creepage[order]
         self.traction = self.traction[order]
+        if self.t_max is not None:
+            self.t_max = self.t_max[order]
         self.sources = [self.sources[i] for i in order]
         return self
 
@@ -285,6 +288,9 @@ def sweep_series(run, prefix=None, var="traction_coefficient", x_key=CREEPAGE_KE
     # Move the creepage axis last so each series is values[combination of others, :].
     values = np.moveaxis(values, dims.index(x_dim), -1)
     values = values.reshape([len(run.ds.dimensions[d]) for d in others] + [creepage.size])
+    t_max = None  # the surface temperature per point (a temperature: block), same layout
+    if var == "traction_coefficient" and run.has("T_max") and list(run.dims("T_max")) == dims:
+        t_max = np.moveaxis(run.values("T_max"), dims.index(x_dim), -1).reshape(values.shape)
     coords = {d: run.coordinate(d) for d in others}
     series = []
     for combo in itertools.product(*[range(len(coords[d])) for d in others]):
@@ -296,6 +302,8 @@ def sweep_series(run, prefix=None, var="traction_coefficient", x_key=CREEPAGE_KE
         ok = ~np.isnan(y) & ~np.isnan(creepage)
         idx = [f"{run.path}[{','.join(str(i) for i in combo + (k,))}]" for k in range(y.size)]
         s = CreepSeries(label, creepage[ok].copy(), y[ok].copy(), [s for s, k in zip(idx, ok) if k])
+        if t_max is not None:
+            s.t_max = np.asarray(t_max[combo], dtype=float)[ok].copy()
         s.values = {run.sweep_key(d): float(coords[d][i]) for d, i in zip(others, combo)}
         s.elastic = sweep.is_elastic(run, sweep.Point(tuple(combo), dict(s.values)))
         series.append(s.sort())

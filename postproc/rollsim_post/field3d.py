@@ -24,6 +24,8 @@ MAP_FIELDS = {
     "ustar": (("ustar",), None, "u*", "accumulated plastic deformation"),
     "tauc": (("tauc",), None, "τ_c", "yield limit"),
     "upl": (("upl_x", "upl_y"), ("upl_x", "upl_y"), "|u_pl|", "plastic displacement"),
+    "T1": (("T1",), None, "T_1", "surface temperature of body 1"),
+    "T2": (("T2",), None, "T_2", "surface temperature of body 2"),
 }
 
 CREEP_KEYS = ("rolling.creepage", "rolling.lateral_creepage", "rolling.spin")

@@ -312,7 +312,9 @@ def plot_creepcurve(panels, out, absolute=False, title=None, percent=False, mu=N
     """Traction coefficient against creepage: one panel per entry of `panels` (title, series),
     one line with markers per series, a distinct colour per series label (the same in every
     panel), the elastic series black and dashed. With `percent` the creepage is in %; with
-    `absolute` |xi| and |F_x/F_n| (the quadrant of the paper's Figure 9)."""
+    `absolute` |xi| and |F_x/F_n| (the quadrant of the paper's Figure 9). Series with a surface
+    temperature (sweep files of a case with a temperature: block) add T_max, dashed in the
+    series' colour, on a second axis at the right."""
     rec = rec or Recorder()
     if panels and not isinstance(panels[0], tuple):
         panels = [("", panels)]  # a plain list of series: one panel
@@ -335,6 +337,17 @@ def plot_creepcurve(panels, out, absolute=False, title=None, percent=False, mu=N
                 style["marker"] = "o"
             rec.line(ax, k, x[order] * factor, y[order], ms=4, series=s.label,
                      quantity="traction_coefficient", point=getattr(s, "values", None), **style)
+        hot = [s for s in series if getattr(s, "t_max", None) is not None]
+        if hot:
+            tax = ax.twinx()
+            for s in hot:
+                x = np.abs(s.creepage) if absolute else s.creepage
+                order = np.argsort(x, kind="stable")
+                colour = ELASTIC_STYLE.get("color", "k") if getattr(s, "elastic", False) \
+                    else colours[s.label]
+                rec.line(tax, k, x[order] * factor, s.t_max[order], color=colour, lw=1.0, ls="--",
+                         series=s.label, quantity="T_max", point=getattr(s, "values", None))
+            tax.set_ylabel("T_max [degC] (dashed)")
         if mu is not None:
             ax.axhline(mu if absolute else mu, color="0.4", lw=0.8, ls=":", label=f"μ = {mu:g}")
         ax.axhline(0.0, color="0.5", lw=0.5)

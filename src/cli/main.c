@@ -245,6 +245,10 @@ static void print_summary(const rs_case *c, const cli_args *a, const rs_run_resu
            d->Mz, d->creepage, d->lateral_creepage, d->spin);
   printf("  cells E/H/S/P = %d/%d/%d/%d\n", d->count[RS_EXTERIOR], d->count[RS_ADHESION],
          d->count[RS_SLIP], d->count[RS_PLASTIC]);
+  if (c->temperature.on)
+    printf("  T_max = %.4g degC   (heat into body 1/2: %.6g/%.6g %s; bulk %g/%g degC)\n", d->T_max,
+           d->heat_input_1, d->heat_input_2, three ? "W" : "W/mm", c->temperature.bulk[0],
+           c->temperature.bulk[1]);
   /* A falling law can have several steady states: say which one this is. */
   if (rs_friction_varies(&c->friction) && c->mode == RS_MODE_STEADY)
     printf("  friction law %s (mu = %g at rest); steady branch: %s\n",

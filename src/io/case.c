@@ -58,6 +58,12 @@ static void set_defaults(rs_case_input *in)
   in->k_rel = NAN;
   c->rig.recovery = 1.0;
   c->rig.average_window = 0.5;
+  /* temperature: steel unless given */
+  in->t_conductivity = (rs_case_vec){1, {50e-3, 0.0}};
+  in->t_heat_capacity = (rs_case_vec){1, {450.0, 0.0}};
+  in->t_density = (rs_case_vec){1, {7.85e-6, 0.0}};
+  c->temperature.plastic_heat_fraction = 1.0;
+  c->temperature.kernel_tolerance = 1e-3;
 }
 
 typedef struct resolver {
@@ -143,6 +149,27 @@ static int resolve_plasticity(const resolver *r, rs_case *c, double k_rel)
     return rs_case_error(r->d, floor_node, "plasticity.tau_c_min",
                          "must be <= plasticity.tau_c0 = %g N/mm^2, got %g", c->tau_c0,
                          c->tau_c_min);
+  return RS_OK;
+}
+
+/* temperature: the block's presence turns it on; one number is both bodies' value. */
+static int resolve_temperature(const resolver *r, rs_case_input *in)
+{
+  rs_thermal_params *t = &in->c.temperature;
+  const yaml_node_t *block = given(r, "temperature");
+  t->on = block != NULL;
+  if (!t->on) return RS_OK;
+  if (!given(r, "temperature.bulk"))
+    return rs_case_error(r->d, block, "temperature",
+                         "give temperature.bulk: [T1, T2] (degC), the bulk temperature of each "
+                         "body (one number: both)");
+  const rs_case_vec *v[4] = {&in->t_bulk, &in->t_conductivity, &in->t_heat_capacity,
+                             &in->t_density};
+  double *dst[4] = {t->bulk, t->conductivity, t->heat_capacity, t->density};
+  for (int k = 0; k < 4; k++) {
+    dst[k][0] = v[k]->v[0];
+    dst[k][1] = v[k]->n == 2 ? v[k]->v[1] : v[k]->v[0];
+  }
   return RS_OK;
 }
 
@@ -560,7 +587,8 @@ static int resolve(const rs_case_doc *d, rs_case_input *in, const yaml_node_t **
   int status;
   if ((status = resolve_dimension(&r, in)) != RS_OK) return status;
   if ((status = resolve_plasticity(&r, c, in->k_rel)) != RS_OK ||
-      (status = resolve_twin_disc(&r, c)) != RS_OK || (status = resolve_time(&r, c)) != RS_OK)
+      (status = resolve_twin_disc(&r, c)) != RS_OK || (status = resolve_time(&r, c)) != RS_OK ||
+      (status = resolve_temperature(&r, in)) != RS_OK)
     return status;
   const rs_history *hs[] = {&c->normal_load,    &c->velocity,         &c->creepage,
                             &c->shift_velocity, &c->lateral_creepage, &c->spin};
@@ -886,7 +914,11 @@ void rs_case_print(const rs_case *c, FILE *out)
       .force_n = three ? 2 : 1,
       .mu_excess = {c->friction.terms, {c->friction.mu_excess[0], c->friction.mu_excess[1]}},
       .half_velocity = {c->friction.terms,
-                        {c->friction.half_velocity[0], c->friction.half_velocity[1]}}};
+                        {c->friction.half_velocity[0], c->friction.half_velocity[1]}},
+      .t_bulk = {2, {c->temperature.bulk[0], c->temperature.bulk[1]}},
+      .t_conductivity = {2, {c->temperature.conductivity[0], c->temperature.conductivity[1]}},
+      .t_heat_capacity = {2, {c->temperature.heat_capacity[0], c->temperature.heat_capacity[1]}},
+      .t_density = {2, {c->temperature.density[0], c->temperature.density[1]}}};
   char num[32];
   for (size_t i = 0; i < rs_case_nkeys; i++) {
     const rs_case_key *k = &rs_case_keys[i];
@@ -895,6 +927,11 @@ void rs_case_print(const rs_case *c, FILE *out)
     if (plastic && !c->has_plasticity) {
       if (k->kind == RS_KEY_SECTION)
         fprintf(out, "plasticity: none  # purely elastic (no plasticity block)\n");
+      continue;
+    }
+    if (!strncmp(k->path, "temperature", 11) && !c->temperature.on) {
+      if (k->kind == RS_KEY_SECTION)
+        fprintf(out, "temperature: none  # no surface temperature (no temperature block)\n");
       continue;
     }
     if (!strncmp(k->path, "twin_disc", 9) && !c->rig.on) {

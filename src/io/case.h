@@ -5,7 +5,8 @@
 
 #include <stdio.h>
 #include "physics/history.h"
-#include "physics/model.h" /* rs_normal_solution, rs_scaling */
+#include "physics/model.h"   /* rs_normal_solution, rs_scaling */
+#include "physics/thermal.h" /* rs_thermal_params */
 #include "base/status.h"
 
 typedef enum { RS_MODE_TRANSIENT = 0, RS_MODE_STEADY = 1 } rs_mode;
@@ -22,7 +23,10 @@ enum {
   RS_FIELD_REGIME = 1 << 6,
   /* mu(|v_s|) per cell: written whenever the friction law is not Coulomb (not a choice of
    * output.fields) */
-  RS_FIELD_MU = 1 << 7
+  RS_FIELD_MU = 1 << 7,
+  /* the surface temperatures T1, T2 and the scalars T_max, heat_input_1, heat_input_2: written
+   * whenever the case has a temperature: block (not a choice of output.fields) */
+  RS_FIELD_TEMPERATURE = 1 << 8
 };
 
 /* One step of a twin-disc protocol: slip held (slip_start == slip_end) or ramped. */
@@ -117,6 +121,9 @@ typedef struct rs_case {
 
   /* twin_disc: */
   rs_twin_disc rig;
+
+  /* temperature: (on = 0 when the block is absent) */
+  rs_thermal_params temperature;
 
   /* output: */
   char *output_file;

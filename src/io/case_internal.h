@@ -98,8 +98,10 @@ enum {
   RS_KEY_HI_ABSURD = 1 << 4, /* hi is a sanity bound, not a physical one */
   RS_KEY_WHOLE = 1 << 5,     /* RS_KEY_VECTOR of whole numbers */
   RS_KEY_AUTO = 1 << 7,      /* RS_KEY_NUMBER that may be `auto` (stored as 0) */
-  RS_KEY_XY = 1 << 6         /* RS_KEY_HISTORY that may be a list [x, y] of two histories (3D),
+  RS_KEY_XY = 1 << 6,        /* RS_KEY_HISTORY that may be a list [x, y] of two histories (3D),
                                 the second into the rs_history after the field */
+  RS_KEY_BODIES = 1 << 8     /* RS_KEY_VECTOR of one value per body [body 1, body 2] (one
+                                number: both bodies) instead of [x, y] */
 };
 #define RS_KEY_NO_FIELD ((size_t)-1) /* accepted and checked, nothing to store (friction.law) */
 
@@ -117,6 +119,7 @@ typedef struct rs_case_input {
   rs_case_vec radius, curvature, cells, extent;
   rs_case_vec mu_excess, half_velocity; /* friction: one or two terms */
   int force_n; /* rolling.tangential_force: 1 history, or 2 ([Fx, Fy], 3D) */
+  rs_case_vec t_bulk, t_conductivity, t_heat_capacity, t_density; /* temperature: per body */
 } rs_case_input;
 
 typedef struct rs_case_key {

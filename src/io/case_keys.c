@@ -130,6 +130,20 @@ const rs_case_key rs_case_keys[] = {
     {"twin_disc.average_window", RS_KEY_NUMBER, F(c.rig.average_window), "", 0, 1, RS_KEY_LO_OPEN,
      NULL},
 
+    {"temperature", RS_KEY_SECTION, 0, "", 0, 0, 0, NULL},
+    {"temperature.bulk", RS_KEY_VECTOR, F(t_bulk), "degC", -273.15, 1e4,
+     RS_KEY_LO_OPEN | RS_KEY_HI_ABSURD | RS_KEY_BODIES, NULL},
+    {"temperature.conductivity", RS_KEY_VECTOR, F(t_conductivity), "W/(mm K)", 0, 100,
+     RS_KEY_LO_OPEN | RS_KEY_HI_ABSURD | RS_KEY_BODIES | RS_KEY_NULLABLE, NULL},
+    {"temperature.heat_capacity", RS_KEY_VECTOR, F(t_heat_capacity), "J/(kg K)", 0, 1e6,
+     RS_KEY_LO_OPEN | RS_KEY_HI_ABSURD | RS_KEY_BODIES | RS_KEY_NULLABLE, NULL},
+    {"temperature.density", RS_KEY_VECTOR, F(t_density), "kg/mm^3", 0, 1e-3,
+     RS_KEY_LO_OPEN | RS_KEY_HI_ABSURD | RS_KEY_BODIES | RS_KEY_NULLABLE, NULL},
+    {"temperature.plastic_heat_fraction", RS_KEY_NUMBER, F(c.temperature.plastic_heat_fraction), "",
+     0, 1, RS_KEY_NULLABLE, NULL},
+    {"temperature.kernel_tolerance", RS_KEY_NUMBER, F(c.temperature.kernel_tolerance), "", 1e-8,
+     0.1, RS_KEY_NULLABLE, NULL},
+
     {"simulation", RS_KEY_SECTION, 0, "", 0, 0, 0, NULL},
     {"simulation.mode", RS_KEY_CHOICE, F(c.mode), "", 0, 0, 0, mode_names},
     {"simulation.end_time", RS_KEY_NUMBER, F(c.end_time), "s", 0, 1e6,
@@ -276,8 +290,11 @@ static int parse_vector(const rs_case_doc *d, const yaml_node_t *n, const rs_cas
     count = (int)(n->data.sequence.items.top - n->data.sequence.items.start);
     if (count < 1 || count > 2)
       return rs_case_error(d, n, spec->path,
-                           "expected a number (2D) or a list of two [x, y] (3D), got %s",
-                           rs_case_describe(n, got, sizeof got));
+                           spec->flags & RS_KEY_BODIES
+                               ? "expected a number (both bodies) or a list of two [body 1, body "
+                                 "2] (%s), got %s"
+                               : "expected a number (2D) or a list of two [x, y] (3D)%.0s, got %s",
+                           spec->unit, rs_case_describe(n, got, sizeof got));
     for (int k = 0; k < count; k++)
       item[k] = yaml_document_get_node((yaml_document_t *)&d->doc, n->data.sequence.items.start[k]);
   }

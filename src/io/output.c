@@ -100,6 +100,18 @@ const rs_scalar_var rs_scalar_vars_3d[RS_N_SCALARS_3D] = {
     {"spin", NC_DOUBLE, offsetof(rs_record, spin), "1/mm", "1/mm", "spin creepage"},
 };
 
+/* RS_FIELD_TEMPERATURE (docs/model.md §18): two fields, then three scalars. */
+const rs_scalar_var rs_temperature_vars[RS_N_TEMPERATURE_VARS] = {
+    {"T1", NC_DOUBLE, offsetof(rs_record, T1), "degC", "degC", "surface temperature of body 1"},
+    {"T2", NC_DOUBLE, offsetof(rs_record, T2), "degC", "degC", "surface temperature of body 2"},
+    {"T_max", NC_DOUBLE, offsetof(rs_record, T_max), "degC", "degC",
+     "largest surface temperature in the contact"},
+    {"heat_input_1", NC_DOUBLE, offsetof(rs_record, heat_input_1), "W/mm", "W",
+     "heat flowing into body 1 through its surface"},
+    {"heat_input_2", NC_DOUBLE, offsetof(rs_record, heat_input_2), "W/mm", "W",
+     "heat flowing into body 2 through its surface"},
+};
+
 const char *rs_field_name(int f, int three_d, int comp)
 {
   static const char *const names3d[RS_N_FIELDS][2] = {
@@ -463,6 +475,20 @@ static int define_file(rs_output *out, const rs_output_spec *spec, const char **
       return err;
   }
 
+  *what = "defining the temperature variables";
+  for (int v = 0; v < RS_N_TEMPERATURE_VARS; v++) {
+    const rs_scalar_var *tv = &rs_temperature_vars[v];
+    out->temp_id[v] = -1;
+    if (!(spec->fields & RS_FIELD_TEMPERATURE)) continue;
+    const int field = v < RS_N_TEMPERATURE_FIELDS;
+    if ((err = nc_def_var(ncid, tv->name, NC_DOUBLE, field ? ndims : 1,
+                          field ? field_dims : &time_dim, &out->temp_id[v])) ||
+        (err = rs_output_put_text(ncid, out->temp_id[v], "units",
+                                  three_d ? tv->units_3d : tv->units_2d)) ||
+        (err = rs_output_put_text(ncid, out->temp_id[v], "long_name", tv->long_name)))
+      return err;
+  }
+
   /* Record data are written in full every time: no fill pass needed. */
   int old_fill;
   *what = "setting the fill mode";
@@ -588,6 +614,10 @@ int rs_output_write(rs_output *out, const rs_record *rec, rs_msg *msg)
     if (out->field_id[f] >= 0 && !field_data(rec, f))
       return rs_msg_set(msg, RS_ERR_INTERNAL, "output file %s: record %zu has no data for field %s",
                         out->path, out->records, rs_field_vars[f].name);
+  if (out->temp_id[0] >= 0 && (!rec->T1 || !rec->T2))
+    return rs_msg_set(msg, RS_ERR_INTERNAL,
+                      "output file %s: record %zu has no surface temperatures", out->path,
+                      out->records);
 
   if ((err = nc_put_var1_double(ncid, out->time_id, start, &rec->time))) goto fail;
 
@@ -622,6 +652,16 @@ int rs_output_write(rs_output *out, const rs_record *rec, rs_msg *msg)
              nc_put_var1_double(ncid, out->scalar3_id[s], start,
                                 (const double *)((const char *)rec + rs_scalar_vars_3d[s].member))))
       goto fail;
+
+  for (int v = 0; v < RS_N_TEMPERATURE_VARS; v++) {
+    if (out->temp_id[v] < 0) continue;
+    const char *member = (const char *)rec + rs_temperature_vars[v].member;
+    err = v < RS_N_TEMPERATURE_FIELDS
+              ? nc_put_vara_double(ncid, out->temp_id[v], start, count,
+                                   *(const double *const *)member)
+              : nc_put_var1_double(ncid, out->temp_id[v], start, (const double *)member);
+    if (err) goto fail;
+  }
 
   /* Data first, then numrecs: one nc_sync does both, in that order (see top). */
   if ((err = nc_sync(ncid))) goto fail;

@@ -64,6 +64,10 @@ typedef struct rs_record {
   const double *px, *pn, *slip, *upl, *ustar, *tauc; /* [nx] */
   const signed char *regime;                         /* [nx]: 0 E, 1 H, 2 S, 3 P */
   const double *mu; /* [nx]: mu(|v_s|) in the contact, NaN outside (not Coulomb) */
+  /* RS_FIELD_TEMPERATURE: surface temperatures of body 1 and 2 (degC) [nx], the largest
+   * (degC) and the heat into each body (W; 2D: W/mm) */
+  const double *T1, *T2;
+  double T_max, heat_input_1, heat_input_2;
 } rs_record;
 
 /* Create the file, define everything, write x, set status = "running". The file is
@@ -134,6 +138,8 @@ typedef struct rs_sweep_output_spec {
    * `ranks`; parts > 0 the global attributes `part` and `parts` (rollsim sweep --part). */
   int ranks;
   int part, parts;
+  /* 1: the per-point scalars T_max, heat_input_1, heat_input_2 (a temperature: block) */
+  int temperature;
 } rs_sweep_output_spec;
 
 /* The results of one sweep point (NaN, counts -1, where the point failed). Field
@@ -149,6 +155,7 @@ typedef struct rs_sweep_point {
   const signed char *regime;
   int rank;         /* the process that computed it (files with ranks > 0) */
   const double *mu; /* mu(|v_s|) (velocity-dependent friction) */
+  double T_max, heat_input_1, heat_input_2; /* files with temperature: degC, W (2D: W/mm) */
 } rs_sweep_point;
 
 /* Create the sweep file (an existing file of that name is kept as PATH~, see

@@ -10,6 +10,7 @@
 #define _POSIX_C_SOURCE 200809L
 
 #include "io/output_internal.h"
+#include "io/case.h" /* RS_FIELD_TEMPERATURE */
 
 #include <math.h>
 #include <stdio.h>
@@ -115,6 +116,20 @@ static int check_layout(rs_output *out, size_t nx, const double *x, size_t ny, c
     if ((out->scalar3_id[s] = var_over(ncid, rs_scalar_vars_3d[s].name, 1, &time_dim)) < 0)
       return rs_msg_set(msg, RS_ERR_INPUT, "--append %s: has no variable %s(time)", path,
                         rs_scalar_vars_3d[s].name);
+  /* the temperatures: in the file exactly when the case computes them (records without
+   * them would leave their slots unwritten) */
+  const int want_t = (fields & RS_FIELD_TEMPERATURE) != 0;
+  for (int v = 0; v < RS_N_TEMPERATURE_VARS; v++) {
+    const int field = v < RS_N_TEMPERATURE_FIELDS;
+    out->temp_id[v] =
+        var_over(ncid, rs_temperature_vars[v].name, field ? ndims : 1, field ? dims : &time_dim);
+    if ((out->temp_id[v] >= 0) != want_t)
+      return rs_msg_set(msg, RS_ERR_INPUT,
+                        "--append %s: %s variable %s, but the case has %s temperature: block "
+                        "(continue into a new file: leave out --append)",
+                        path, want_t ? "has no" : "has the", rs_temperature_vars[v].name,
+                        want_t ? "a" : "no");
+  }
   out->records = nrec;
   if (nrec == 0) return layout_error(path, msg, "holds no records");
   return RS_OK;
@@ -164,6 +179,7 @@ int rs_output_open_append(rs_output **outp, const char *path, size_t nx, const d
   out->three_d = ny > 1;
   for (int f = 0; f < RS_N_FIELDS; f++) out->field_id2[f] = -1;
   for (int k = 0; k < RS_N_SCALARS_3D; k++) out->scalar3_id[k] = -1;
+  for (int k = 0; k < RS_N_TEMPERATURE_VARS; k++) out->temp_id[k] = -1;
   size_t block = RS_IO_BLOCK;
   int err = nc__open(path, NC_WRITE, &block, &out->ncid);
   int status = err ? rs_msg_set(msg, RS_ERR_INPUT, "--append %s: cannot open for writing: %s", path,

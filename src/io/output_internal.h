@@ -38,6 +38,11 @@ extern const rs_scalar_var rs_scalar_vars[RS_N_SCALARS];
 #define RS_N_SCALARS_3D 4
 extern const rs_scalar_var rs_scalar_vars_3d[RS_N_SCALARS_3D];
 
+/* RS_FIELD_TEMPERATURE: the fields T1, T2 over (time, [y,] x), then the scalars over time. */
+#define RS_N_TEMPERATURE_VARS   5
+#define RS_N_TEMPERATURE_FIELDS 2
+extern const rs_scalar_var rs_temperature_vars[RS_N_TEMPERATURE_VARS];
+
 /* Name of field f's variable: component comp (0, or 1 for the y component of the 3D
  * vector fields px, slip, upl); NULL when the field has no such component. */
 const char *rs_field_name(int f, int three_d, int comp);
@@ -56,6 +61,7 @@ struct rs_output {
   int field_id2[RS_N_FIELDS]; /* 3D: the y component of px, slip, upl; else -1 */
   int scalar_id[RS_N_SCALARS];
   int scalar3_id[RS_N_SCALARS_3D];
+  int temp_id[RS_N_TEMPERATURE_VARS]; /* T1, T2, T_max, heat_input_1, heat_input_2; -1: none */
   int has_rig;
   int rig_meta_id[6];
   int step_mu_id, step_slip_id, rev_mu_id, rev_slip_id; /* twin-disc summaries */

@@ -62,15 +62,22 @@ static const sweep_var sweep_vars_3d[] = {
     {"hertz_b", "Hertz semi-axis along y at the point's load", "mm", SW_DOUBLE},
 };
 #define N_SWEEP_VARS_3D 6
-#define N_SWEEP_VARS    (sizeof sweep_vars / sizeof sweep_vars[0])
-#define CONVERGED_VAR   (N_SWEEP_VARS - 1)
+/* With temperature (docs/model.md §18). */
+static const sweep_var sweep_vars_t[] = {
+    {"T_max", "largest surface temperature in the contact", "degC", SW_DOUBLE},
+    {"heat_input_1", "heat flowing into body 1 through its surface", "W", SW_DOUBLE},
+    {"heat_input_2", "heat flowing into body 2 through its surface", "W", SW_DOUBLE},
+};
+#define N_SWEEP_VARS_T 3
+#define N_SWEEP_VARS   (sizeof sweep_vars / sizeof sweep_vars[0])
+#define CONVERGED_VAR  (N_SWEEP_VARS - 1)
 
 /* netCDF's I/O buffer: a batch goes to the file in writes of this size. */
 #define SWEEP_IO_CHUNK    ((size_t)1 << 20)
 /* Memory for the points of a batch (the fields' rows dominate). */
 #define BATCH_BYTES       (8u << 20)
 #define BATCH_MAX         4096
-#define N_POINT_DOUBLES   (N_SWEEP_VARS + N_SWEEP_VARS_3D)
+#define N_POINT_DOUBLES   (N_SWEEP_VARS + N_SWEEP_VARS_3D + N_SWEEP_VARS_T)
 /* Free bytes left in a new file's header: a resume appends a line to `history`, which
  * then fits without netCDF moving every variable further into the file. */
 #define SWEEP_HEADER_FREE 4096
@@ -95,6 +102,7 @@ struct rs_sweep_output {
   size_t sizes[NC_MAX_VAR_DIMS];
   int varid[N_SWEEP_VARS];
   int varid3[N_SWEEP_VARS_3D]; /* -1 in 2D */
+  int varidt[N_SWEEP_VARS_T];  /* -1 without temperature */
   size_t nx;
   int field_id[RS_N_FIELDS]; /* -1: not stored */
   int rank_id;               /* -1: not stored (serial sweeps) */
@@ -114,6 +122,7 @@ static const char *unit_of(const sweep_var *v, int dimension)
   if (!strcmp(v->units, "F")) return dimension == 3 ? "N" : "N/mm";
   if (!strcmp(v->units, "P")) return dimension == 3 ? "N mm/s" : "N mm/s/mm";
   if (!strcmp(v->units, "E")) return dimension == 3 ? "N mm" : "N mm/mm";
+  if (!strcmp(v->units, "W")) return dimension == 3 ? "W" : "W/mm";
   return v->units;
 }
 
@@ -297,6 +306,18 @@ int rs_sweep_output_create(rs_sweep_output **outp, const rs_sweep_output_spec *s
                                unit_of(&sweep_vars_3d[v], spec->dimension));
     if (!err) err = nc_put_att_double(o->ncid, o->varid3[v], "_FillValue", NC_DOUBLE, 1, &fill);
   }
+  for (int v = 0; v < N_SWEEP_VARS_T; v++) {
+    o->varidt[v] = -1;
+    if (err || !spec->temperature) continue;
+    const double fill = NAN;
+    err = nc_def_var(o->ncid, sweep_vars_t[v].name, NC_DOUBLE, spec->naxes, dims, &o->varidt[v]);
+    if (!err)
+      err = rs_output_put_text(o->ncid, o->varidt[v], "long_name", sweep_vars_t[v].long_name);
+    if (!err)
+      err = rs_output_put_text(o->ncid, o->varidt[v], "units",
+                               unit_of(&sweep_vars_t[v], spec->dimension));
+    if (!err) err = nc_put_att_double(o->ncid, o->varidt[v], "_FillValue", NC_DOUBLE, 1, &fill);
+  }
   if (!err && o->nx) err = define_fields(o, spec, dims, &x_id);
   o->rank_id = -1;
   if (!err && spec->ranks > 0) {
@@ -417,6 +438,12 @@ static void resume_check(int ncid, const rs_sweep_output_spec *spec, int *conver
     snprintf(why, len, "the file is not of a %dD sweep", spec->dimension);
     return;
   }
+  if ((nc_inq_varid(ncid, "T_max", &fid) == 0) != (spec->temperature != 0)) {
+    snprintf(why, len, "the file %s temperatures, the case %s",
+             spec->temperature ? "has no" : "has",
+             spec->temperature ? "computes them" : "does not");
+    return;
+  }
   for (int f = 0; f < RS_N_FIELDS; f++) {
     const int want = spec->fields && (spec->fields & rs_field_vars[f].bit);
     if ((nc_inq_varid(ncid, rs_field_vars[f].name, &fid) == 0) != want ||
@@ -470,6 +497,9 @@ int rs_sweep_output_resume(rs_sweep_output **outp, const rs_sweep_output_spec *s
   for (int v = 0; v < N_SWEEP_VARS_3D; v++)
     if (err || spec->dimension != 3 || nc_inq_varid(o->ncid, sweep_vars_3d[v].name, &o->varid3[v]))
       o->varid3[v] = -1;
+  for (int v = 0; v < N_SWEEP_VARS_T; v++)
+    if (err || !spec->temperature || nc_inq_varid(o->ncid, sweep_vars_t[v].name, &o->varidt[v]))
+      o->varidt[v] = -1;
   for (int f = 0; f < RS_N_FIELDS && !err; f++)
     if (!o->nx || nc_inq_varid(o->ncid, rs_field_vars[f].name, &o->field_id[f]))
       o->field_id[f] = -1;
@@ -530,11 +560,28 @@ static void batch_add(rs_sweep_output *o, size_t index, const rs_sweep_point *pt
   const size_t k = b->n++, nx = o->nx;
   b->index[k] = index;
   const double ratio = pt->Fn != 0.0 ? pt->Fx / pt->Fn : NAN;
-  const double dv[N_POINT_DOUBLES] = {
-      pt->Fx,     pt->Fn, ratio,  pt->creepage,         pt->velocity,      0,
-      0,          0,      0,      pt->frictional_power, pt->plastic_power, pt->elastic_energy,
-      0,          pt->Fy, pt->Mz, pt->lateral_creepage, pt->spin,          pt->hertz_a,
-      pt->hertz_b};
+  const double dv[N_POINT_DOUBLES] = {pt->Fx,
+                                      pt->Fn,
+                                      ratio,
+                                      pt->creepage,
+                                      pt->velocity,
+                                      0,
+                                      0,
+                                      0,
+                                      0,
+                                      pt->frictional_power,
+                                      pt->plastic_power,
+                                      pt->elastic_energy,
+                                      0,
+                                      pt->Fy,
+                                      pt->Mz,
+                                      pt->lateral_creepage,
+                                      pt->spin,
+                                      pt->hertz_a,
+                                      pt->hertz_b,
+                                      pt->T_max,
+                                      pt->heat_input_1,
+                                      pt->heat_input_2};
   const int iv[N_SWEEP_VARS] = {0,
                                 0,
                                 0,
@@ -638,6 +685,10 @@ static int batch_write(rs_sweep_output *o)
     for (int v = 0; v < N_SWEEP_VARS_3D && !err; v++)
       if (o->varid3[v] >= 0)
         err = put_run(o, order, len, start, o->varid3[v], -1, (int)N_SWEEP_VARS + v, 0);
+    for (int v = 0; v < N_SWEEP_VARS_T && !err; v++)
+      if (o->varidt[v] >= 0)
+        err = put_run(o, order, len, start, o->varidt[v], -1,
+                      (int)N_SWEEP_VARS + N_SWEEP_VARS_3D + v, 0);
     for (int f = 0; f < RS_N_FIELDS && o->nx && !err; f++)
       if (o->field_id[f] >= 0) err = put_run(o, order, len, start, o->field_id[f], f, 0, 0);
     if (!err && o->rank_id >= 0) err = put_run(o, order, len, start, o->rank_id, -2, 0, 1);

@@ -171,6 +171,8 @@ int rs_sweep_merge(const char *out_path, const char *const *paths, int nparts, c
   /* Write: the serial sweep's layout, every point from its owner. */
   rs_sweep_output *out = NULL;
   if (status == RS_OK) {
+    int t_id; /* T_max: the parts carry the surface temperature */
+    const int temperature = nc_inq_varid(ncid, "T_max", &t_id) == NC_NOERR;
     const rs_sweep_output_spec spec = {.path = out_path,
                                        .title = title,
                                        .case_text = case_text,
@@ -182,7 +184,8 @@ int rs_sweep_merge(const char *out_path, const char *const *paths, int nparts, c
                                        .values = (const double *const *)values,
                                        .fields = fields,
                                        .nx = nx,
-                                       .x = x};
+                                       .x = x,
+                                       .temperature = temperature};
     status = rs_sweep_output_create(&out, &spec, msg);
     if (status == RS_OK && rs_sweep_output_backup(out))
       snprintf(res->backup, sizeof res->backup, "%s", rs_sweep_output_backup(out));
@@ -246,6 +249,14 @@ int rs_sweep_merge(const char *out_path, const char *const *paths, int nparts, c
       int vid;
       if (nc_inq_varid(id, names3d[v], &vid) == NC_NOERR)
         err = nc_get_var1_double(id, vid, start, dst3[v]);
+    }
+    /* surface temperature (a temperature: block; the parts are of one case) */
+    static const char *const names_t[3] = {"T_max", "heat_input_1", "heat_input_2"};
+    double *dst_t[3] = {&pt.T_max, &pt.heat_input_1, &pt.heat_input_2};
+    for (int v = 0; v < 3 && !err; v++) {
+      int vid;
+      if (nc_inq_varid(id, names_t[v], &vid) == NC_NOERR)
+        err = nc_get_var1_double(id, vid, start, dst_t[v]);
     }
     if (err)
       status =

@@ -281,6 +281,9 @@ typedef struct rs_diag {
   int count[4];                          /* by rs_regime */
   double frictional_power, plastic_power, elastic_energy, rigid_slip_power;
   double hertz_a, hertz_b; /* 3D: Hertz semi-axes (mm) at the inputs' load (0 in 2D) */
+  /* Surface temperature (docs/model.md §18), filled by the driver when a case asks for it (0
+   * otherwise): the largest in the contact, degC, and the heat into each body, W (2D: W/mm). */
+  double T_max, heat_input_1, heat_input_2;
 } rs_diag;
 
 /* slip: ncomp blocks of one value per cell (relative slip v_s/V, or v_s when V = 0). */
@@ -292,6 +295,12 @@ int rs_model_diagnostics(const rs_model *m, rs_work *w, const rs_inputs *in, con
 void rs_model_diagnostics_of(const rs_model *m, const rs_work *w, const rs_inputs *in,
                              const double *y, rs_diag *d, double *slip, double *tauc,
                              signed char *regime);
+
+/* Per cell the frictional power density -p . v_s and the plastic one p . Du_pl/Dt
+ * (N/(mm s), i.e. mW/mm^2) from a work evaluated at (in, y) as for rs_model_diagnostics_of:
+ * their sums times the cell area are its frictional_power and plastic_power. */
+void rs_model_power_densities(const rs_model *m, const rs_work *w, const double *y,
+                              double *frictional, double *plastic);
 
 /* Checks a steady state y (y' = 0): the paper's contact conditions cell by cell (eqs.
  * 7-10: |p| <= min(g, tau_c); slip only at the bound and opposite to p; plastic flow

@@ -70,6 +70,23 @@ void rs_model_diagnostics_of(const rs_model *m, const rs_work *w, const rs_input
   }
 }
 
+void rs_model_power_densities(const rs_model *m, const rs_work *w, const double *y,
+                              double *frictional, double *plastic)
+{
+  const rs_layout *L = &m->lay;
+  const int n = L->n, nc = L->ncomp;
+  for (int i = 0; i < n; i++) {
+    double pf = 0.0, pp = 0.0;
+    for (int c = 0; c < nc; c++) {
+      const double p = y[rs_at_p(L, c, i)];
+      pf -= p * w->vslip[c * n + i];
+      pp += p * w->dupl[c * n + i];
+    }
+    frictional[i] = pf;
+    plastic[i] = pp;
+  }
+}
+
 /* Reason of the first failed condition, in the user's terms. */
 static int refuse(rs_msg *msg, const rs_model *m, int i, const char *what, double p, double other,
                   const char *other_name, const char *unit)

@@ -17,6 +17,7 @@
 #include "io/output.h"
 #include "io/restart.h"
 #include "study/sweep_fields.h"
+#include "study/temperature.h"
 #include "study/warnings.h"
 
 typedef struct run_state {
@@ -28,7 +29,8 @@ typedef struct run_state {
   double *mu; /* mu(|v_s|) per cell (NaN outside the contact), or the memory state */
   signed char *regime;
   rs_output *out;
-  rs_fields *final; /* copies of the last record's fields, or NULL */
+  rs_fields *final;        /* copies of the last record's fields, or NULL */
+  rs_temperature_run temp; /* surface temperature (temp.on: the case has a temperature: block) */
 } run_state;
 
 void rs_run_result_free(rs_run_result *res)
@@ -54,6 +56,8 @@ static int write_record(run_state *s, double t, rs_diag *d, rs_msg *msg)
     s->mu[i] = s->y[rs_at_mu(L, i)];
   if (s->final && L->ncomp == 1)
     rs_fields_copy(s->final, s->m.grid.n, s->y, s->w.pn, s->slip, s->tauc, s->regime, s->mu);
+  /* quasi-steady: the temperature of this record's contact state (docs/model.md §18) */
+  rs_temperature_run_eval(&s->temp, &s->m, &s->w, &in, s->y, d);
   rs_record rec = {.time = t,
                    .Fx = d->Fx,
                    .Fn = d->Fn,
@@ -77,7 +81,12 @@ static int write_record(run_state *s, double t, rs_diag *d, rs_msg *msg)
                    .ustar = s->y + rs_at_ustar(L, 0),
                    .tauc = s->tauc,
                    .regime = s->regime,
-                   .mu = s->mu};
+                   .mu = s->mu,
+                   .T1 = s->temp.T1,
+                   .T2 = s->temp.T2,
+                   .T_max = d->T_max,
+                   .heat_input_1 = d->heat_input_1,
+                   .heat_input_2 = d->heat_input_2};
   return s->out ? rs_output_write(s->out, &rec, msg) : RS_OK;
 }
 
@@ -104,6 +113,7 @@ static void free_state(run_state *s)
   free(s->tauc);
   free(s->mu);
   free(s->regime);
+  rs_temperature_run_free(&s->temp);
   if (s->m.grid.x) rs_model_free(&s->m);
   if (s->ctx) SUNContext_Free(&s->ctx);
 }
@@ -285,6 +295,10 @@ int rs_run(const rs_case *c, const rs_run_opts *o, rs_run_result *res, rs_msg *m
     free_state(&s);
     return rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory for %d cells", n);
   }
+  if ((status = rs_temperature_run_create(&s.temp, c, &s.m, msg)) != RS_OK) {
+    free_state(&s);
+    return status;
+  }
   rs_model_rest_state(&s.m, s.y);
   const char *path = o->append && o->restart_path ? o->restart_path
                      : o->output_path             ? o->output_path
@@ -333,7 +347,8 @@ int rs_run(const rs_case *c, const rs_run_opts *o, rs_run_result *res, rs_msg *m
   const unsigned asked = c->has_plasticity ? c->fields : (c->fields & ~(unsigned)RS_FIELD_TAUC);
   const unsigned state = RS_FIELD_PX | RS_FIELD_UPL | RS_FIELD_USTAR;
   const unsigned fields = (c->mode == RS_MODE_TRANSIENT && !rig ? asked | state : asked) |
-                          (rs_friction_varies(&c->friction) ? (unsigned)RS_FIELD_MU : 0u);
+                          (rs_friction_varies(&c->friction) ? (unsigned)RS_FIELD_MU : 0u) |
+                          (c->temperature.on ? (unsigned)RS_FIELD_TEMPERATURE : 0u);
   rs_output_spec spec = {.path = path,
                          .title = c->title ? c->title : "",
                          .case_text = c->yaml_text ? c->yaml_text : "",
@@ -498,6 +513,7 @@ int rs_run_print_derived(const rs_case *c, FILE *out, rs_msg *msg)
   fprintf(out, "# derived\n");
   if (m.lay.ncomp == 2) {
     status = print_derived_3d(c, &m, out, msg);
+    if (status == RS_OK) status = rs_temperature_print_derived(c, &m, out, msg);
     rs_model_free(&m);
     return status;
   }
@@ -524,6 +540,7 @@ int rs_run_print_derived(const rs_case *c, FILE *out, rs_msg *msg)
             "twin_disc.line_load: %.6g  # N/mm, normal_force/width\n",
             c->rig.revolution_time, c->rig.revolution_time * V / m.grid.dx,
             c->rig.normal_force / c->rig.width);
+  status = rs_temperature_print_derived(c, &m, out, msg);
   rs_model_free(&m);
-  return RS_OK;
+  return status;
 }

@@ -21,6 +21,7 @@
 #include "base/util.h"
 #include "study/sweep_fields.h"
 #include "study/sweep_lines.h"
+#include "study/temperature.h"
 
 /* Steady points along the last axis share one model and one solver when that axis
  * is a rolling input (a creep-force curve): grid, coefficients, normal solution and
@@ -245,6 +246,18 @@ static int steady_point(const rs_case *c, steady_chain *ch, double **y, int *ny,
     rs_model_inputs_at(&ch->m, 0.0, &in);
     status = rs_model_diagnostics(&ch->m, &ch->w, &in, *y, ch->yp, d, keep ? f->slip : NULL,
                                   keep ? f->tauc : NULL, keep ? f->regime : NULL);
+  }
+  if (status == RS_OK && c->temperature.on) { /* the point's surface temperature */
+    rs_inputs in;
+    rs_model_inputs_at(&ch->m, 0.0, &in);
+    rs_diag dt;
+    rs_temperature_run t;
+    status = rs_model_diagnostics(&ch->m, &ch->w, &in, *y, ch->yp, &dt, NULL, NULL, NULL);
+    if (status == RS_OK) status = rs_temperature_run_create(&t, c, &ch->m, msg);
+    if (status == RS_OK) {
+      rs_temperature_run_eval(&t, &ch->m, &ch->w, &in, *y, d);
+      rs_temperature_run_free(&t);
+    }
   }
   if (status == RS_OK && keep) {
     const rs_layout *L = &ch->m.lay;

@@ -25,7 +25,8 @@
 
 enum { TAG_REQUEST = 1, TAG_POINT = 2, TAG_LINE = 3 };
 /* A point message: line, j, status, 11 scalars, newton, has_fields, then 7 nx values. */
-enum { PT_HEAD = 22 }; /* m[16..21]: F_y, M_z, eta, phi, Hertz a, b (3D; 0 in 2D) */
+/* m[16..21]: F_y, M_z, eta, phi, Hertz a, b (3D; 0 in 2D); m[22..24]: T_max, heat inputs */
+enum { PT_HEAD = 25 };
 
 typedef struct dist_run {
   const rs_sweep *s;
@@ -78,6 +79,8 @@ static void pack(dist_run *r, size_t line, size_t j, int status, const rs_diag *
   m[15] = ok && r->with_fields;
   const double v3[6] = {d->Fy, d->Mz, d->lateral_creepage, d->spin, d->hertz_a, d->hertz_b};
   for (int k = 0; k < 6; k++) m[16 + k] = ok ? v3[k] : NAN;
+  const double vt[3] = {d->T_max, d->heat_input_1, d->heat_input_2};
+  for (int k = 0; k < 3; k++) m[22 + k] = ok ? vt[k] : NAN;
   if (ok && r->with_fields) {
     const double *rows[6] = {r->buf.px,  r->buf.pn,    r->buf.slip,
                              r->buf.upl, r->buf.ustar, r->buf.tauc};
@@ -113,6 +116,9 @@ static int write_point(dist_run *r, const double *m, int rank)
     pt.spin = m[19];
     pt.hertz_a = m[20];
     pt.hertz_b = m[21];
+    pt.T_max = m[22];
+    pt.heat_input_1 = m[23];
+    pt.heat_input_2 = m[24];
     pt.converged = 1;
     if (m[15] != 0) {
       const double *f = m + PT_HEAD;
@@ -133,6 +139,7 @@ static int write_point(dist_run *r, const double *m, int rank)
     pt.Fx = pt.Fn = pt.creepage = pt.velocity = NAN;
     pt.Fy = pt.Mz = pt.lateral_creepage = pt.spin = pt.hertz_a = pt.hertz_b = NAN;
     pt.frictional_power = pt.plastic_power = pt.elastic_energy = NAN;
+    pt.T_max = pt.heat_input_1 = pt.heat_input_2 = NAN;
     pt.n_exterior = pt.n_adhesion = pt.n_slip = pt.n_plastic = -1;
     r->res->points_failed++;
   }
@@ -378,7 +385,8 @@ int rs_sweep_run_dist(const rs_sweep *s, const rs_case *c, const rs_run_opts *o,
                                        .values = values,
                                        .ranks = dist->mpi && size > 1 ? size : 0,
                                        .part = dist->part,
-                                       .parts = dist->parts};
+                                       .parts = dist->parts,
+                                       .temperature = c->temperature.on};
     if (dist->resume)
       status = resume_open(&r, &spec, msg);
     else

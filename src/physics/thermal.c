@@ -1,0 +1,206 @@
+/* Surface temperature (physics/thermal.h, docs/model.md §18). */
+#include "physics/thermal.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#ifndef M_PI
+#define M_PI 3.14159265358979323846
+#endif
+
+/* Points per decade of path length at which the step response is checked. */
+enum { CHECK_PER_DECADE = 60, MAX_REFINE = 30 };
+
+/* Nodes u_k = u_lo + k h, weights (h/pi) e^(u_k/2); the tails beyond the first and the last
+ * node as geometric sums of the same trapezoidal rule (so that the truncated rule equals the
+ * infinite one where the tail modes are fully decayed or not decayed at all). */
+static int build(rs_thermal_kernel *k, double h, double u_lo, double u_hi)
+{
+  const int K = (int)ceil((u_hi - u_lo) / h) + 1;
+  double *w = malloc((size_t)K * sizeof *w), *r = malloc((size_t)K * sizeof *r);
+  if (!w || !r) {
+    free(w);
+    free(r);
+    return RS_ERR_INTERNAL;
+  }
+  for (int i = 0; i < K; i++) {
+    const double u = u_lo + i * h;
+    w[i] = h / M_PI * exp(0.5 * u);
+    r[i] = exp(u);
+  }
+  const double g = exp(-0.5 * h) / -expm1(-0.5 * h); /* sum_{j >= 1} e^(-j h/2) */
+  free(k->weight);
+  free(k->rate);
+  k->weight = w;
+  k->rate = r;
+  k->nmodes = K;
+  k->step = h;
+  k->weight0 = h / M_PI * exp(0.5 * u_lo) * g;
+  k->local = h / M_PI * exp(-0.5 * (u_lo + (K - 1) * h)) * g;
+  return RS_OK;
+}
+
+double rs_thermal_kernel_step(const rs_thermal_kernel *k, double l)
+{
+  double s = k->weight0 * l + k->local;
+  for (int i = 0; i < k->nmodes; i++) s += k->weight[i] * -expm1(-k->rate[i] * l) / k->rate[i];
+  return s;
+}
+
+static double step_error(const rs_thermal_kernel *k)
+{
+  const double decades = log10(k->l_max / k->l_min);
+  const int m = (int)ceil(decades * CHECK_PER_DECADE) + 1;
+  double worst = 0.0;
+  for (int i = 0; i <= m; i++) {
+    const double l = i == m ? k->l_max : k->l_min * pow(10.0, decades * i / m);
+    const double exact = 2.0 * sqrt(l / M_PI);
+    worst = fmax(worst, fabs(rs_thermal_kernel_step(k, l) / exact - 1.0));
+  }
+  return worst;
+}
+
+int rs_thermal_kernel_create(rs_thermal_kernel *k, double l_min, double l_max, double tol,
+                             rs_msg *msg)
+{
+  memset(k, 0, sizeof *k);
+  if (!(tol > 0.0 && tol <= 0.1))
+    return rs_msg_set(msg, RS_ERR_INPUT, "temperature kernel: tolerance %g outside (0, 0.1]", tol);
+  if (!(l_min > 0.0 && l_max > l_min && isfinite(l_max)))
+    return rs_msg_set(msg, RS_ERR_INPUT,
+                      "temperature kernel: path lengths [%g, %g] mm: need 0 < l_min < l_max", l_min,
+                      l_max);
+  k->l_min = l_min;
+  k->l_max = l_max;
+  /* The trapezoidal rule's error is about e^(-pi^2/h) (the integrand is analytic in the
+   * strip |Im u| < pi/2); the slow tail lumped into one mode of rate 0 errs by about
+   * (rate_lo l)^(3/2)/(6 sqrt(pi)) relative at l = l_max, the fast tail taken as
+   * instantaneous by about z^(-3/2) e^(-z)/(2 sqrt(pi)) at z = rate_hi l_min. */
+  double h = M_PI * M_PI / log(1.0 / tol);
+  double lo_margin = fmax(0.0, -2.0 / 3.0 * log(2.0 * sqrt(M_PI) * tol) - 0.5 * h);
+  double z = 0.5;
+  while (pow(z, 1.5) * exp(z) * 2.0 * sqrt(M_PI) < 1.0 / tol) z *= 1.05;
+  double hi_margin = log(z) + 0.5 * h;
+  for (int attempt = 0; attempt < MAX_REFINE; attempt++) {
+    if (build(k, h, -log(l_max) - lo_margin, -log(l_min) + hi_margin) != RS_OK) {
+      rs_thermal_kernel_free(k);
+      return rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory for the temperature kernel");
+    }
+    k->error = step_error(k);
+    if (k->error <= tol) return RS_OK;
+    h *= 0.85; /* the estimates above fell short: a finer and wider rule */
+    lo_margin += 0.5;
+    hi_margin += 0.5;
+  }
+  const double err = k->error;
+  rs_thermal_kernel_free(k);
+  return rs_msg_set(msg, RS_ERR_INTERNAL,
+                    "temperature kernel: relative error %.3g above the tolerance %g", err, tol);
+}
+
+void rs_thermal_kernel_free(rs_thermal_kernel *k)
+{
+  free(k->weight);
+  free(k->rate);
+  k->weight = k->rate = NULL;
+  k->nmodes = 0;
+}
+
+int rs_thermal_create(rs_thermal *th, const rs_thermal_params *p, int nx, int ny, double dx,
+                      double area, rs_msg *msg)
+{
+  memset(th, 0, sizeof *th);
+  th->par = *p;
+  th->nx = nx;
+  th->ny = ny;
+  th->dx = dx;
+  th->area = area;
+  for (int b = 0; b < 2; b++)
+    th->beta[b] = sqrt(p->conductivity[b] * p->density[b] * p->heat_capacity[b]);
+  int status = rs_thermal_kernel_create(&th->ker, 0.5 * dx, nx * dx, p->kernel_tolerance, msg);
+  if (status != RS_OK) return status;
+  const int K = th->ker.nmodes;
+  th->decay_half = malloc((size_t)K * sizeof *th->decay_half);
+  th->decay_full = malloc((size_t)K * sizeof *th->decay_full);
+  th->gain_full = malloc((size_t)K * sizeof *th->gain_full);
+  th->theta = malloc(2 * (size_t)(K + 1) * sizeof *th->theta);
+  if (!th->decay_half || !th->decay_full || !th->gain_full || !th->theta) {
+    rs_thermal_free(th);
+    return rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory for the temperature modes");
+  }
+  for (int k = 0; k < K; k++) {
+    const double r = th->ker.rate[k];
+    th->decay_half[k] = exp(-0.5 * r * dx);
+    th->decay_full[k] = exp(-r * dx);
+    th->gain_full[k] = -expm1(-r * dx) / r;
+  }
+  th->self_half = rs_thermal_kernel_step(&th->ker, 0.5 * dx);
+  return RS_OK;
+}
+
+void rs_thermal_free(rs_thermal *th)
+{
+  rs_thermal_kernel_free(&th->ker);
+  free(th->decay_half);
+  free(th->decay_full);
+  free(th->gain_full);
+  free(th->theta);
+  th->decay_half = th->decay_full = th->gain_full = th->theta = NULL;
+}
+
+/* Per body b and mode k the state theta = int q_b(l') e^(-rate_k (l - l')) dl' (W/mm) at the
+ * cell's downstream edge; the mode of rate 0 is the plain integral (the last entry). With
+ * q_b constant over a cell the update is exact (the exponentially fitted upwind step):
+ *   theta_out = theta_in e^(-rate dx) + q_b (1 - e^(-rate dx))/rate.
+ * At the centre T_b = T_bulk + (H_b + S(dx/2) q_b)/(beta_b sqrt(V)) with H_b the history
+ * decayed over half a cell; T1 = T2 and q1 + q2 = q in the contact fix q1. */
+void rs_thermal_march(rs_thermal *th, double V, const double *q, const signed char *contact,
+                      double *T1, double *T2, double *q1, double *q2, rs_thermal_result *res)
+{
+  const int nx = th->nx, n = th->nx * th->ny, K = th->ker.nmodes;
+  res->heat_input[0] = res->heat_input[1] = 0.0;
+  if (!(V > 0.0)) {
+    for (int i = 0; i < n; i++) {
+      T1[i] = T2[i] = NAN;
+      if (q1) q1[i] = NAN;
+      if (q2) q2[i] = NAN;
+    }
+    res->T_max = res->heat_input[0] = res->heat_input[1] = NAN;
+    return;
+  }
+  const double *w = th->ker.weight;
+  const double s = 1.0 / sqrt(V);
+  /* B_b: the temperature rise of body b at a cell centre per unit of its own flux there */
+  const double B[2] = {s * th->self_half / th->beta[0], s * th->self_half / th->beta[1]};
+  double T_max = -INFINITY;
+  for (int iy = 0; iy < th->ny; iy++) {
+    double *theta[2] = {th->theta, th->theta + K + 1};
+    memset(th->theta, 0, 2 * (size_t)(K + 1) * sizeof *th->theta); /* fresh material */
+    for (int ix = nx - 1; ix >= 0; ix--) {
+      const int i = iy * nx + ix;
+      double H[2], qb[2] = {0.0, 0.0};
+      for (int b = 0; b < 2; b++) {
+        double hist = th->ker.weight0 * theta[b][K];
+        for (int k = 0; k < K; k++) hist += w[k] * theta[b][k] * th->decay_half[k];
+        H[b] = th->par.bulk[b] + s * hist / th->beta[b];
+      }
+      if (contact[i]) {
+        qb[0] = (H[1] - H[0] + B[1] * q[i]) / (B[0] + B[1]);
+        qb[1] = q[i] - qb[0];
+      }
+      T1[i] = H[0] + B[0] * qb[0];
+      T2[i] = H[1] + B[1] * qb[1];
+      if (q1) q1[i] = qb[0];
+      if (q2) q2[i] = qb[1];
+      if (contact[i]) T_max = fmax(T_max, fmax(T1[i], T2[i]));
+      for (int b = 0; b < 2; b++) {
+        res->heat_input[b] += qb[b] * th->area;
+        for (int k = 0; k < K; k++)
+          theta[b][k] = theta[b][k] * th->decay_full[k] + qb[b] * th->gain_full[k];
+        theta[b][K] += qb[b] * th->dx;
+      }
+    }
+  }
+  res->T_max = T_max > -INFINITY ? T_max : NAN;
+}

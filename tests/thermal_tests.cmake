@@ -1,0 +1,13 @@
+# Surface temperature (docs/model.md §18, docs/verification.md 26).
+rs_unit_test(test_thermal)
+add_test(NAME temperature_runs
+  COMMAND ${SYSTEM_PYTHON3} ${RS_TESTS}/check_temperature.py ${RS_BIN} ${RS_CASES}
+          ${CMAKE_CURRENT_BINARY_DIR}/temperature)
+# rollsim check prints beta = sqrt(lambda rho c) = sqrt(0.05 * 7.85e-6 * 450) = 0.01329 and the
+# Peclet number V a rho c/(2 lambda) = 30000 * 5.87889 * 7.85e-6 * 450/0.1 = 6230 of CONTACT's
+# Ertz & Knothe contact (Hertz a = 5.87889 mm), and the kernel's modes at the default tolerance.
+add_test(NAME temperature_check_derived COMMAND ${SYSTEM_PYTHON3} ${RS_TESTS}/cli_expect.py
+  --stdout "^temperature.beta: \\[0.01329, 0.01329\\]  # W s"
+  --stdout "^temperature.peclet: \\[6230, 6230\\]  # V a/\\(2 kappa\\)"
+  --stdout "^temperature.kernel_modes: [0-9]+  # .* within 0.000[0-9]+$"
+  -- ${RS_BIN} check ${RS_CASES}/ertz_temperature.yaml)
