@@ -40,3 +40,15 @@ add_test(NAME threed_transient_counts
 add_test(NAME threed_low_yield
          COMMAND ${SYSTEM_PYTHON3} ${RS_TESTS}/check_low_yield.py ${RS_BIN}
                  ${CMAKE_CURRENT_BINARY_DIR}/threed/low_yield)
+# The same at 32 x 32 cells, where a failed continuation step used to end in rolling the
+# material from the last point (16,000 Newton iterations for k_rel 0.003 before).
+add_test(NAME threed_low_yield_32
+         COMMAND ${SYSTEM_PYTHON3} ${RS_TESTS}/check_low_yield.py ${RS_BIN}
+                 ${CMAKE_CURRENT_BINARY_DIR}/threed/low_yield_32 32)
+set_tests_properties(threed_low_yield_32 PROPERTIES TIMEOUT 600)
+# Issue 42: a softening creep curve (k_rel -0.01, 32 x 32 cells) within 3 x the elastic curve's
+# Newton iterations (tests/check_softening_curve.py).
+add_test(NAME threed_softening_curve
+         COMMAND ${SYSTEM_PYTHON3} ${RS_TESTS}/check_softening_curve.py ${RS_BIN}
+                 ${CMAKE_CURRENT_BINARY_DIR}/threed/softening_curve)
+set_tests_properties(threed_softening_curve PROPERTIES TIMEOUT 600)

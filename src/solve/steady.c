@@ -49,7 +49,8 @@ struct rs_steady {
    * here before each linear solve (forcing_term) */
   int krylov3d;
   double eta_gamma, eta_prev, eta_next, fnorm_prev;
-  double ftol; /* the Newton iteration's stopping test: FNORM_TOL, or an approximate solve's */
+  double ftol;   /* the Newton iteration's stopping test: FNORM_TOL, or an approximate solve's */
+  int fail_fast; /* from a warm start: Newton and grid sequencing only, no rolling fallbacks */
 };
 
 /* A model evaluation that failed stops KINSOL at once (-1: unrecoverable) and keeps the
@@ -535,6 +536,7 @@ static int grid_sequencing(rs_steady *s, double *y, int plain, rs_stats *stats)
   double *yc = calloc((size_t)coarse.lay.neq, sizeof *yc);
   int status = yc && rs_work_create(&cw, &coarse) == RS_OK ? RS_OK : RS_ERR_INTERNAL;
   if (status == RS_OK) status = rs_steady_create(&cs, &coarse, s->ctx, &cmsg);
+  if (status == RS_OK) cs->fail_fast = s->fail_fast;
   if (status == RS_OK) status = rs_model_interpolate_state(m, y, &coarse, &cw, &s->in, yc, &cmsg);
   rs_stats cst = {0};
   if (status == RS_OK) status = rs_steady_solve(cs, s->in.t, yc, &cst, &cmsg);
@@ -615,6 +617,7 @@ static int harder_start(rs_steady *s, double *y, rs_stats *stats)
     rescale_ustar(s->m, z, k_prev / hard.par.plasticity.k_tau);
     k_prev = hard.par.plasticity.k_tau;
     status = rs_steady_create(&hs, &hard, s->ctx, &hmsg);
+    if (status == RS_OK) hs->fail_fast = s->fail_fast;
     if (status == RS_OK) status = rs_steady_solve(hs, s->in.t, z, &hst, &hmsg);
     rs_steady_free(hs);
     hs = NULL;
@@ -710,12 +713,17 @@ static int solve_at(rs_steady *s, double *y, rs_stats *stats, rs_msg *msg)
    * there, and the pseudo-time steps' steady Newton cycle as well (a low tau_c0 with weak
    * hardening: bench/RESULTS.md, issue 42). From rest the coarsest grid has continued in k_rel
    * already. */
-  if (status != RS_OK && !s->failed && !cold && weak_hardening(m) &&
+  const int fast = s->fail_fast && !cold;
+  if (status != RS_OK && !s->failed && !cold && !fast && weak_hardening(m) &&
       harder_start(s, y, stats) == RS_OK)
     status = newton(s, y, 0, 40, stats, &kin_flag);
-  if (status != RS_OK && !s->failed) status = pseudo_time_steps(s, y, stats);
+  if (status != RS_OK && !s->failed && !fast) status = pseudo_time_steps(s, y, stats);
   int rolled = varies; /* the result comes from rolling the material (the physical path) */
-  if (status == RS_ERR_SOLVER && !s->failed) {
+  if (status != RS_OK && !s->failed && fast) {
+    memcpy(y, start, (size_t)neq * sizeof *y);
+    status = rs_msg_set(msg, RS_ERR_SOLVER,
+                        "steady Newton did not converge from the last continuation point");
+  } else if (status == RS_ERR_SOLVER && !s->failed) {
     memcpy(y, start, (size_t)neq * sizeof *y);
     status = pseudo_transient(s, y, stats, msg);
     rolled = 1;
@@ -728,7 +736,9 @@ static int solve_at(rs_steady *s, double *y, rs_stats *stats, rs_msg *msg)
   if (status == RS_OK && (status = rs_model_check_steady_with(
                               m, rs_steady_evaluated(s, y), &s->work, &s->in, y, &why)) != RS_OK) {
     if (stats) stats->refused++;
-    if (!rolled && status == RS_ERR_SOLVER) {
+    if (!rolled && status == RS_ERR_SOLVER && fast) {
+      memcpy(y, start, (size_t)neq * sizeof *y); /* the caller shortens its step */
+    } else if (!rolled && status == RS_ERR_SOLVER) {
       memcpy(y, start, (size_t)neq * sizeof *y);
       status = pseudo_transient(s, y, stats, msg);
       if (status == RS_OK)
@@ -826,6 +836,8 @@ int rs_steady_solve(rs_steady *s, double t, double *y, rs_stats *stats, rs_msg *
     return continuation(s, y, stats, msg);
   return solve_at(s, y, stats, msg);
 }
+
+void rs_steady_set_fail_fast(rs_steady *s, int on) { s->fail_fast = on; }
 
 const rs_work *rs_steady_evaluated(rs_steady *s, const double *y)
 {

@@ -165,8 +165,16 @@ static int continue_to(steady_chain *ch, rs_rolling_input key, double x, double 
       memcpy(y, ch->ylast, (size_t)neq * sizeof *y);
   }
   set_rolling_value(&ch->m, key, x);
-  secant(ch, x, y);
+  /* 3D, Coulomb friction: a step whose Newton fails, or whose zero is not a physical steady
+   * state, is halved before the solver's costly fallbacks (rolling the material from the last
+   * solution) are tried, which only the last halving takes; the halves start from the last
+   * solution itself, as the secant through the last two led the failed step astray
+   * (bench/RESULTS.md, issue 42). */
+  const int fast = ch->m.el.dim == 3 && !rs_friction_varies(&ch->m.par.friction);
+  if (depth == 0 || !fast) secant(ch, x, y);
+  rs_steady_set_fail_fast(ch->st, fast && depth < MAX_HALVINGS);
   int status = rs_steady_solve(ch->st, 0.0, y, stats, msg);
+  rs_steady_set_fail_fast(ch->st, 0);
   int changed = 0;
   if (status == RS_OK && (status = regimes_of(ch, y, ch->reg_new)) == RS_OK)
     for (int i = 0; i < n; i++) changed += ch->reg_new[i] != ch->reg_last[i];
