@@ -27,7 +27,7 @@ import sys
 
 import netCDF4
 
-from solver_checks import Checks, eurosprinter, sweep_counts
+from solver_checks import Checks, eurosprinter, plastic_and_elastic
 
 CREEPAGES = [-0.25, -0.225, -0.2, -0.175, -0.15, -0.125, -0.1, -0.075, -0.05, -0.04, -0.03,
              -0.02, -0.01, -0.008, -0.006, -0.0056, -0.0052, -0.0048, -0.0044, -0.004,
@@ -48,18 +48,11 @@ check = Checks()
 
 def main():
     binary, work = sys.argv[1], sys.argv[2]
-    os.makedirs(work, exist_ok=True)
-    path = os.path.join(work, "low_yield.yaml")
-    with open(path, "w") as f:
-        f.write(CASE)
-    plastic_nc = os.path.join(work, "low_yield.nc")
-    elastic = sweep_counts(binary, path, os.path.join(work, "elastic.nc"),
-                           ["--set", "plasticity=null", "--set", "sweep.plasticity.k_rel=null"])
-    plastic = sweep_counts(binary, path, plastic_nc, [])
-    check("the elastic sweep ran", elastic is not None)
-    check("the plastic sweep ran", plastic is not None)
-    if plastic is None or elastic is None:
+    runs = plastic_and_elastic(check, binary, work, "low_yield", CASE,
+                               ["--set", "plasticity=null", "--set", "sweep.plasticity.k_rel=null"])
+    if runs is None:
         return 1
+    path, plastic_nc, _, plastic, elastic = runs
     n = len(CREEPAGES)
     check("every plastic point solved", plastic[0] == 2 * n and plastic[1] == 0, f"{plastic}")
     budget = 2 * 3 * elastic[2]

@@ -14,12 +14,11 @@ tau_c0), so the point equals the elastic curve's to 1e-9 of mu F_n; and the curv
 beyond its peak, as the softened layer carries less the more it flows.
 Usage: check_softening_curve.py ROLLSIM WORKDIR
 """
-import os
 import sys
 
 import netCDF4
 
-from solver_checks import Checks, eurosprinter, sweep_counts
+from solver_checks import Checks, eurosprinter, plastic_and_elastic
 
 CREEPAGES = [-1.0e-5, -0.0004, -0.0008, -0.0012, -0.0016, -0.002, -0.0024, -0.0028, -0.0032,
              -0.0036, -0.004, -0.0044, -0.0048, -0.0052, -0.0056, -0.006, -0.008, -0.01, -0.02,
@@ -37,17 +36,10 @@ check = Checks()
 
 def main():
     binary, work = sys.argv[1], sys.argv[2]
-    os.makedirs(work, exist_ok=True)
-    path = os.path.join(work, "softening.yaml")
-    with open(path, "w") as f:
-        f.write(CASE)
-    plastic_nc, elastic_nc = os.path.join(work, "softening.nc"), os.path.join(work, "elastic.nc")
-    elastic = sweep_counts(binary, path, elastic_nc, ["--set", "plasticity=null"])
-    plastic = sweep_counts(binary, path, plastic_nc, [])
-    check("the elastic sweep ran", elastic is not None)
-    check("the softening sweep ran", plastic is not None)
-    if plastic is None or elastic is None:
+    runs = plastic_and_elastic(check, binary, work, "softening", CASE, ["--set", "plasticity=null"])
+    if runs is None:
         return 1
+    _, plastic_nc, elastic_nc, plastic, elastic = runs
     n = len(CREEPAGES)
     check("every point solved", plastic[0] == n and plastic[1] == 0, f"{plastic}")
     budget = 3 * elastic[2]

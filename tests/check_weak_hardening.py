@@ -11,12 +11,11 @@ above 3 x the elastic one), so the sweep within 6 x the elastic count. Also chec
 point solved, and F_x/(mu F_n) rising with |xi| on each line (a creep curve) and at most 1 (|F| <= mu F_n).
 Usage: check_weak_hardening.py ROLLSIM WORKDIR
 """
-import os
 import sys
 
 import netCDF4
 
-from solver_checks import Checks, eurosprinter, sweep_counts
+from solver_checks import Checks, eurosprinter, plastic_and_elastic
 
 CASE = eurosprinter("weak hardening: Eurosprinter contact, 22 x 22 cells", 22) + """plasticity: {tau_c0: 150.0, k_rel: 0.3}
 rolling: {velocity: 10000.0, creepage: 0.0}
@@ -31,18 +30,11 @@ check = Checks()
 
 def main():
     binary, work = sys.argv[1], sys.argv[2]
-    os.makedirs(work, exist_ok=True)
-    path = os.path.join(work, "weak_hardening.yaml")
-    with open(path, "w") as f:
-        f.write(CASE)
-    plastic_nc = os.path.join(work, "weak_hardening.nc")
-    plastic = sweep_counts(binary, path, plastic_nc, [])
-    elastic = sweep_counts(binary, path, os.path.join(work, "elastic.nc"),
-                           ["--set", "plasticity=null", "--set", "sweep.plasticity.k_rel=null"])
-    check("the plastic sweep ran", plastic is not None)
-    check("the elastic sweep ran", elastic is not None)
-    if plastic is None or elastic is None:
+    runs = plastic_and_elastic(check, binary, work, "weak_hardening", CASE,
+                               ["--set", "plasticity=null", "--set", "sweep.plasticity.k_rel=null"])
+    if runs is None:
         return 1
+    _, plastic_nc, _, plastic, elastic = runs
     check("every plastic point solved", plastic[0] == 14 and plastic[1] == 0, f"{plastic}")
     budget = 2 * 3 * elastic[2]
     check("Newton iterations within 3 x the elastic line's per line", plastic[2] <= budget,
