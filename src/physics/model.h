@@ -281,7 +281,13 @@ typedef struct rs_diag {
   int count[4];                          /* by rs_regime */
   double frictional_power, plastic_power, elastic_energy, rigid_slip_power;
   double hertz_a, hertz_b; /* 3D: Hertz semi-axes (mm) at the inputs' load (0 in 2D) */
+  /* Discretisation error estimates of Fx, Fy, Mz (magnitudes), set by the driver
+   * (study/errest.h) and only when error_state is not RS_ERROR_NONE (zero here). */
+  double Fx_error, Fy_error, Mz_error;
+  int error_state;
 } rs_diag;
+/* error_state: no estimate; the observed order in the asymptotic band; the fallback. */
+enum { RS_ERROR_NONE = 0, RS_ERROR_RELIABLE = 1, RS_ERROR_UNRELIABLE = 2 };
 
 /* slip: ncomp blocks of one value per cell (relative slip v_s/V, or v_s when V = 0). */
 int rs_model_diagnostics(const rs_model *m, rs_work *w, const rs_inputs *in, const double *y,

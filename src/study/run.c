@@ -10,6 +10,7 @@
 #include <sys/stat.h>
 #include <time.h>
 
+#include "study/errest.h"
 #include "study/rig_protocol.h"
 #include "base/util.h"
 #include "physics/kalker.h"
@@ -29,6 +30,7 @@ typedef struct run_state {
   signed char *regime;
   rs_output *out;
   rs_fields *final; /* copies of the last record's fields, or NULL */
+  rs_diag est;      /* the error estimate of the steady record (its error fields) */
 } run_state;
 
 void rs_run_result_free(rs_run_result *res)
@@ -48,6 +50,10 @@ static int write_record(run_state *s, double t, rs_diag *d, rs_msg *msg)
   rs_model_inputs_at(&s->m, t, &in);
   int status = rs_model_diagnostics(&s->m, &s->w, &in, s->y, s->yp, d, s->slip, s->tauc, s->regime);
   if (status != RS_OK) return rs_msg_set(msg, status, "%s", s->w.msg.text);
+  d->Fx_error = s->est.Fx_error;
+  d->Fy_error = s->est.Fy_error;
+  d->Mz_error = s->est.Mz_error;
+  d->error_state = s->est.error_state;
   for (int i = 0; i < s->m.grid.n; i++) /* each cell's bound g = mu(|v_s|) p_n */
     s->mu[i] = s->w.pn[i] > 0.0 ? s->w.law[i].g / s->w.pn[i] : NAN;
   for (int i = 0; i < s->m.grid.n && L->memory; i++) /* friction memory: the state, everywhere */
@@ -77,7 +83,13 @@ static int write_record(run_state *s, double t, rs_diag *d, rs_msg *msg)
                    .ustar = s->y + rs_at_ustar(L, 0),
                    .tauc = s->tauc,
                    .regime = s->regime,
-                   .mu = s->mu};
+                   .mu = s->mu,
+                   .Fx_error = d->Fx_error,
+                   .Fy_error = d->Fy_error,
+                   .Mz_error = d->Mz_error,
+                   .error_reliable = d->error_state == RS_ERROR_RELIABLE     ? 1
+                                     : d->error_state == RS_ERROR_UNRELIABLE ? 0
+                                                                             : -1};
   return s->out ? rs_output_write(s->out, &rec, msg) : RS_OK;
 }
 
@@ -106,6 +118,25 @@ static void free_state(run_state *s)
   free(s->regime);
   if (s->m.grid.x) rs_model_free(&s->m);
   if (s->ctx) SUNContext_Free(&s->ctx);
+}
+
+/* The error estimate of a steady solution (study/errest.h) on the companion grids. */
+static int estimate_steady(run_state *s, rs_run_result *res, rs_msg *msg)
+{
+  rs_inputs in;
+  rs_model_inputs_at(&s->m, 0.0, &in);
+  int status = rs_model_diagnostics(&s->m, &s->w, &in, s->y, s->yp, &s->est, NULL, NULL, NULL);
+  if (status != RS_OK) return rs_msg_set(msg, status, "%s", s->w.msg.text);
+  const double started = rs_wall_clock();
+  rs_errest e;
+  status = rs_errest_create(&e, &s->m, s->ctx, msg);
+  if (status == RS_OK) status = rs_errest_point(&e, &s->m, s->y, &s->est, msg);
+  if (status == RS_OK && s->est.error_state == RS_ERROR_NONE)
+    snprintf(res->error_note, sizeof res->error_note,
+             "no error estimate: a coarser companion grid was not solved");
+  rs_errest_free(&e);
+  res->error_seconds = rs_wall_clock() - started;
+  return status;
 }
 
 /* Solver loop for transient mode from t0 (0, or the time of a restart file's last
@@ -265,10 +296,30 @@ int rs_run(const rs_case *c, const rs_run_opts *o, rs_run_result *res, rs_msg *m
   run_state s = {.c = c};
   if (SUNContext_Create(NULL, &s.ctx) != 0)
     return rs_msg_set(msg, RS_ERR_INTERNAL, "could not create the SUNDIALS context");
+  s.est = (rs_diag){.Fx_error = NAN, .Fy_error = NAN, .Mz_error = NAN};
   int status = rs_model_from_case(&s.m, c, msg);
   if (status != RS_OK) {
     free_state(&s);
     return status;
+  }
+  /* grid.accuracy: the grid refined until the estimate meets it (steady, no restart: the
+   * case's keys say so), its solution Newton's start below and its estimate the record's. */
+  const int estimate = c->mode == RS_MODE_STEADY && c->error_estimate && !c->rig.on;
+  double *y_chosen = NULL;
+  int accuracy_reached = 1;
+  if (estimate && c->accuracy > 0.0) {
+    if (o->restart_path) {
+      free_state(&s);
+      return rs_msg_set(msg, RS_ERR_INPUT,
+                        "--restart %s: not with grid.accuracy (the grid is chosen by the run)",
+                        o->restart_path);
+    }
+    status = rs_errest_refine(&s.m, s.ctx, c->accuracy, &y_chosen, &s.est, &accuracy_reached, msg);
+    if (status != RS_OK) {
+      free_state(&s);
+      return status;
+    }
+    res->grid_chosen = 1;
   }
   const int n = s.m.grid.n, neq = s.m.lay.neq;
   res->mu = s.m.par.friction.mu;
@@ -282,10 +333,18 @@ int rs_run(const rs_case *c, const rs_run_opts *o, rs_run_result *res, rs_msg *m
   s.regime = calloc((size_t)n, sizeof *s.regime);
   if (!s.y || !s.yp || !s.slip || !s.tauc || !s.mu || !s.regime ||
       rs_work_create(&s.w, &s.m) != RS_OK) {
+    free(y_chosen);
     free_state(&s);
     return rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory for %d cells", n);
   }
   rs_model_rest_state(&s.m, s.y);
+  if (y_chosen) memcpy(s.y, y_chosen, (size_t)neq * sizeof *s.y);
+  free(y_chosen);
+  res->cells[0] = s.m.grid.nx;
+  res->cells[1] = s.m.grid.ny;
+  char why_none[256] = "";
+  if (estimate && !res->grid_chosen && !rs_errest_admissible(&s.m, why_none, sizeof why_none))
+    snprintf(res->error_note, sizeof res->error_note, "%s", why_none);
   const char *path = o->append && o->restart_path ? o->restart_path
                      : o->output_path             ? o->output_path
                                                   : c->output_file;
@@ -351,7 +410,9 @@ int rs_run(const rs_case *c, const rs_run_opts *o, rs_run_result *res, rs_msg *m
                          .hertz_a = s.m.hertz_a,
                          .hertz_b = s.m.hertz_b,
                          .hertz_load = s.m.normal_load,
-                         .rtol = c->mode == RS_MODE_TRANSIENT ? res->rtol : 0.0};
+                         .rtol = c->mode == RS_MODE_TRANSIENT ? res->rtol : 0.0,
+                         .error_estimate = estimate,
+                         .grid_chosen = res->grid_chosen};
   if (o->no_output)
     status = RS_OK;
   else if (o->append)
@@ -377,6 +438,8 @@ int rs_run(const rs_case *c, const rs_run_opts *o, rs_run_result *res, rs_msg *m
     if (status == RS_OK) status = rs_steady_solve(st, 0.0, s.y, &res->stats, msg);
     rs_steady_free(st);
   }
+  if (status == RS_OK && estimate && !res->grid_chosen && !*res->error_note)
+    status = estimate_steady(&s, res, msg);
   /* Rates at t0: zero in steady rolling at constant inputs, else consistent
    * (they set the regimes of the first record and start IDA). A restart recomputes them
    * from the stored state: the file holds no rates. */
@@ -394,6 +457,15 @@ int rs_run(const rs_case *c, const rs_run_opts *o, rs_run_result *res, rs_msg *m
     res->records = status == RS_OK && !o->append;
     res->time = t0;
   }
+  if (status == RS_OK && !accuracy_reached)
+    status = rs_msg_set(msg, RS_ERR_SOLVER,
+                        "grid.accuracy %g not reached: the estimated error of the forces on the "
+                        "finest grid allowed (%d cells, cap %ld) is %.3g mu F_n; the file holds "
+                        "that grid's result",
+                        c->accuracy, s.m.grid.n,
+                        s.m.grid.ny > 1 ? RS_ACCURACY_MAX_CELLS_3D : RS_ACCURACY_MAX_CELLS_2D,
+                        fmax(s.est.Fx_error, s.m.grid.ny > 1 ? s.est.Fy_error : 0.0) /
+                            (s.m.par.friction.mu * fabs(res->final.Fn)));
   if (status == RS_OK && c->mode == RS_MODE_TRANSIENT) {
     if (rig) rig->out = s.out;
     status = run_transient(&s, o, res, t0, started, rig, msg);

@@ -62,6 +62,13 @@ typedef struct rs_run_result {
   double rtol;         /* transient: the relative tolerance run (solver.rtol, auto resolved) */
   char backup[1040];   /* an older file at the output path kept under this name, or "" */
   size_t file_records; /* records in the output file (more than records with append) */
+  /* Steady runs: the grid solved ([nx, ny], ny 1 in 2D), whether grid.accuracy chose it,
+   * why there is no error estimate ("" when there is one, or none was asked for) and the
+   * wall time of the estimate's companion solves. */
+  int cells[2];
+  int grid_chosen;
+  char error_note[256];
+  double error_seconds;
 } rs_run_result;
 
 void rs_run_result_free(rs_run_result *res);

@@ -25,7 +25,10 @@
 
 enum { TAG_REQUEST = 1, TAG_POINT = 2, TAG_LINE = 3 };
 /* A point message: line, j, status, 11 scalars, newton, has_fields, then 7 nx values. */
-enum { PT_HEAD = 22 }; /* m[16..21]: F_y, M_z, eta, phi, Hertz a, b (3D; 0 in 2D) */
+enum {
+  PT_HEAD = 26
+}; /* m[16..21]: F_y, M_z, eta, phi, Hertz a, b (3D; 0 in 2D);
+      m[22..25]: the errors of F_x, F_y, M_z and error_reliable */
 
 typedef struct dist_run {
   const rs_sweep *s;
@@ -51,6 +54,7 @@ typedef struct dist_run {
   long midpoints;
   long in_two;
   double started;
+  int estimate; /* steady sweeps: error estimates per point */
   rs_msg msg;
 } dist_run;
 
@@ -78,6 +82,11 @@ static void pack(dist_run *r, size_t line, size_t j, int status, const rs_diag *
   m[15] = ok && r->with_fields;
   const double v3[6] = {d->Fy, d->Mz, d->lateral_creepage, d->spin, d->hertz_a, d->hertz_b};
   for (int k = 0; k < 6; k++) m[16 + k] = ok ? v3[k] : NAN;
+  const int est = ok && d->error_state != RS_ERROR_NONE;
+  m[22] = est ? d->Fx_error : NAN;
+  m[23] = est ? d->Fy_error : NAN;
+  m[24] = est ? d->Mz_error : NAN;
+  m[25] = !est ? -1 : d->error_state == RS_ERROR_RELIABLE ? 1 : 0;
   if (ok && r->with_fields) {
     const double *rows[6] = {r->buf.px,  r->buf.pn,    r->buf.slip,
                              r->buf.upl, r->buf.ustar, r->buf.tauc};
@@ -113,7 +122,17 @@ static int write_point(dist_run *r, const double *m, int rank)
     pt.spin = m[19];
     pt.hertz_a = m[20];
     pt.hertz_b = m[21];
+    pt.Fx_error = m[22];
+    pt.Fy_error = m[23];
+    pt.Mz_error = m[24];
+    pt.error_reliable = (int)m[25];
     pt.converged = 1;
+    if (pt.error_reliable >= 0) {
+      r->res->points_estimated++;
+      r->res->points_reliable += pt.error_reliable == 1;
+      if (pt.Fn != 0.0 && fabs(pt.Fx_error / pt.Fn) > r->res->max_mu_error)
+        r->res->max_mu_error = fabs(pt.Fx_error / pt.Fn);
+    }
     if (m[15] != 0) {
       const double *f = m + PT_HEAD;
       pt.px = f;
@@ -134,6 +153,8 @@ static int write_point(dist_run *r, const double *m, int rank)
     pt.Fy = pt.Mz = pt.lateral_creepage = pt.spin = pt.hertz_a = pt.hertz_b = NAN;
     pt.frictional_power = pt.plastic_power = pt.elastic_energy = NAN;
     pt.n_exterior = pt.n_adhesion = pt.n_slip = pt.n_plastic = -1;
+    pt.Fx_error = pt.Fy_error = pt.Mz_error = NAN;
+    pt.error_reliable = -1;
     r->res->points_failed++;
   }
   r->res->newton_iters += (long)m[14];
@@ -218,7 +239,8 @@ static int compute_line(dist_run *r, size_t line)
                            .stats = &r->stats,
                            .refined = &r->refined,
                            .midpoints = &r->midpoints,
-                           .in_two = &r->in_two};
+                           .in_two = &r->in_two,
+                           .estimate = r->estimate};
   rs_msg m = {{0}};
   const int st = rs_sweep_line_eval(&L, &m);
   if (st == RS_ERR_INTERRUPTED) r->interrupted = 1; /* also inside a transient point */
@@ -355,6 +377,8 @@ int rs_sweep_run_dist(const rs_sweep *s, const rs_case *c, const rs_run_opts *o,
       goto done;
     }
   }
+  r.estimate = c->mode == RS_MODE_STEADY && c->error_estimate && !c->rig.on;
+  res->error_estimate = r.estimate;
   r.with_fields = grid_x != NULL;
   r.nx = r.with_fields ? (size_t)grid_n : 0;
   r.msglen = PT_HEAD + 8 * (int)r.nx;
@@ -378,7 +402,8 @@ int rs_sweep_run_dist(const rs_sweep *s, const rs_case *c, const rs_run_opts *o,
                                        .values = values,
                                        .ranks = dist->mpi && size > 1 ? size : 0,
                                        .part = dist->part,
-                                       .parts = dist->parts};
+                                       .parts = dist->parts,
+                                       .error_estimate = r.estimate};
     if (dist->resume)
       status = resume_open(&r, &spec, msg);
     else
