@@ -239,11 +239,14 @@ class CreepSeries:
     sources: list = field(default_factory=list)  # one "file" or "file[i,j]" per point
     values: dict = field(default_factory=dict)   # sweep files: the other swept keys' values
     elastic: bool = False                        # sweep files: the yield limit is never reached
+    error: np.ndarray = None                     # sweep files: the estimated error of traction
 
     def sort(self):
         order = np.argsort(self.creepage, kind="stable")
         self.creepage = self.creepage[order]
         self.traction = self.traction[order]
+        if self.error is not None:
+            self.error = self.error[order]
         self.sources = [self.sources[i] for i in order]
         return self
 
@@ -285,6 +288,12 @@ def sweep_series(run, prefix=None, var="traction_coefficient", x_key=CREEPAGE_KE
     # Move the creepage axis last so each series is values[combination of others, :].
     values = np.moveaxis(values, dims.index(x_dim), -1)
     values = values.reshape([len(run.ds.dimensions[d]) for d in others] + [creepage.size])
+    # the traction coefficient's error estimate (steady sweeps, docs/file-format.md)
+    errors = None
+    if var == "traction_coefficient" and run.has("traction_coefficient_error") and \
+            list(run.dims("traction_coefficient_error")) == dims:
+        errors = np.moveaxis(run.values("traction_coefficient_error"), dims.index(x_dim), -1)
+        errors = errors.reshape(values.shape)
     coords = {d: run.coordinate(d) for d in others}
     series = []
     for combo in itertools.product(*[range(len(coords[d])) for d in others]):
@@ -296,6 +305,8 @@ def sweep_series(run, prefix=None, var="traction_coefficient", x_key=CREEPAGE_KE
         ok = ~np.isnan(y) & ~np.isnan(creepage)
         idx = [f"{run.path}[{','.join(str(i) for i in combo + (k,))}]" for k in range(y.size)]
         s = CreepSeries(label, creepage[ok].copy(), y[ok].copy(), [s for s, k in zip(idx, ok) if k])
+        if errors is not None:
+            s.error = np.asarray(errors[combo], dtype=float)[ok].copy()
         s.values = {run.sweep_key(d): float(coords[d][i]) for d, i in zip(others, combo)}
         s.elastic = sweep.is_elastic(run, sweep.Point(tuple(combo), dict(s.values)))
         series.append(s.sort())

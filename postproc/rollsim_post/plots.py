@@ -335,6 +335,11 @@ def plot_creepcurve(panels, out, absolute=False, title=None, percent=False, mu=N
                 style["marker"] = "o"
             rec.line(ax, k, x[order] * factor, y[order], ms=4, series=s.label,
                      quantity="traction_coefficient", point=getattr(s, "values", None), **style)
+            err = getattr(s, "error", None)
+            if err is not None and np.any(np.isfinite(err)):  # the estimated error as a band
+                e = np.where(np.isfinite(err), err, 0.0)[order]
+                ax.fill_between(x[order] * factor, y[order] - e, y[order] + e,
+                                color=style.get("color", "k"), alpha=0.2, lw=0)
         if mu is not None:
             ax.axhline(mu if absolute else mu, color="0.4", lw=0.8, ls=":", label=f"μ = {mu:g}")
         ax.axhline(0.0, color="0.5", lw=0.5)
