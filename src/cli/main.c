@@ -248,7 +248,7 @@ static void print_error_estimate(const rs_case *c, const rs_run_result *res)
 {
   const rs_diag *d = &res->final;
   const int three = c->dimension == 3;
-  if (c->mode != RS_MODE_STEADY || !c->error_estimate) return;
+  if (!c->error_estimate) return;
   if (res->grid_chosen)
     printf("  grid.accuracy %g: grid of %d%s%.0d cells chosen\n", c->accuracy, res->cells[0],
            three ? " x " : "", three ? res->cells[1] : 0);

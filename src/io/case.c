@@ -399,8 +399,8 @@ static int resolve_accuracy(const resolver *r, rs_case *c)
   if (!acc || !(c->accuracy > 0.0)) return RS_OK;
   if (c->mode != RS_MODE_STEADY)
     return rs_case_error(r->d, acc, "grid.accuracy",
-                         "applies to steady runs (simulation.mode: steady): transient records "
-                         "get no error estimate");
+                         "applies to steady runs (simulation.mode: steady): a transient run "
+                         "keeps its grid");
   if (!c->error_estimate)
     return rs_case_error(r->d, acc, "grid.accuracy",
                          "needs the error estimate: remove output.error_estimate: false");
@@ -601,6 +601,8 @@ static int resolve(const rs_case_doc *d, rs_case_input *in, const yaml_node_t **
     return rs_case_error(d, given(&r, "rolling.velocity"), "rolling.velocity",
                          "velocity 0 mm/s (pure shift) needs simulation.mode: transient; steady "
                          "mode is for rolling (V > 0)");
+  /* transient runs estimate their errors only when asked (companion runs: docs/case-file.md) */
+  if (c->mode == RS_MODE_TRANSIENT && !given(&r, "output.error_estimate")) c->error_estimate = 0;
   if ((status = resolve_accuracy(&r, c)) != RS_OK) return status;
   if (c->output_file && !*c->output_file)
     return rs_case_error(d, given(&r, "output.file"), "output.file", "empty file name");

@@ -57,30 +57,33 @@ static void companion_cells(int nx, int out[2])
   out[1] = nx / 4;
 }
 
+/* Cells across the Hertz contact along each axis (the fewer) on the grid of m with nx
+ * cells along x (3D: ny in proportion, as rs_model_regrid makes them). */
+static int cells_across(const rs_model *m, int nx)
+{
+  int across = (int)floor(2.0 * m->hertz_a * nx / (m->grid.x_hi - m->grid.x_lo) + 1e-9);
+  if (m->grid.ny > 1) {
+    const int ny = (int)((long)m->grid.ny * nx / m->grid.nx);
+    const int ay = (int)floor(2.0 * m->hertz_b * ny / (m->grid.y_hi - m->grid.y_lo) + 1e-9);
+    across = ay < across ? ay : across;
+  }
+  return across;
+}
+
 int rs_errest_admissible(const rs_model *m, char *why, size_t len)
 {
   if (m->par.force_control) {
     snprintf(why, len, "no error estimate with a prescribed tangential force");
     return 0;
   }
-  int c[2];
-  companion_cells(m->grid.nx, c);
-  const double dx = (m->grid.x_hi - m->grid.x_lo) / (c[1] > 0 ? c[1] : 1);
-  const int across = (int)floor(2.0 * m->hertz_a / dx + 1e-9);
-  int across_y = RS_ERREST_MIN_CELLS;
-  if (m->grid.ny > 1) {
-    const int cy = (int)((long)m->grid.ny * c[1] / m->grid.nx);
-    across_y =
-        cy > 0 ? (int)floor(2.0 * m->hertz_b / ((m->grid.y_hi - m->grid.y_lo) / cy) + 1e-9) : 0;
-  }
-  if (c[1] < 1 || across < RS_ERREST_MIN_CELLS || across_y < RS_ERREST_MIN_CELLS) {
-    snprintf(
-        why, len,
-        "no error estimate: the grid is too coarse (the estimate solves the point again on "
-        "grids of a half and a quarter of the cells, whose coarsest needs at least %d cells "
-        "across the contact; give at least %d)",
-        RS_ERREST_MIN_CELLS,
-        (int)ceil(4.0 * RS_ERREST_MIN_CELLS * (m->grid.x_hi - m->grid.x_lo) / (2.0 * m->hertz_a)));
+  if (cells_across(m, m->grid.nx / 4) < RS_ERREST_MIN_CELLS) {
+    int need = m->grid.nx;
+    while (need < (1 << 20) && cells_across(m, need / 4) < RS_ERREST_MIN_CELLS) need++;
+    snprintf(why, len,
+             "no error estimate: the grid is too coarse (the estimate solves the point again on "
+             "grids of a half and a quarter of the cells, whose coarsest needs at least %d cells "
+             "across the contact; give at least %d along x%s)",
+             RS_ERREST_MIN_CELLS, need, m->grid.ny > 1 ? ", y in proportion" : "");
     return 0;
   }
   return 1;
@@ -179,33 +182,29 @@ int rs_errest_point(rs_errest *e, const rs_model *m, const double *y, rs_diag *d
     from = cm;
     from_y = e->y[k];
   }
-  const double force_scale = m->par.friction.mu * fabs(d->Fn);
-  const double scale[3] = {force_scale, force_scale, force_scale * m->hertz_a};
-  double err[3];
-  int reliable = 1;
-  for (int q = 0; q < (m->grid.ny > 1 ? 3 : 1); q++)
-    reliable &= rs_errest_combine(f[0][q], f[1][q], f[2][q], e->r21, e->r32,
-                                  RS_ERREST_NOISE * scale[q], &err[q]);
-  d->Fx_error = err[0];
-  if (m->grid.ny > 1) {
-    d->Fy_error = err[1];
-    d->Mz_error = err[2];
-  }
-  d->error_state = reliable ? RS_ERROR_RELIABLE : RS_ERROR_UNRELIABLE;
+  rs_diag d2 = {.Fx = f[1][0], .Fy = f[1][1], .Mz = f[1][2]};
+  rs_diag d3 = {.Fx = f[2][0], .Fy = f[2][1], .Mz = f[2][2]};
+  rs_errest_diag(m, e->r21, e->r32, &d2, &d3, d);
   return RS_OK;
 }
 
-/* Cells across the Hertz contact along each axis (the fewer) on the grid of m with nx
- * cells along x (3D: ny in proportion, as rs_model_regrid makes them). */
-static int cells_across(const rs_model *m, int nx)
+void rs_errest_diag(const rs_model *m, double r21, double r32, const rs_diag *d2, const rs_diag *d3,
+                    rs_diag *d)
 {
-  int across = (int)floor(2.0 * m->hertz_a * nx / (m->grid.x_hi - m->grid.x_lo) + 1e-9);
-  if (m->grid.ny > 1) {
-    const int ny = (int)((long)m->grid.ny * nx / m->grid.nx);
-    const int ay = (int)floor(2.0 * m->hertz_b * ny / (m->grid.y_hi - m->grid.y_lo) + 1e-9);
-    across = ay < across ? ay : across;
-  }
-  return across;
+  const int three = m->grid.ny > 1;
+  const double force_scale = m->par.friction.mu * fabs(d->Fn);
+  const double scale[3] = {force_scale, force_scale, force_scale * m->hertz_a};
+  const double f[3][3] = {
+      {d->Fx, d->Fy, d->Mz}, {d2->Fx, d2->Fy, d2->Mz}, {d3->Fx, d3->Fy, d3->Mz}};
+  double err[3] = {NAN, NAN, NAN};
+  int reliable = 1;
+  for (int q = 0; q < (three ? 3 : 1); q++)
+    reliable &=
+        rs_errest_combine(f[0][q], f[1][q], f[2][q], r21, r32, RS_ERREST_NOISE * scale[q], &err[q]);
+  d->Fx_error = err[0];
+  d->Fy_error = err[1];
+  d->Mz_error = err[2];
+  d->error_state = reliable ? RS_ERROR_RELIABLE : RS_ERROR_UNRELIABLE;
 }
 
 /* One grid of the refinement: the model of m's case with nx cells along x, solved from
@@ -288,16 +287,10 @@ int rs_errest_refine(rs_model *m, SUNContext ctx, double accuracy, double **y, r
       const double r21 = three ? sqrt((double)cells[2] / cells[1]) : (double)cells[2] / cells[1];
       const double r32 = three ? sqrt((double)cells[1] / cells[0]) : (double)cells[1] / cells[0];
       const double scale = m->par.friction.mu * fabs(dg.Fn);
-      const double mscale[3] = {scale, scale, scale * m->hertz_a};
-      double err[3] = {NAN, NAN, NAN};
-      int reliable = 1;
-      for (int q = 0; q < (three ? 3 : 1); q++)
-        reliable &= rs_errest_combine(f[2][q], f[1][q], f[0][q], r21, r32,
-                                      RS_ERREST_NOISE * mscale[q], &err[q]);
-      d->Fx_error = err[0];
-      d->Fy_error = err[1];
-      d->Mz_error = err[2];
-      d->error_state = reliable ? RS_ERROR_RELIABLE : RS_ERROR_UNRELIABLE;
+      const rs_diag d2 = {.Fx = f[1][0], .Fy = f[1][1], .Mz = f[1][2]};
+      const rs_diag d3 = {.Fx = f[0][0], .Fy = f[0][1], .Mz = f[0][2]};
+      rs_errest_diag(m, r21, r32, &d2, &d3, d);
+      const double err[3] = {d->Fx_error, d->Fy_error, d->Mz_error};
       const double worst = three ? fmax(err[0], err[1]) : err[0];
       if (level >= 0 && worst <= accuracy * scale) {
         *reached = 1;

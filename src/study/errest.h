@@ -33,6 +33,11 @@
 int rs_errest_combine(double f1, double f2, double f3, double r21, double r32, double noise,
                       double *err);
 
+/* The estimate of d's F_x (3D: F_y, M_z) from the same point's results d2, d3 on grids of
+ * cell size ratios r21, r32 (the scales from m's friction and d->Fn): d's error fields. */
+void rs_errest_diag(const rs_model *m, double r21, double r32, const rs_diag *d2, const rs_diag *d3,
+                    rs_diag *d);
+
 /* The companion grids of a model and their solvers, kept over the points of a run or a
  * continuation line (only the rolling inputs may change between points). */
 typedef struct rs_errest {

@@ -29,8 +29,12 @@ typedef struct run_state {
   double *mu; /* mu(|v_s|) per cell (NaN outside the contact), or the memory state */
   signed char *regime;
   rs_output *out;
-  rs_fields *final; /* copies of the last record's fields, or NULL */
-  rs_diag est;      /* the error estimate of the steady record (its error fields) */
+  rs_fields *final;               /* copies of the last record's fields, or NULL */
+  rs_diag est;                    /* the error estimate of the steady record (its error fields) */
+  rs_record_diags *collect;       /* every record's quantities appended here, or NULL */
+  const rs_record_diags *comp[2]; /* transient estimate: the companion runs' records, or NULL */
+  double r21, r32;                /* their cell size ratios */
+  size_t written;                 /* records written by write_record so far */
 } run_state;
 
 void rs_run_result_free(rs_run_result *res)
@@ -41,6 +45,19 @@ void rs_run_result_free(rs_run_result *res)
   res->rig_step_mu = res->rig_step_slip = res->rig_rev_mu = NULL;
   res->rig_nrev = 0;
   res->rig_nsteps = 0;
+}
+
+/* Transient estimate: the record at t (the written-th) from the companion runs' records at
+ * the same time, where both have one. */
+static void transient_estimate(run_state *s, double t, rs_diag *d)
+{
+  const size_t i = s->written;
+  const double tol = 1e-9 * s->c->output_interval;
+  d->error_state = RS_ERROR_NONE;
+  d->Fx_error = d->Fy_error = d->Mz_error = NAN;
+  if (s->comp[0]->n > i && s->comp[1]->n > i && fabs(s->comp[0]->t[i] - t) <= tol &&
+      fabs(s->comp[1]->t[i] - t) <= tol)
+    rs_errest_diag(&s->m, s->r21, s->r32, &s->comp[0]->d[i], &s->comp[1]->d[i], d);
 }
 
 static int write_record(run_state *s, double t, rs_diag *d, rs_msg *msg)
@@ -54,6 +71,21 @@ static int write_record(run_state *s, double t, rs_diag *d, rs_msg *msg)
   d->Fy_error = s->est.Fy_error;
   d->Mz_error = s->est.Mz_error;
   d->error_state = s->est.error_state;
+  if (s->comp[0]) transient_estimate(s, t, d);
+  if (s->collect) {
+    rs_record_diags *r = s->collect;
+    if (r->n == r->cap) {
+      const size_t cap = r->cap ? 2 * r->cap : 64;
+      rs_diag *nd = realloc(r->d, cap * sizeof *nd);
+      if (nd) r->d = nd;
+      double *nt = realloc(r->t, cap * sizeof *nt);
+      if (nt) r->t = nt;
+      if (!nd || !nt) return rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory for the records");
+      r->cap = cap;
+    }
+    r->d[r->n] = *d;
+    r->t[r->n++] = t;
+  }
   for (int i = 0; i < s->m.grid.n; i++) /* each cell's bound g = mu(|v_s|) p_n */
     s->mu[i] = s->w.pn[i] > 0.0 ? s->w.law[i].g / s->w.pn[i] : NAN;
   for (int i = 0; i < s->m.grid.n && L->memory; i++) /* friction memory: the state, everywhere */
@@ -118,6 +150,34 @@ static void free_state(run_state *s)
   free(s->regime);
   if (s->m.grid.x) rs_model_free(&s->m);
   if (s->ctx) SUNContext_Free(&s->ctx);
+}
+
+/* The companion transient runs of the error estimate: the case on grids of a half and a
+ * quarter of the cells along each axis, no output, every record collected. A companion that
+ * fails keeps the records before its failure (the later ones get no estimate). */
+static int transient_companions(const rs_case *c, const rs_run_opts *o, const rs_model *m,
+                                rs_record_diags comp[2], double *r21, double *r32, rs_msg *msg)
+{
+  int n[3] = {m->grid.n, 0, 0};
+  for (int k = 0; k < 2; k++) {
+    rs_case cc = *c; /* shallow: rs_run reads the case only */
+    cc.cells = m->grid.nx >> (k + 1);
+    cc.cells_y = m->grid.ny > 1 ? (int)((long)m->grid.ny * cc.cells / m->grid.nx) : c->cells_y;
+    cc.error_estimate = 0;
+    cc.accuracy = 0.0;
+    rs_run_opts co = {.no_output = 1, .records = &comp[k], .interrupt_flag = o->interrupt_flag};
+    rs_run_result rr;
+    rs_msg cmsg = {{0}};
+    const int status = rs_run(&cc, &co, &rr, &cmsg);
+    rs_run_result_free(&rr);
+    if (status == RS_ERR_INTERRUPTED || status == RS_ERR_INTERNAL)
+      return rs_msg_set(msg, status, "%s", cmsg.text);
+    n[k + 1] = cc.cells * (m->grid.ny > 1 ? cc.cells_y : 1);
+  }
+  const int three = m->grid.ny > 1;
+  *r21 = three ? sqrt((double)n[0] / n[1]) : (double)n[0] / n[1];
+  *r32 = three ? sqrt((double)n[1] / n[2]) : (double)n[1] / n[2];
+  return RS_OK;
 }
 
 /* The error estimate of a steady solution (study/errest.h) on the companion grids. */
@@ -189,6 +249,7 @@ static int run_transient(run_state *s, const rs_run_opts *o, rs_run_result *res,
     if (t == t_out || on_output) {
       rs_diag d;
       status = write_record(s, t_out, &d, msg);
+      s->written++;
       if (status == RS_OK) { /* the summary describes the last record in the file */
         res->final = d;
         res->time = t_out;
@@ -304,7 +365,9 @@ int rs_run(const rs_case *c, const rs_run_opts *o, rs_run_result *res, rs_msg *m
   }
   /* grid.accuracy: the grid refined until the estimate meets it (steady, no restart: the
    * case's keys say so), its solution Newton's start below and its estimate the record's. */
-  const int estimate = c->mode == RS_MODE_STEADY && c->error_estimate && !c->rig.on;
+  /* transient runs (output.error_estimate: true given): companion runs, not after a restart */
+  const int estimate = c->error_estimate && !c->rig.on &&
+                       (c->mode == RS_MODE_STEADY || (!o->restart_path && !o->no_output));
   double *y_chosen = NULL;
   int accuracy_reached = 1;
   if (estimate && c->accuracy > 0.0) {
@@ -345,6 +408,26 @@ int rs_run(const rs_case *c, const rs_run_opts *o, rs_run_result *res, rs_msg *m
   char why_none[256] = "";
   if (estimate && !res->grid_chosen && !rs_errest_admissible(&s.m, why_none, sizeof why_none))
     snprintf(res->error_note, sizeof res->error_note, "%s", why_none);
+  if (c->error_estimate && c->mode == RS_MODE_TRANSIENT && o->restart_path)
+    snprintf(res->error_note, sizeof res->error_note,
+             "no error estimate after --restart (its companion runs would start from rest)");
+  s.collect = o->records;
+  rs_record_diags comp[2] = {{0}};
+  if (estimate && c->mode == RS_MODE_TRANSIENT && !*res->error_note) {
+    const double t_comp = rs_wall_clock();
+    status = transient_companions(c, o, &s.m, comp, &s.r21, &s.r32, msg);
+    res->error_seconds = rs_wall_clock() - t_comp;
+    if (status != RS_OK) {
+      for (int k = 0; k < 2; k++) {
+        free(comp[k].d);
+        free(comp[k].t);
+      }
+      free_state(&s);
+      return status;
+    }
+    s.comp[0] = &comp[0];
+    s.comp[1] = &comp[1];
+  }
   const char *path = o->append && o->restart_path ? o->restart_path
                      : o->output_path             ? o->output_path
                                                   : c->output_file;
@@ -453,6 +536,7 @@ int rs_run(const rs_case *c, const rs_run_opts *o, rs_run_result *res, rs_msg *m
     rs_output *file = s.out;
     if (o->append) s.out = NULL;
     status = write_record(&s, t0, &res->final, msg);
+    s.written++;
     s.out = file;
     res->records = status == RS_OK && !o->append;
     res->time = t0;
@@ -485,6 +569,10 @@ int rs_run(const rs_case *c, const rs_run_opts *o, rs_run_result *res, rs_msg *m
   if (status == RS_OK) status = close_status;
   res->wall_seconds = rs_wall_clock() - started;
   if (rig) rs_rig_run_free(rig);
+  for (int k = 0; k < 2; k++) {
+    free(comp[k].d);
+    free(comp[k].t);
+  }
   free_state(&s);
   return status;
 }

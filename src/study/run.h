@@ -10,6 +10,13 @@
 #include "solve/steady.h"
 #include "base/status.h"
 
+/* The quantities of every record of a run, in order (rs_run_opts.records); free d and t. */
+typedef struct rs_record_diags {
+  rs_diag *d;
+  double *t; /* the records' times, s */
+  size_t n, cap;
+} rs_record_diags;
+
 /* The (x) fields of one record, n cells each, in caller-owned arrays. */
 typedef struct rs_fields {
   int n;
@@ -39,6 +46,8 @@ typedef struct rs_run_opts {
   int cost_warning;
   /* Set asynchronously (signal handler) to stop at the next output record. */
   volatile sig_atomic_t *interrupt_flag;
+  /* When set: every record's quantities appended (the error estimate's companion runs). */
+  rs_record_diags *records;
 } rs_run_opts;
 
 typedef struct rs_run_result {
