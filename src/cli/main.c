@@ -250,8 +250,9 @@ static void print_error_estimate(const rs_case *c, const rs_run_result *res)
   const int three = c->dimension == 3;
   if (!c->error_estimate) return;
   if (res->grid_chosen)
-    printf("  grid.accuracy %g: grid of %d%s%.0d cells chosen\n", c->accuracy, res->cells[0],
-           three ? " x " : "", three ? res->cells[1] : 0);
+    printf("  grid.accuracy %g: grid of %d%s%.0d cells %s\n", c->accuracy, res->cells[0],
+           three ? " x " : "", three ? res->cells[1] : 0,
+           res->accuracy_met ? "chosen" : "(the finest allowed; accuracy not reached)");
   if (d->error_state == RS_ERROR_NONE) {
     printf("  error estimate: %s\n", *res->error_note ? res->error_note : "none");
     return;

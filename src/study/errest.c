@@ -57,6 +57,13 @@ static void companion_cells(int nx, int out[2])
   out[1] = nx / 4;
 }
 
+double rs_errest_worst(const rs_model *m, const rs_diag *d)
+{
+  const double scale = m->par.friction.mu * fabs(d->Fn);
+  if (m->grid.ny == 1) return d->Fx_error / scale;
+  return fmax(fmax(d->Fx_error, d->Fy_error) / scale, d->Mz_error / (scale * m->hertz_a));
+}
+
 /* Cells across the Hertz contact along each axis (the fewer) on the grid of m with nx
  * cells along x (3D: ny in proportion, as rs_model_regrid makes them). */
 static int cells_across(const rs_model *m, int nx)
@@ -286,20 +293,17 @@ int rs_errest_refine(rs_model *m, SUNContext ctx, double accuracy, double **y, r
         cells_across(m, level < 2 ? n0 >> (2 - level) : n0 << (level - 2)) >= RS_ERREST_MIN_CELLS) {
       const double r21 = three ? sqrt((double)cells[2] / cells[1]) : (double)cells[2] / cells[1];
       const double r32 = three ? sqrt((double)cells[1] / cells[0]) : (double)cells[1] / cells[0];
-      const double scale = m->par.friction.mu * fabs(dg.Fn);
       const rs_diag d2 = {.Fx = f[1][0], .Fy = f[1][1], .Mz = f[1][2]};
       const rs_diag d3 = {.Fx = f[0][0], .Fy = f[0][1], .Mz = f[0][2]};
       rs_errest_diag(m, r21, r32, &d2, &d3, d);
-      const double err[3] = {d->Fx_error, d->Fy_error, d->Mz_error};
-      const double worst = three ? fmax(err[0], err[1]) : err[0];
-      if (level >= 0 && worst <= accuracy * scale) {
+      if (level >= 0 && rs_errest_worst(m, d) <= accuracy) {
         *reached = 1;
         break;
       }
     }
     level++;
     const long next = level < 0 ? n0 >> -level : (long)n0 << level;
-    if ((three ? next * next * m->grid.ny / m->grid.nx : next) > cap) break;
+    if (level > 0 && (three ? next * next * m->grid.ny / m->grid.nx : next) > cap) break;
     nx = (int)next;
   }
   if (status != RS_OK) {

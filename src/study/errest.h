@@ -64,10 +64,14 @@ int rs_errest_point(rs_errest *e, const rs_model *m, const double *y, rs_diag *d
 /* grid.accuracy (docs/case-file.md): the steady point of model m solved on grids of twice
  * the cells along each axis after another (each from the last one's solution), from the
  * case's grid divided by 4 where that still resolves the contact, until the estimated error
- * of F_x (3D: and F_y) on a grid at least as fine as the case's is at most accuracy mu F_n,
- * or the next grid would exceed the cap. On RS_OK m is the model of the last grid solved,
- * *y its solution (malloc'ed), d its diagnostics with the estimate, *reached 1 if the
- * accuracy was met. RS_ERR_SOLVER when a grid's solve failed (msg names the grid). */
+ * of F_x (3D: F_y too, and M_z in mu F_n a) on a grid at least as fine as the case's is at
+ * most accuracy mu F_n,
+ * or the next grid finer than the case's would exceed the cap. On RS_OK m is the model of
+ * the last grid solved, *y its solution (malloc'ed), d its diagnostics with the estimate,
+ * *reached 1 if the accuracy was met. RS_ERR_SOLVER when a grid's solve failed (msg names
+ * the grid). */
+/* The largest of d's estimated errors of F_x (3D: F_y in mu F_n, M_z in mu F_n a). */
+double rs_errest_worst(const rs_model *m, const rs_diag *d);
 #define RS_ACCURACY_MAX_CELLS_2D 4096L
 #define RS_ACCURACY_MAX_CELLS_3D 65536L
 int rs_errest_refine(rs_model *m, SUNContext ctx, double accuracy, double **y, rs_diag *d,

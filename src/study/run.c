@@ -383,6 +383,7 @@ int rs_run(const rs_case *c, const rs_run_opts *o, rs_run_result *res, rs_msg *m
       return status;
     }
     res->grid_chosen = 1;
+    res->accuracy_met = accuracy_reached;
   }
   const int n = s.m.grid.n, neq = s.m.lay.neq;
   res->mu = s.m.par.friction.mu;
@@ -543,13 +544,12 @@ int rs_run(const rs_case *c, const rs_run_opts *o, rs_run_result *res, rs_msg *m
   }
   if (status == RS_OK && !accuracy_reached)
     status = rs_msg_set(msg, RS_ERR_SOLVER,
-                        "grid.accuracy %g not reached: the estimated error of the forces on the "
-                        "finest grid allowed (%d cells, cap %ld) is %.3g mu F_n; the file holds "
-                        "that grid's result",
+                        "grid.accuracy %g not reached: the estimated error on the finest grid "
+                        "allowed (%d cells, cap %ld) is %.3g (in mu F_n; M_z in mu F_n a); the "
+                        "file holds that grid's result",
                         c->accuracy, s.m.grid.n,
                         s.m.grid.ny > 1 ? RS_ACCURACY_MAX_CELLS_3D : RS_ACCURACY_MAX_CELLS_2D,
-                        fmax(s.est.Fx_error, s.m.grid.ny > 1 ? s.est.Fy_error : 0.0) /
-                            (s.m.par.friction.mu * fabs(res->final.Fn)));
+                        rs_errest_worst(&s.m, &res->final));
   if (status == RS_OK && c->mode == RS_MODE_TRANSIENT) {
     if (rig) rig->out = s.out;
     status = run_transient(&s, o, res, t0, started, rig, msg);

@@ -75,7 +75,7 @@ typedef struct rs_run_result {
    * why there is no error estimate ("" when there is one, or none was asked for) and the
    * wall time of the estimate's companion solves. */
   int cells[2];
-  int grid_chosen;
+  int grid_chosen, accuracy_met;
   char error_note[256];
   double error_seconds;
 } rs_run_result;
