@@ -262,12 +262,10 @@ static void print_error_estimate(const rs_case *c, const rs_run_result *res)
   if (three)
     printf(", F_y = %.6g +- %.2g N, M_z = %.6g +- %.2g N mm", d->Fy, d->Fy_error, d->Mz,
            d->Mz_error);
-  printf("\n    estimated discretisation errors (grids of 1, 1/2 and 1/4 the cells%s; %s)\n",
-         res->grid_chosen ? "" : ", the coarser two solved for it",
+  printf("\n    estimated discretisation errors, from grids of 1/2 and 1/4 the cells; %s\n",
          d->error_state == RS_ERROR_RELIABLE
-             ? "observed order within 10 % of 1: in the asymptotic range"
-             : "UNRELIABLE: the observed order is not within 10 % of 1, so a conservative "
-               "bound with safety factor 3");
+             ? "observed order within 10 % of 1 (asymptotic range)"
+             : "UNRELIABLE: observed order not within 10 % of 1, a bound with safety factor 3");
 }
 
 /* The summary of one run on stdout. */
