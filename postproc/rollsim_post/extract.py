@@ -240,6 +240,7 @@ class CreepSeries:
     values: dict = field(default_factory=dict)   # sweep files: the other swept keys' values
     elastic: bool = False                        # sweep files: the yield limit is never reached
     t_max: object = None                         # sweep files with temperature: T_max per point
+    error: np.ndarray = None                     # sweep files: the estimated error of traction
 
     def sort(self):
         order = np.argsort(self.creepage, kind="stable")
@@ -247,6 +248,8 @@ class CreepSeries:
         self.traction = self.traction[order]
         if self.t_max is not None:
             self.t_max = self.t_max[order]
+        if self.error is not None:
+            self.error = self.error[order]
         self.sources = [self.sources[i] for i in order]
         return self
 
@@ -291,6 +294,12 @@ def sweep_series(run, prefix=None, var="traction_coefficient", x_key=CREEPAGE_KE
     t_max = None  # the surface temperature per point (a temperature: block), same layout
     if var == "traction_coefficient" and run.has("T_max") and list(run.dims("T_max")) == dims:
         t_max = np.moveaxis(run.values("T_max"), dims.index(x_dim), -1).reshape(values.shape)
+    # the traction coefficient's error estimate (steady sweeps, docs/file-format.md)
+    errors = None
+    if var == "traction_coefficient" and run.has("traction_coefficient_error") and \
+            list(run.dims("traction_coefficient_error")) == dims:
+        errors = np.moveaxis(run.values("traction_coefficient_error"), dims.index(x_dim), -1)
+        errors = errors.reshape(values.shape)
     coords = {d: run.coordinate(d) for d in others}
     series = []
     for combo in itertools.product(*[range(len(coords[d])) for d in others]):
@@ -304,6 +313,8 @@ def sweep_series(run, prefix=None, var="traction_coefficient", x_key=CREEPAGE_KE
         s = CreepSeries(label, creepage[ok].copy(), y[ok].copy(), [s for s, k in zip(idx, ok) if k])
         if t_max is not None:
             s.t_max = np.asarray(t_max[combo], dtype=float)[ok].copy()
+        if errors is not None:
+            s.error = np.asarray(errors[combo], dtype=float)[ok].copy()
         s.values = {run.sweep_key(d): float(coords[d][i]) for d, i in zip(others, combo)}
         s.elastic = sweep.is_elastic(run, sweep.Point(tuple(combo), dict(s.values)))
         series.append(s.sort())

@@ -337,6 +337,11 @@ def plot_creepcurve(panels, out, absolute=False, title=None, percent=False, mu=N
                 style["marker"] = "o"
             rec.line(ax, k, x[order] * factor, y[order], ms=4, series=s.label,
                      quantity="traction_coefficient", point=getattr(s, "values", None), **style)
+            err = getattr(s, "error", None)
+            if err is not None and np.any(np.isfinite(err)):  # the estimated error as a band
+                e = np.where(np.isfinite(err), err, 0.0)[order]
+                ax.fill_between(x[order] * factor, y[order] - e, y[order] + e,
+                                color=style.get("color", "k"), alpha=0.2, lw=0)
         hot = [s for s in series if getattr(s, "t_max", None) is not None]
         if hot:
             tax = ax.twinx()

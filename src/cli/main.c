@@ -8,6 +8,7 @@
  * Exit codes: 0 success, 2 invalid input (nothing run), 3 solver failure (partial
  * results kept), 4 interrupted (partial results kept), 1 internal or output error. */
 #define _POSIX_C_SOURCE 200809L
+#include <math.h>
 #include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -17,6 +18,7 @@
 #include <unistd.h>
 
 #include "io/case.h"
+#include "study/errest.h"
 #include "study/fit.h"
 #include "study/run.h"
 #include "study/sweep.h"
@@ -217,6 +219,16 @@ static int cmd_sweep(const rs_case *c, const cli_args *a, const rs_sweep *sw, co
   printf("  steady points: linear solves %ld, Jacobian evaluations %ld, continuation steps "
          "halved %ld, intermediate points %ld\n",
          sres.lin_solves, sres.jac_evals, sres.refined, sres.midpoints);
+  if (sres.error_estimate && sres.points_estimated > 0)
+    printf("  error estimates: %zu of %zu points (%zu with the observed order in the asymptotic "
+           "range), largest F_x/F_n error %.2g (variables Fx_error, traction_coefficient_error, "
+           "error_reliable)\n",
+           sres.points_estimated, sres.points_done, sres.points_reliable, sres.max_mu_error);
+  else if (sres.error_estimate && sres.points_done > 0)
+    printf("  error estimates: none (the grid is too coarse: the estimate solves each point "
+           "again on grids of a half and a quarter of the cells, whose coarsest needs at least "
+           "%d cells across the contact)\n",
+           RS_ERREST_MIN_CELLS);
   if (sres.lines_in_two > 0)
     printf("  solver.threads 2: %ld continuation line%s solved in two parts at once\n",
            sres.lines_in_two, sres.lines_in_two == 1 ? "" : "s");
@@ -228,6 +240,32 @@ static int cmd_sweep(const rs_case *c, const cli_args *a, const rs_sweep *sw, co
          sres.backup, *sres.backup ? ")" : "",
          status == RS_OK ? "" : " -- incomplete, see `rollsim status`");
   return status;
+}
+
+/* The error estimate of a steady run's result (docs/model.md, "Discretisation error
+ * estimates"), or why there is none. */
+static void print_error_estimate(const rs_case *c, const rs_run_result *res)
+{
+  const rs_diag *d = &res->final;
+  const int three = c->dimension == 3;
+  if (!c->error_estimate) return;
+  if (res->grid_chosen)
+    printf("  grid.accuracy %g: grid of %d%s%.0d cells %s\n", c->accuracy, res->cells[0],
+           three ? " x " : "", three ? res->cells[1] : 0,
+           res->accuracy_met ? "chosen" : "(the finest allowed; accuracy not reached)");
+  if (d->error_state == RS_ERROR_NONE) {
+    printf("  error estimate: %s\n", *res->error_note ? res->error_note : "none");
+    return;
+  }
+  printf("  F_x = %.6g +- %.2g %s (F_x/F_n +- %.2g)", d->Fx, d->Fx_error, three ? "N" : "N/mm",
+         d->Fn != 0.0 ? d->Fx_error / fabs(d->Fn) : 0.0);
+  if (three)
+    printf(", F_y = %.6g +- %.2g N, M_z = %.6g +- %.2g N mm", d->Fy, d->Fy_error, d->Mz,
+           d->Mz_error);
+  printf("\n    estimated discretisation errors, from grids of 1/2 and 1/4 the cells; %s\n",
+         d->error_state == RS_ERROR_RELIABLE
+             ? "observed order within 10 % of 1 (asymptotic range)"
+             : "UNRELIABLE: observed order not within 10 % of 1, a bound with safety factor 3");
 }
 
 /* The summary of one run on stdout. */
@@ -243,6 +281,7 @@ static void print_summary(const rs_case *c, const cli_args *a, const rs_run_resu
   if (three)
     printf("  F_y = %.6g N, M_z = %.6g N mm   (xi = %.6g, eta = %.6g, phi = %.6g 1/mm)\n", d->Fy,
            d->Mz, d->creepage, d->lateral_creepage, d->spin);
+  print_error_estimate(c, res);
   printf("  cells E/H/S/P = %d/%d/%d/%d\n", d->count[RS_EXTERIOR], d->count[RS_ADHESION],
          d->count[RS_SLIP], d->count[RS_PLASTIC]);
   if (c->temperature.on)

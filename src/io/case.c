@@ -56,6 +56,7 @@ static void set_defaults(rs_case_input *in)
   c->fields = RS_FIELD_PX | RS_FIELD_PN | RS_FIELD_SLIP | RS_FIELD_UPL | RS_FIELD_USTAR |
               RS_FIELD_TAUC | RS_FIELD_REGIME;
   in->k_rel = NAN;
+  c->error_estimate = 1;
   c->rig.recovery = 1.0;
   c->rig.average_window = 0.5;
   /* temperature: steel unless given */
@@ -417,6 +418,31 @@ static int resolve_grid(const resolver *r, rs_case *c)
   return RS_OK;
 }
 
+/* grid.accuracy (docs/case-file.md): the grid refined until the error estimate of a steady
+ * single run's forces is below it, so it needs the estimate and a steady run of one point. */
+static int resolve_accuracy(const resolver *r, rs_case *c)
+{
+  const yaml_node_t *acc = given(r, "grid.accuracy");
+  if (!acc || !(c->accuracy > 0.0)) return RS_OK;
+  if (c->mode != RS_MODE_STEADY)
+    return rs_case_error(r->d, acc, "grid.accuracy",
+                         "applies to steady runs (simulation.mode: steady): a transient run "
+                         "keeps its grid");
+  if (!c->error_estimate)
+    return rs_case_error(r->d, acc, "grid.accuracy",
+                         "needs the error estimate: remove output.error_estimate: false");
+  if (c->force_control)
+    return rs_case_error(r->d, acc, "grid.accuracy",
+                         "not with a prescribed rolling.tangential_force (the error estimate "
+                         "is of the forces at prescribed creepages)");
+  if (given(r, "sweep") || given(r, "fit"))
+    return rs_case_error(r->d, acc, "grid.accuracy",
+                         "applies to single runs (rollsim run), not to a case with a %s: block; "
+                         "sweep points get their error estimates on the case's grid",
+                         given(r, "sweep") ? "sweep" : "fit");
+  return RS_OK;
+}
+
 /* A key that is one number in 2D and a pair [x, y] in 3D (contact.radius, grid.cells,
  * grid.extent), given with the count the dimension needs. */
 static int check_count(const resolver *r, const char *key, const rs_case_vec *v, int want)
@@ -603,6 +629,9 @@ static int resolve(const rs_case_doc *d, rs_case_input *in, const yaml_node_t **
     return rs_case_error(d, given(&r, "rolling.velocity"), "rolling.velocity",
                          "velocity 0 mm/s (pure shift) needs simulation.mode: transient; steady "
                          "mode is for rolling (V > 0)");
+  /* transient runs estimate their errors only when asked (companion runs: docs/case-file.md) */
+  if (c->mode == RS_MODE_TRANSIENT && !given(&r, "output.error_estimate")) c->error_estimate = 0;
+  if ((status = resolve_accuracy(&r, c)) != RS_OK) return status;
   if (c->output_file && !*c->output_file)
     return rs_case_error(d, given(&r, "output.file"), "output.file", "empty file name");
   if (!c->output_file && !(c->output_file = default_output_file(d->path)))
@@ -1018,6 +1047,10 @@ void rs_case_print(const rs_case *c, FILE *out)
     }
     if (!strcmp(k->path, "solver.rtol") && c->rtol == 0.0) {
       fprintf(out, "%s: auto  # 1 (2D: 1e-6; 3D: 0.06 dx/a within [1e-6, 3e-3])\n", k->path);
+      continue;
+    }
+    if (!strcmp(k->path, "grid.accuracy") && !(c->accuracy > 0.0)) {
+      fprintf(out, "%s: null  # not given: the case's grid as it is\n", k->path);
       continue;
     }
     if (!strcmp(k->path, "simulation.rolled_distance") && c->rolled_distance < 0) {

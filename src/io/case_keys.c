@@ -17,6 +17,7 @@ static const char *const normal_solution_names[] = {"discrete", "hertz", NULL};
 static const char *const mode_names[] = {"transient", "steady", NULL};
 static const char *const initial_state_names[] = {"rest", "steady", NULL};
 static const char *const scaling_names[] = {"auto", "difference", "self", NULL};
+static const char *const bool_names[] = {"false", "true", NULL};
 static const char *const law_names[] = {"coulomb",  "linear", "exponential",
                                         "rational", "polach", NULL};
 const char *const rs_case_field_names[] = {"px",    "pn",   "slip",   "upl",
@@ -49,6 +50,8 @@ const rs_case_key rs_case_keys[] = {
      RS_KEY_HI_ABSURD | RS_KEY_NULLABLE, NULL},
     {"grid.y_range", RS_KEY_RANGE, F(c.y_range), "mm", -1e9, 1e9,
      RS_KEY_HI_ABSURD | RS_KEY_NULLABLE, NULL},
+    {"grid.accuracy", RS_KEY_NUMBER, F(c.accuracy), "", 0, 1,
+     RS_KEY_LO_OPEN | RS_KEY_HI_OPEN | RS_KEY_NULLABLE, NULL},
 
     {"material", RS_KEY_SECTION, 0, "", 0, 0, 0, NULL},
     {"material.shear_modulus", RS_KEY_NUMBER, F(c.shear_modulus), "N/mm^2", 0, BIG,
@@ -168,6 +171,7 @@ const rs_case_key rs_case_keys[] = {
     {"output", RS_KEY_SECTION, 0, "", 0, 0, 0, NULL},
     {"output.file", RS_KEY_TEXT, F(c.output_file), "", 0, 0, RS_KEY_NULLABLE, NULL},
     {"output.fields", RS_KEY_FIELDS, F(c.fields), "", 0, 0, 0, NULL},
+    {"output.error_estimate", RS_KEY_CHOICE, F(c.error_estimate), "", 0, 0, 0, bool_names},
 
     {"sweep", RS_KEY_OPAQUE, 0, "", 0, 0, 0, NULL},
     {"fit", RS_KEY_OPAQUE, 0, "", 0, 0, 0, NULL},

@@ -136,6 +136,38 @@ static int def_rig_var(int ncid, const char *name, int dim, const char *units,
   return NC_NOERR;
 }
 
+/* The error estimate's record variables (docs/file-format.md): the flag first, so that the
+ * last record variable stays a double. */
+static int define_errors(rs_output *out, int time_dim, int three_d)
+{
+  static const char *const names[5] = {"error_reliable", "Fx_error", "traction_coefficient_error",
+                                       "Fy_error", "Mz_error"};
+  static const char *const long_names[5] = {
+      "1: the error estimate's observed order lies in the asymptotic band; 0: it does not (the "
+      "conservative fallback); -1: no estimate",
+      "estimated discretisation error of Fx (magnitude)",
+      "estimated discretisation error of Fx/Fn (magnitude)",
+      "estimated discretisation error of Fy (magnitude)",
+      "estimated discretisation error of Mz (magnitude)"};
+  const char *units[5] = {"1", three_d ? "N" : "N/mm", "1", "N", "N mm"};
+  const int ncid = out->ncid;
+  const double fill = NAN;
+  int err = 0;
+  for (int k = 0; k < 5 && !err; k++) {
+    out->error_id[k] = -1;
+    if (k >= 3 && !three_d) continue;
+    err = nc_def_var(ncid, names[k], k ? NC_DOUBLE : NC_INT, 1, &time_dim, &out->error_id[k]);
+    if (!err) err = rs_output_put_text(ncid, out->error_id[k], "units", units[k]);
+    if (!err) err = rs_output_put_text(ncid, out->error_id[k], "long_name", long_names[k]);
+    if (!err && k)
+      err = nc_put_att_double(ncid, out->error_id[k], "_FillValue", NC_DOUBLE, 1, &fill);
+    if (!err && !k)
+      err = nc_put_att_int(ncid, out->error_id[k], "valid_range", NC_INT, 2, (const int[]){-1, 1});
+  }
+  out->has_errors = !err;
+  return err;
+}
+
 /* Twin-disc summary variables (defined when spec->rig is given). */
 static int define_rig(rs_output *out, const rs_output_rig *rig)
 {
@@ -488,6 +520,15 @@ static int define_file(rs_output *out, const rs_output_spec *spec, const char **
         (err = rs_output_put_text(ncid, out->temp_id[v], "long_name", tv->long_name)))
       return err;
   }
+  if (spec->error_estimate) {
+    *what = "defining the error estimate's variables";
+    if ((err = define_errors(out, time_dim, three_d))) return err;
+  }
+  if (spec->grid_chosen) {
+    const int cells[2] = {(int)spec->nx, (int)spec->ny};
+    if ((err = nc_put_att_int(ncid, NC_GLOBAL, "grid_cells_used", NC_INT, three_d ? 2 : 1, cells)))
+      return err;
+  }
 
   /* Record data are written in full every time: no fill pass needed. */
   int old_fill;
@@ -661,6 +702,14 @@ int rs_output_write(rs_output *out, const rs_record *rec, rs_msg *msg)
                                    *(const double *const *)member)
               : nc_put_var1_double(ncid, out->temp_id[v], start, (const double *)member);
     if (err) goto fail;
+  }
+  if (out->has_errors) {
+    const double v[5] = {0.0, rec->Fx_error, rec->Fn != 0.0 ? rec->Fx_error / fabs(rec->Fn) : NAN,
+                         rec->Fy_error, rec->Mz_error};
+    if ((err = nc_put_var1_int(ncid, out->error_id[0], start, &rec->error_reliable))) goto fail;
+    for (int k = 1; k < 5; k++)
+      if (out->error_id[k] >= 0 && (err = nc_put_var1_double(ncid, out->error_id[k], start, &v[k])))
+        goto fail;
   }
 
   /* Data first, then numrecs: one nc_sync does both, in that order (see top). */

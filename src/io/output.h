@@ -44,6 +44,11 @@ typedef struct rs_output_spec {
   /* Transient runs: IDA's relative tolerance as run (solver.rtol, `auto` resolved), written
    * as the global attribute solver_rtol (0: none written). */
   double rtol;
+  /* Steady runs: the error estimate's variables (error_reliable, Fx_error,
+   * traction_coefficient_error; 3D Fy_error, Mz_error) per record, and the global attribute
+   * grid_cells_used (the grid grid.accuracy chose: [nx] or [nx, ny]) when grid_chosen. */
+  int error_estimate;
+  int grid_chosen;
 } rs_output_spec;
 
 /* One record. Scalars per docs/model.md §7; field arrays have n = nx (3D: nx ny, y slowest)
@@ -68,6 +73,10 @@ typedef struct rs_record {
    * (degC) and the heat into each body (W; 2D: W/mm) */
   const double *T1, *T2;
   double T_max, heat_input_1, heat_input_2;
+  /* Error estimates (files with error_estimate): magnitudes, NaN where none was made;
+   * error_reliable 1 (observed order in the band), 0 (fallback) or -1 (no estimate). */
+  double Fx_error, Fy_error, Mz_error;
+  int error_reliable;
 } rs_record;
 
 /* Create the file, define everything, write x, set status = "running". The file is
@@ -140,6 +149,9 @@ typedef struct rs_sweep_output_spec {
   int part, parts;
   /* 1: the per-point scalars T_max, heat_input_1, heat_input_2 (a temperature: block) */
   int temperature;
+  /* Steady sweeps with the error estimate: the per-point variables error_reliable, Fx_error,
+   * traction_coefficient_error (3D: Fy_error, Mz_error). */
+  int error_estimate;
 } rs_sweep_output_spec;
 
 /* The results of one sweep point (NaN, counts -1, where the point failed). Field
@@ -156,6 +168,9 @@ typedef struct rs_sweep_point {
   int rank;         /* the process that computed it (files with ranks > 0) */
   const double *mu; /* mu(|v_s|) (velocity-dependent friction) */
   double T_max, heat_input_1, heat_input_2; /* files with temperature: degC, W (2D: W/mm) */
+  /* error estimates (magnitudes, NaN: none) and error_reliable (1, 0, -1: no estimate) */
+  double Fx_error, Fy_error, Mz_error;
+  int error_reliable;
 } rs_sweep_point;
 
 /* Create the sweep file (an existing file of that name is kept as PATH~, see

@@ -89,6 +89,8 @@ typedef struct batch {
   double *d;           /* [cap][N_POINT_DOUBLES] the scalars (counts in i) */
   int *i;              /* [cap][N_SWEEP_VARS] */
   int *rank;           /* [cap] */
+  double *err;         /* [cap][4] Fx_error, traction_coefficient_error, Fy_error, Mz_error */
+  int *reliable;       /* [cap] error_reliable */
   double *rows;        /* [RS_N_FIELDS][cap][nx] the stored fields' rows */
   signed char *regime; /* [cap][nx] */
   size_t *order;       /* [cap] the points by index (scratch of a write) */
@@ -106,6 +108,7 @@ struct rs_sweep_output {
   size_t nx;
   int field_id[RS_N_FIELDS]; /* -1: not stored */
   int rank_id;               /* -1: not stored (serial sweeps) */
+  int err_id[5]; /* error_reliable, Fx_error, traction_coefficient_error, Fy_error, Mz_error */
   batch b;
   char backup[1040];
 };
@@ -182,6 +185,35 @@ static int define_fields(rs_sweep_output *o, const rs_sweep_output_spec *spec, c
   return err;
 }
 
+/* The error estimate's per-point variables (docs/file-format.md). */
+static const char *const error_names[5] = {"error_reliable", "Fx_error",
+                                           "traction_coefficient_error", "Fy_error", "Mz_error"};
+static int define_errors(rs_sweep_output *o, const rs_sweep_output_spec *spec, const int *dims)
+{
+  static const char *const long_names[5] = {
+      "1: the error estimate's observed order lies in the asymptotic band; 0: it does not (the "
+      "conservative fallback); -1: no estimate",
+      "estimated discretisation error of Fx (magnitude)",
+      "estimated discretisation error of Fx/Fn (magnitude)",
+      "estimated discretisation error of Fy (magnitude)",
+      "estimated discretisation error of Mz (magnitude)"};
+  const int three = spec->dimension == 3;
+  const char *units[5] = {"1", three ? "N" : "N/mm", "1", "N", "N mm"};
+  const double fill = NAN;
+  int err = 0;
+  for (int k = 0; k < (three ? 5 : 3) && !err; k++) {
+    err = nc_def_var(o->ncid, error_names[k], k ? NC_DOUBLE : NC_INT, spec->naxes, dims,
+                     &o->err_id[k]);
+    if (!err) err = rs_output_put_text(o->ncid, o->err_id[k], "long_name", long_names[k]);
+    if (!err) err = rs_output_put_text(o->ncid, o->err_id[k], "units", units[k]);
+    if (!err && k)
+      err = nc_put_att_double(o->ncid, o->err_id[k], "_FillValue", NC_DOUBLE, 1, &fill);
+    if (!err && !k)
+      err = nc_put_att_int(o->ncid, o->err_id[k], "valid_range", NC_INT, 2, (const int[]){-1, 1});
+  }
+  return err;
+}
+
 static void free_output(rs_sweep_output *o)
 {
   free(o->path);
@@ -189,6 +221,8 @@ static void free_output(rs_sweep_output *o)
   free(o->b.d);
   free(o->b.i);
   free(o->b.rank);
+  free(o->b.err);
+  free(o->b.reliable);
   free(o->b.rows);
   free(o->b.regime);
   free(o->b.order);
@@ -208,12 +242,15 @@ static int batch_alloc(batch *b, size_t nx)
   b->d = malloc(cap * N_POINT_DOUBLES * sizeof *b->d);
   b->i = malloc(cap * N_SWEEP_VARS * sizeof *b->i);
   b->rank = malloc(cap * sizeof *b->rank);
+  b->err = malloc(cap * 4 * sizeof *b->err);
+  b->reliable = malloc(cap * sizeof *b->reliable);
   b->rows = malloc(RS_N_FIELDS * cap * row * sizeof *b->rows);
   b->regime = malloc(cap * row);
   b->order = malloc(cap * sizeof *b->order);
   b->scratch = malloc(cap * (row > N_POINT_DOUBLES ? row : N_POINT_DOUBLES) * sizeof *b->scratch);
   b->last_write = monotonic_seconds();
-  return b->index && b->d && b->i && b->rank && b->rows && b->regime && b->order && b->scratch
+  return b->index && b->d && b->i && b->rank && b->err && b->reliable && b->rows && b->regime &&
+                 b->order && b->scratch
              ? RS_OK
              : RS_ERR_INTERNAL;
 }
@@ -230,6 +267,7 @@ static rs_sweep_output *output_new(const rs_sweep_output_spec *spec)
   o->naxes = spec->naxes;
   o->nx = spec->fields ? spec->nx : 0;
   for (int f = 0; f < RS_N_FIELDS; f++) o->field_id[f] = -1;
+  for (int k = 0; k < 5; k++) o->err_id[k] = -1;
   if (batch_alloc(&o->b, o->nx) != RS_OK) {
     free_output(o);
     return NULL;
@@ -329,6 +367,7 @@ int rs_sweep_output_create(rs_sweep_output **outp, const rs_sweep_output_spec *s
     if (!err) err = nc_put_att_int(o->ncid, o->rank_id, "valid_min", NC_INT, 1, (const int[]){0});
     if (!err) err = nc_put_att_int(o->ncid, NC_GLOBAL, "ranks", NC_INT, 1, &spec->ranks);
   }
+  if (!err && spec->error_estimate) err = define_errors(o, spec, dims);
   if (!err && spec->parts > 0) {
     err = nc_put_att_int(o->ncid, NC_GLOBAL, "part", NC_INT, 1, &spec->part);
     if (!err) err = nc_put_att_int(o->ncid, NC_GLOBAL, "parts", NC_INT, 1, &spec->parts);
@@ -505,6 +544,9 @@ int rs_sweep_output_resume(rs_sweep_output **outp, const rs_sweep_output_spec *s
       o->field_id[f] = -1;
   /* a file of an MPI sweep keeps its rank variable (0 where a serial resume computed) */
   if (err || nc_inq_varid(o->ncid, "rank", &o->rank_id)) o->rank_id = -1;
+  for (int k = 0; k < 5; k++)
+    if (err || !spec->error_estimate || nc_inq_varid(o->ncid, error_names[k], &o->err_id[k]))
+      o->err_id[k] = -1;
   char *old = err ? NULL : rs_output_get_text(o->ncid, NC_GLOBAL, "history");
   if (!err && !old) err = NC_ENOMEM;
   if (!err) {
@@ -598,6 +640,10 @@ static void batch_add(rs_sweep_output *o, size_t index, const rs_sweep_point *pt
   memcpy(b->d + k * N_POINT_DOUBLES, dv, sizeof dv);
   memcpy(b->i + k * N_SWEEP_VARS, iv, sizeof iv);
   b->rank[k] = pt->rank;
+  const double ev[4] = {pt->Fx_error, pt->Fn != 0.0 ? pt->Fx_error / fabs(pt->Fn) : NAN,
+                        pt->Fy_error, pt->Mz_error};
+  memcpy(b->err + k * 4, ev, sizeof ev);
+  b->reliable[k] = pt->error_reliable;
   /* in the order of rs_field_vars (the regime's slot unused) */
   const double *rows[RS_N_FIELDS] = {pt->px,    pt->pn,   pt->slip, pt->upl,
                                      pt->ustar, pt->tauc, NULL,     pt->mu};
@@ -646,10 +692,14 @@ static int put_run(rs_sweep_output *o, const size_t *order, size_t len, const si
   if (is_int) {
     int *out = (int *)b->scratch;
     for (size_t m = 0; m < len; m++)
-      out[m] = field == -2 ? b->rank[order[m]] : b->i[order[m] * N_SWEEP_VARS + (size_t)v];
+      out[m] = field == -2   ? b->rank[order[m]]
+               : field == -3 ? b->reliable[order[m]]
+                             : b->i[order[m] * N_SWEEP_VARS + (size_t)v];
     return nc_put_vara_int(o->ncid, varid, st, count, out);
   }
-  for (size_t m = 0; m < len; m++) b->scratch[m] = b->d[order[m] * N_POINT_DOUBLES + (size_t)v];
+  for (size_t m = 0; m < len; m++)
+    b->scratch[m] = field == -4 ? b->err[order[m] * 4 + (size_t)v]
+                                : b->d[order[m] * N_POINT_DOUBLES + (size_t)v];
   return nc_put_vara_double(o->ncid, varid, st, count, b->scratch);
 }
 
@@ -692,6 +742,9 @@ static int batch_write(rs_sweep_output *o)
     for (int f = 0; f < RS_N_FIELDS && o->nx && !err; f++)
       if (o->field_id[f] >= 0) err = put_run(o, order, len, start, o->field_id[f], f, 0, 0);
     if (!err && o->rank_id >= 0) err = put_run(o, order, len, start, o->rank_id, -2, 0, 1);
+    if (!err && o->err_id[0] >= 0) err = put_run(o, order, len, start, o->err_id[0], -3, 0, 1);
+    for (int k = 1; k < 5 && !err; k++)
+      if (o->err_id[k] >= 0) err = put_run(o, order, len, start, o->err_id[k], -4, k - 1, 0);
     r += len;
   }
   if (!err && b->n) err = nc_sync(o->ncid);

@@ -170,10 +170,14 @@ int rs_sweep_merge(const char *out_path, const char *const *paths, int nparts, c
   }
   /* Write: the serial sweep's layout, every point from its owner. */
   rs_sweep_output *out = NULL;
+  int err_vid;
+  const int with_errors =
+      status == RS_OK && nc_inq_varid(p[0].ncid, "error_reliable", &err_vid) == NC_NOERR;
   if (status == RS_OK) {
     int t_id; /* T_max: the parts carry the surface temperature */
     const int temperature = nc_inq_varid(ncid, "T_max", &t_id) == NC_NOERR;
     const rs_sweep_output_spec spec = {.path = out_path,
+                                       .error_estimate = with_errors,
                                        .title = title,
                                        .case_text = case_text,
                                        .history = history,
@@ -258,6 +262,18 @@ int rs_sweep_merge(const char *out_path, const char *const *paths, int nparts, c
       if (nc_inq_varid(id, names_t[v], &vid) == NC_NOERR)
         err = nc_get_var1_double(id, vid, start, dst_t[v]);
     }
+    /* the error estimates (steady sweeps; Fy_error and Mz_error in 3D) */
+    static const char *const names_err[3] = {"Fx_error", "Fy_error", "Mz_error"};
+    double *dst_err[3] = {&pt.Fx_error, &pt.Fy_error, &pt.Mz_error};
+    pt.Fx_error = pt.Fy_error = pt.Mz_error = NAN;
+    pt.error_reliable = -1;
+    for (int v = 0; v < 3 && with_errors && !err; v++) {
+      int vid;
+      if (nc_inq_varid(id, names_err[v], &vid) == NC_NOERR)
+        err = nc_get_var1_double(id, vid, start, dst_err[v]);
+    }
+    if (with_errors && !err && nc_inq_varid(id, "error_reliable", &err_vid) == NC_NOERR)
+      err = nc_get_var1_int(id, err_vid, start, &pt.error_reliable);
     if (err)
       status =
           rs_msg_set(msg, RS_ERR_INPUT, "%s: point %zu: %s", p[owner[k]].path, k, nc_strerror(err));

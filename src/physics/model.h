@@ -284,7 +284,13 @@ typedef struct rs_diag {
   /* Surface temperature (docs/model.md §18), filled by the driver when a case asks for it (0
    * otherwise): the largest in the contact, degC, and the heat into each body, W (2D: W/mm). */
   double T_max, heat_input_1, heat_input_2;
+  /* Discretisation error estimates of Fx, Fy, Mz (magnitudes), set by the driver
+   * (study/errest.h) and only when error_state is not RS_ERROR_NONE (zero here). */
+  double Fx_error, Fy_error, Mz_error;
+  int error_state;
 } rs_diag;
+/* error_state: no estimate; the observed order in the asymptotic band; the fallback. */
+enum { RS_ERROR_NONE = 0, RS_ERROR_RELIABLE = 1, RS_ERROR_UNRELIABLE = 2 };
 
 /* slip: ncomp blocks of one value per cell (relative slip v_s/V, or v_s when V = 0). */
 int rs_model_diagnostics(const rs_model *m, rs_work *w, const rs_inputs *in, const double *y,

@@ -10,6 +10,7 @@
 #include <sys/stat.h>
 #include <time.h>
 
+#include "study/errest.h"
 #include "study/rig_protocol.h"
 #include "base/util.h"
 #include "physics/kalker.h"
@@ -29,8 +30,13 @@ typedef struct run_state {
   double *mu; /* mu(|v_s|) per cell (NaN outside the contact), or the memory state */
   signed char *regime;
   rs_output *out;
-  rs_fields *final;        /* copies of the last record's fields, or NULL */
-  rs_temperature_run temp; /* surface temperature (temp.on: the case has a temperature: block) */
+  rs_fields *final;         /* copies of the last record's fields, or NULL */
+  rs_temperature_run temp;  /* surface temperature (temp.on: the case has a temperature: block) */
+  rs_diag est;              /* the error estimate of the steady record (its error fields) */
+  rs_record_diags *collect; /* every record's quantities appended here, or NULL */
+  const rs_record_diags *comp[2]; /* transient estimate: the companion runs' records, or NULL */
+  double r21, r32;                /* their cell size ratios */
+  size_t written;                 /* records written by write_record so far */
 } run_state;
 
 void rs_run_result_free(rs_run_result *res)
@@ -43,6 +49,19 @@ void rs_run_result_free(rs_run_result *res)
   res->rig_nsteps = 0;
 }
 
+/* Transient estimate: the record at t (the written-th) from the companion runs' records at
+ * the same time, where both have one. */
+static void transient_estimate(run_state *s, double t, rs_diag *d)
+{
+  const size_t i = s->written;
+  const double tol = 1e-9 * s->c->output_interval;
+  d->error_state = RS_ERROR_NONE;
+  d->Fx_error = d->Fy_error = d->Mz_error = NAN;
+  if (s->comp[0]->n > i && s->comp[1]->n > i && fabs(s->comp[0]->t[i] - t) <= tol &&
+      fabs(s->comp[1]->t[i] - t) <= tol)
+    rs_errest_diag(&s->m, s->r21, s->r32, &s->comp[0]->d[i], &s->comp[1]->d[i], d);
+}
+
 static int write_record(run_state *s, double t, rs_diag *d, rs_msg *msg)
 {
   const rs_layout *L = &s->m.lay;
@@ -50,6 +69,25 @@ static int write_record(run_state *s, double t, rs_diag *d, rs_msg *msg)
   rs_model_inputs_at(&s->m, t, &in);
   int status = rs_model_diagnostics(&s->m, &s->w, &in, s->y, s->yp, d, s->slip, s->tauc, s->regime);
   if (status != RS_OK) return rs_msg_set(msg, status, "%s", s->w.msg.text);
+  d->Fx_error = s->est.Fx_error;
+  d->Fy_error = s->est.Fy_error;
+  d->Mz_error = s->est.Mz_error;
+  d->error_state = s->est.error_state;
+  if (s->comp[0]) transient_estimate(s, t, d);
+  if (s->collect) {
+    rs_record_diags *r = s->collect;
+    if (r->n == r->cap) {
+      const size_t cap = r->cap ? 2 * r->cap : 64;
+      rs_diag *nd = realloc(r->d, cap * sizeof *nd);
+      if (nd) r->d = nd;
+      double *nt = realloc(r->t, cap * sizeof *nt);
+      if (nt) r->t = nt;
+      if (!nd || !nt) return rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory for the records");
+      r->cap = cap;
+    }
+    r->d[r->n] = *d;
+    r->t[r->n++] = t;
+  }
   for (int i = 0; i < s->m.grid.n; i++) /* each cell's bound g = mu(|v_s|) p_n */
     s->mu[i] = s->w.pn[i] > 0.0 ? s->w.law[i].g / s->w.pn[i] : NAN;
   for (int i = 0; i < s->m.grid.n && L->memory; i++) /* friction memory: the state, everywhere */
@@ -86,7 +124,13 @@ static int write_record(run_state *s, double t, rs_diag *d, rs_msg *msg)
                    .T2 = s->temp.T2,
                    .T_max = d->T_max,
                    .heat_input_1 = d->heat_input_1,
-                   .heat_input_2 = d->heat_input_2};
+                   .heat_input_2 = d->heat_input_2,
+                   .Fx_error = d->Fx_error,
+                   .Fy_error = d->Fy_error,
+                   .Mz_error = d->Mz_error,
+                   .error_reliable = d->error_state == RS_ERROR_RELIABLE     ? 1
+                                     : d->error_state == RS_ERROR_UNRELIABLE ? 0
+                                                                             : -1};
   return s->out ? rs_output_write(s->out, &rec, msg) : RS_OK;
 }
 
@@ -116,6 +160,53 @@ static void free_state(run_state *s)
   rs_temperature_run_free(&s->temp);
   if (s->m.grid.x) rs_model_free(&s->m);
   if (s->ctx) SUNContext_Free(&s->ctx);
+}
+
+/* The companion transient runs of the error estimate: the case on grids of a half and a
+ * quarter of the cells along each axis, no output, every record collected. A companion that
+ * fails keeps the records before its failure (the later ones get no estimate). */
+static int transient_companions(const rs_case *c, const rs_run_opts *o, const rs_model *m,
+                                rs_record_diags comp[2], double *r21, double *r32, rs_msg *msg)
+{
+  int n[3] = {m->grid.n, 0, 0};
+  for (int k = 0; k < 2; k++) {
+    rs_case cc = *c; /* shallow: rs_run reads the case only */
+    cc.cells = m->grid.nx >> (k + 1);
+    cc.cells_y = m->grid.ny > 1 ? (int)((long)m->grid.ny * cc.cells / m->grid.nx) : c->cells_y;
+    cc.error_estimate = 0;
+    cc.accuracy = 0.0;
+    rs_run_opts co = {.no_output = 1, .records = &comp[k], .interrupt_flag = o->interrupt_flag};
+    rs_run_result rr;
+    rs_msg cmsg = {{0}};
+    const int status = rs_run(&cc, &co, &rr, &cmsg);
+    rs_run_result_free(&rr);
+    if (status == RS_ERR_INTERRUPTED || status == RS_ERR_INTERNAL)
+      return rs_msg_set(msg, status, "%s", cmsg.text);
+    n[k + 1] = cc.cells * (m->grid.ny > 1 ? cc.cells_y : 1);
+  }
+  const int three = m->grid.ny > 1;
+  *r21 = three ? sqrt((double)n[0] / n[1]) : (double)n[0] / n[1];
+  *r32 = three ? sqrt((double)n[1] / n[2]) : (double)n[1] / n[2];
+  return RS_OK;
+}
+
+/* The error estimate of a steady solution (study/errest.h) on the companion grids. */
+static int estimate_steady(run_state *s, rs_run_result *res, rs_msg *msg)
+{
+  rs_inputs in;
+  rs_model_inputs_at(&s->m, 0.0, &in);
+  int status = rs_model_diagnostics(&s->m, &s->w, &in, s->y, s->yp, &s->est, NULL, NULL, NULL);
+  if (status != RS_OK) return rs_msg_set(msg, status, "%s", s->w.msg.text);
+  const double started = rs_wall_clock();
+  rs_errest e;
+  status = rs_errest_create(&e, &s->m, s->ctx, msg);
+  if (status == RS_OK) status = rs_errest_point(&e, &s->m, s->y, &s->est, msg);
+  if (status == RS_OK && s->est.error_state == RS_ERROR_NONE)
+    snprintf(res->error_note, sizeof res->error_note,
+             "no error estimate: a coarser companion grid was not solved");
+  rs_errest_free(&e);
+  res->error_seconds = rs_wall_clock() - started;
+  return status;
 }
 
 /* Solver loop for transient mode from t0 (0, or the time of a restart file's last
@@ -168,6 +259,7 @@ static int run_transient(run_state *s, const rs_run_opts *o, rs_run_result *res,
     if (t == t_out || on_output) {
       rs_diag d;
       status = write_record(s, t_out, &d, msg);
+      s->written++;
       if (status == RS_OK) { /* the summary describes the last record in the file */
         res->final = d;
         res->time = t_out;
@@ -275,10 +367,33 @@ int rs_run(const rs_case *c, const rs_run_opts *o, rs_run_result *res, rs_msg *m
   run_state s = {.c = c};
   if (SUNContext_Create(NULL, &s.ctx) != 0)
     return rs_msg_set(msg, RS_ERR_INTERNAL, "could not create the SUNDIALS context");
+  s.est = (rs_diag){.Fx_error = NAN, .Fy_error = NAN, .Mz_error = NAN};
   int status = rs_model_from_case(&s.m, c, msg);
   if (status != RS_OK) {
     free_state(&s);
     return status;
+  }
+  /* grid.accuracy: the grid refined until the estimate meets it (steady, no restart: the
+   * case's keys say so), its solution Newton's start below and its estimate the record's. */
+  /* transient runs (output.error_estimate: true given): companion runs, not after a restart */
+  const int estimate = c->error_estimate && !c->rig.on &&
+                       (c->mode == RS_MODE_STEADY || (!o->restart_path && !o->no_output));
+  double *y_chosen = NULL;
+  int accuracy_reached = 1;
+  if (estimate && c->accuracy > 0.0) {
+    if (o->restart_path) {
+      free_state(&s);
+      return rs_msg_set(msg, RS_ERR_INPUT,
+                        "--restart %s: not with grid.accuracy (the grid is chosen by the run)",
+                        o->restart_path);
+    }
+    status = rs_errest_refine(&s.m, s.ctx, c->accuracy, &y_chosen, &s.est, &accuracy_reached, msg);
+    if (status != RS_OK) {
+      free_state(&s);
+      return status;
+    }
+    res->grid_chosen = 1;
+    res->accuracy_met = accuracy_reached;
   }
   const int n = s.m.grid.n, neq = s.m.lay.neq;
   res->mu = s.m.par.friction.mu;
@@ -292,6 +407,7 @@ int rs_run(const rs_case *c, const rs_run_opts *o, rs_run_result *res, rs_msg *m
   s.regime = calloc((size_t)n, sizeof *s.regime);
   if (!s.y || !s.yp || !s.slip || !s.tauc || !s.mu || !s.regime ||
       rs_work_create(&s.w, &s.m) != RS_OK) {
+    free(y_chosen);
     free_state(&s);
     return rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory for %d cells", n);
   }
@@ -300,6 +416,33 @@ int rs_run(const rs_case *c, const rs_run_opts *o, rs_run_result *res, rs_msg *m
     return status;
   }
   rs_model_rest_state(&s.m, s.y);
+  if (y_chosen) memcpy(s.y, y_chosen, (size_t)neq * sizeof *s.y);
+  free(y_chosen);
+  res->cells[0] = s.m.grid.nx;
+  res->cells[1] = s.m.grid.ny;
+  char why_none[256] = "";
+  if (estimate && !res->grid_chosen && !rs_errest_admissible(&s.m, why_none, sizeof why_none))
+    snprintf(res->error_note, sizeof res->error_note, "%s", why_none);
+  if (c->error_estimate && c->mode == RS_MODE_TRANSIENT && o->restart_path)
+    snprintf(res->error_note, sizeof res->error_note,
+             "no error estimate after --restart (its companion runs would start from rest)");
+  s.collect = o->records;
+  rs_record_diags comp[2] = {{0}};
+  if (estimate && c->mode == RS_MODE_TRANSIENT && !*res->error_note) {
+    const double t_comp = rs_wall_clock();
+    status = transient_companions(c, o, &s.m, comp, &s.r21, &s.r32, msg);
+    res->error_seconds = rs_wall_clock() - t_comp;
+    if (status != RS_OK) {
+      for (int k = 0; k < 2; k++) {
+        free(comp[k].d);
+        free(comp[k].t);
+      }
+      free_state(&s);
+      return status;
+    }
+    s.comp[0] = &comp[0];
+    s.comp[1] = &comp[1];
+  }
   const char *path = o->append && o->restart_path ? o->restart_path
                      : o->output_path             ? o->output_path
                                                   : c->output_file;
@@ -366,7 +509,9 @@ int rs_run(const rs_case *c, const rs_run_opts *o, rs_run_result *res, rs_msg *m
                          .hertz_a = s.m.hertz_a,
                          .hertz_b = s.m.hertz_b,
                          .hertz_load = s.m.normal_load,
-                         .rtol = c->mode == RS_MODE_TRANSIENT ? res->rtol : 0.0};
+                         .rtol = c->mode == RS_MODE_TRANSIENT ? res->rtol : 0.0,
+                         .error_estimate = estimate,
+                         .grid_chosen = res->grid_chosen};
   if (o->no_output)
     status = RS_OK;
   else if (o->append)
@@ -392,6 +537,8 @@ int rs_run(const rs_case *c, const rs_run_opts *o, rs_run_result *res, rs_msg *m
     if (status == RS_OK) status = rs_steady_solve(st, 0.0, s.y, &res->stats, msg);
     rs_steady_free(st);
   }
+  if (status == RS_OK && estimate && !res->grid_chosen && !*res->error_note)
+    status = estimate_steady(&s, res, msg);
   /* Rates at t0: zero in steady rolling at constant inputs, else consistent
    * (they set the regimes of the first record and start IDA). A restart recomputes them
    * from the stored state: the file holds no rates. */
@@ -405,10 +552,19 @@ int rs_run(const rs_case *c, const rs_run_opts *o, rs_run_result *res, rs_msg *m
     rs_output *file = s.out;
     if (o->append) s.out = NULL;
     status = write_record(&s, t0, &res->final, msg);
+    s.written++;
     s.out = file;
     res->records = status == RS_OK && !o->append;
     res->time = t0;
   }
+  if (status == RS_OK && !accuracy_reached)
+    status = rs_msg_set(msg, RS_ERR_SOLVER,
+                        "grid.accuracy %g not reached: the estimated error on the finest grid "
+                        "allowed (%d cells, cap %ld) is %.3g (in mu F_n; M_z in mu F_n a); the "
+                        "file holds that grid's result",
+                        c->accuracy, s.m.grid.n,
+                        s.m.grid.ny > 1 ? RS_ACCURACY_MAX_CELLS_3D : RS_ACCURACY_MAX_CELLS_2D,
+                        rs_errest_worst(&s.m, &res->final));
   if (status == RS_OK && c->mode == RS_MODE_TRANSIENT) {
     if (rig) rig->out = s.out;
     status = run_transient(&s, o, res, t0, started, rig, msg);
@@ -428,6 +584,10 @@ int rs_run(const rs_case *c, const rs_run_opts *o, rs_run_result *res, rs_msg *m
   if (status == RS_OK) status = close_status;
   res->wall_seconds = rs_wall_clock() - started;
   if (rig) rs_rig_run_free(rig);
+  for (int k = 0; k < 2; k++) {
+    free(comp[k].d);
+    free(comp[k].t);
+  }
   free_state(&s);
   return status;
 }

@@ -10,6 +10,13 @@
 #include "solve/steady.h"
 #include "base/status.h"
 
+/* The quantities of every record of a run, in order (rs_run_opts.records); free d and t. */
+typedef struct rs_record_diags {
+  rs_diag *d;
+  double *t; /* the records' times, s */
+  size_t n, cap;
+} rs_record_diags;
+
 /* The (x) fields of one record, n cells each, in caller-owned arrays. */
 typedef struct rs_fields {
   int n;
@@ -39,6 +46,8 @@ typedef struct rs_run_opts {
   int cost_warning;
   /* Set asynchronously (signal handler) to stop at the next output record. */
   volatile sig_atomic_t *interrupt_flag;
+  /* When set: every record's quantities appended (the error estimate's companion runs). */
+  rs_record_diags *records;
 } rs_run_opts;
 
 typedef struct rs_run_result {
@@ -62,6 +71,13 @@ typedef struct rs_run_result {
   double rtol;         /* transient: the relative tolerance run (solver.rtol, auto resolved) */
   char backup[1040];   /* an older file at the output path kept under this name, or "" */
   size_t file_records; /* records in the output file (more than records with append) */
+  /* Steady runs: the grid solved ([nx, ny], ny 1 in 2D), whether grid.accuracy chose it,
+   * why there is no error estimate ("" when there is one, or none was asked for) and the
+   * wall time of the estimate's companion solves. */
+  int cells[2];
+  int grid_chosen, accuracy_met;
+  char error_note[256];
+  double error_seconds;
 } rs_run_result;
 
 void rs_run_result_free(rs_run_result *res);

@@ -17,6 +17,7 @@
 #include "physics/model.h"
 #include "io/output.h"
 #include "solve/steady.h"
+#include "study/errest.h"
 #include "study/sweep.h"
 #include "base/util.h"
 #include "study/sweep_fields.h"
@@ -44,6 +45,8 @@ typedef struct steady_chain {
   long midpoints;                  /* approximate midpoints tried (SUBSTEP_CELLS) */
   rs_diag diag;                    /* the point's results, from regimes_of at the last solution */
   int have_diag;                   /* diag is of the solution in hand */
+  rs_errest est;                   /* the error estimate's companion grids of m */
+  int est_tried;                   /* est built, or m found too coarse for it */
 } steady_chain;
 
 static void chain_drop(steady_chain *ch)
@@ -62,6 +65,8 @@ static void chain_drop(steady_chain *ch)
   ch->reg_last = ch->reg_new = NULL;
   ch->nsolved = 0;
   ch->changed_last = 0;
+  rs_errest_free(&ch->est);
+  ch->est_tried = 0;
   if (ch->have_model) rs_model_free(&ch->m);
   ch->have_model = 0;
 }
@@ -200,8 +205,8 @@ static int continue_to(steady_chain *ch, rs_rolling_input key, double x, double 
  * model and solver of the previous point are reused (continuation in the rolling
  * input `key`) when key is one. */
 static int steady_point(const rs_case *c, steady_chain *ch, double **y, int *ny, int warm,
-                        rs_rolling_input key, double x, rs_diag *d, rs_fields *f, rs_stats *sum,
-                        rs_msg *msg)
+                        rs_rolling_input key, double x, int estimate, rs_diag *d, rs_fields *f,
+                        rs_stats *sum, rs_msg *msg)
 {
   int status = RS_OK;
   const int reuse = key != RS_ROLLING_NONE;
@@ -279,6 +284,14 @@ static int steady_point(const rs_case *c, steady_chain *ch, double **y, int *ny,
       f->mu[i] = (*y)[rs_at_mu(L, i)];
     memcpy(f->pn, ch->w.pn, bytes);
   }
+  /* the error estimate on the chain's companion grids, built with its model */
+  if (status == RS_OK && estimate && !ch->est_tried) {
+    char why[256];
+    ch->est_tried = 1;
+    if (rs_errest_admissible(&ch->m, why, sizeof why))
+      status = rs_errest_create(&ch->est, &ch->m, ch->ctx, msg);
+  }
+  if (status == RS_OK && estimate) status = rs_errest_point(&ch->est, &ch->m, *y, d, msg);
   sum->nonlin_iters += stats.nonlin_iters;
   sum->lin_solves += stats.lin_solves;
   sum->refused += stats.refused;
@@ -311,8 +324,8 @@ static int line_point(const rs_sweep_line *line, steady_chain *ch, rs_case_overr
   if (one_thread) c.threads = 1;
   if (c.mode == RS_MODE_STEADY) {
     const long before = sum->nonlin_iters;
-    ps = steady_point(&c, ch, y, ny, warm, rs_case_key_rolling(line->key), line->values[j], d,
-                      line->fields, sum, pmsg);
+    ps = steady_point(&c, ch, y, ny, warm, rs_case_key_rolling(line->key), line->values[j],
+                      line->estimate, d, line->fields, sum, pmsg);
     *newton = sum->nonlin_iters - before;
   } else {
     rs_run_opts po = {

@@ -28,6 +28,11 @@ typedef struct rs_sweep_result {
   size_t points_kept;
   char file[1024];
   char backup[1040]; /* an older file at the output path kept under this name, or "" */
+  /* Steady sweeps with the error estimate: points computed with one, those of them whether
+   * reliable, and the largest estimated error of F_x/F_n (0 when none) */
+  int error_estimate;
+  size_t points_estimated, points_reliable;
+  double max_mu_error;
 } rs_sweep_result;
 
 /* Run every point of the loaded case c (rs_case_load, its sweep read by rs_sweep_load);

@@ -25,8 +25,9 @@
 
 enum { TAG_REQUEST = 1, TAG_POINT = 2, TAG_LINE = 3 };
 /* A point message: line, j, status, 11 scalars, newton, has_fields, then 7 nx values. */
-/* m[16..21]: F_y, M_z, eta, phi, Hertz a, b (3D; 0 in 2D); m[22..24]: T_max, heat inputs */
-enum { PT_HEAD = 25 };
+/* m[16..21]: F_y, M_z, eta, phi, Hertz a, b (3D; 0 in 2D); m[22..24]: T_max, heat inputs;
+ * m[25..28]: the errors of F_x, F_y, M_z and error_reliable */
+enum { PT_HEAD = 29 };
 
 typedef struct dist_run {
   const rs_sweep *s;
@@ -52,6 +53,7 @@ typedef struct dist_run {
   long midpoints;
   long in_two;
   double started;
+  int estimate; /* steady sweeps: error estimates per point */
   rs_msg msg;
 } dist_run;
 
@@ -81,6 +83,11 @@ static void pack(dist_run *r, size_t line, size_t j, int status, const rs_diag *
   for (int k = 0; k < 6; k++) m[16 + k] = ok ? v3[k] : NAN;
   const double vt[3] = {d->T_max, d->heat_input_1, d->heat_input_2};
   for (int k = 0; k < 3; k++) m[22 + k] = ok ? vt[k] : NAN;
+  const int est = ok && d->error_state != RS_ERROR_NONE;
+  m[25] = est ? d->Fx_error : NAN;
+  m[26] = est ? d->Fy_error : NAN;
+  m[27] = est ? d->Mz_error : NAN;
+  m[28] = !est ? -1 : d->error_state == RS_ERROR_RELIABLE ? 1 : 0;
   if (ok && r->with_fields) {
     const double *rows[6] = {r->buf.px,  r->buf.pn,    r->buf.slip,
                              r->buf.upl, r->buf.ustar, r->buf.tauc};
@@ -119,7 +126,17 @@ static int write_point(dist_run *r, const double *m, int rank)
     pt.T_max = m[22];
     pt.heat_input_1 = m[23];
     pt.heat_input_2 = m[24];
+    pt.Fx_error = m[25];
+    pt.Fy_error = m[26];
+    pt.Mz_error = m[27];
+    pt.error_reliable = (int)m[28];
     pt.converged = 1;
+    if (pt.error_reliable >= 0) {
+      r->res->points_estimated++;
+      r->res->points_reliable += pt.error_reliable == 1;
+      if (pt.Fn != 0.0 && fabs(pt.Fx_error / pt.Fn) > r->res->max_mu_error)
+        r->res->max_mu_error = fabs(pt.Fx_error / pt.Fn);
+    }
     if (m[15] != 0) {
       const double *f = m + PT_HEAD;
       pt.px = f;
@@ -141,6 +158,8 @@ static int write_point(dist_run *r, const double *m, int rank)
     pt.frictional_power = pt.plastic_power = pt.elastic_energy = NAN;
     pt.T_max = pt.heat_input_1 = pt.heat_input_2 = NAN;
     pt.n_exterior = pt.n_adhesion = pt.n_slip = pt.n_plastic = -1;
+    pt.Fx_error = pt.Fy_error = pt.Mz_error = NAN;
+    pt.error_reliable = -1;
     r->res->points_failed++;
   }
   r->res->newton_iters += (long)m[14];
@@ -225,7 +244,8 @@ static int compute_line(dist_run *r, size_t line)
                            .stats = &r->stats,
                            .refined = &r->refined,
                            .midpoints = &r->midpoints,
-                           .in_two = &r->in_two};
+                           .in_two = &r->in_two,
+                           .estimate = r->estimate};
   rs_msg m = {{0}};
   const int st = rs_sweep_line_eval(&L, &m);
   if (st == RS_ERR_INTERRUPTED) r->interrupted = 1; /* also inside a transient point */
@@ -362,6 +382,8 @@ int rs_sweep_run_dist(const rs_sweep *s, const rs_case *c, const rs_run_opts *o,
       goto done;
     }
   }
+  r.estimate = c->mode == RS_MODE_STEADY && c->error_estimate && !c->rig.on;
+  res->error_estimate = r.estimate;
   r.with_fields = grid_x != NULL;
   r.nx = r.with_fields ? (size_t)grid_n : 0;
   r.msglen = PT_HEAD + 8 * (int)r.nx;
@@ -386,7 +408,8 @@ int rs_sweep_run_dist(const rs_sweep *s, const rs_case *c, const rs_run_opts *o,
                                        .ranks = dist->mpi && size > 1 ? size : 0,
                                        .part = dist->part,
                                        .parts = dist->parts,
-                                       .temperature = c->temperature.on};
+                                       .temperature = c->temperature.on,
+                                       .error_estimate = r.estimate};
     if (dist->resume)
       status = resume_open(&r, &spec, msg);
     else

@@ -41,6 +41,7 @@ typedef struct rs_sweep_line {
   long *refined;                         /* continuation steps halved added, or NULL */
   long *midpoints;                       /* approximate midpoints tried added, or NULL */
   long *in_two;                          /* 1 added when solved in two parts, or NULL */
+  int estimate; /* steady points: their error estimates (study/errest.h) into d */
 } rs_sweep_line;
 
 /* Solve the points key = values[j], j = 0..n-1, each warm-started from the one solved
