@@ -49,8 +49,8 @@ struct rs_steady {
    * here before each linear solve (forcing_term) */
   int krylov3d;
   double eta_gamma, eta_prev, eta_next, fnorm_prev;
-  double ftol;   /* the Newton iteration's stopping test: FNORM_TOL, or an approximate solve's */
-  int fail_fast; /* from a warm start: Newton and grid sequencing only, no rolling fallbacks */
+  double ftol; /* the Newton iteration's stopping test: FNORM_TOL, or an approximate solve's */
+  rs_fail_mode fail_fast; /* from a warm start: which fallbacks are left out */
 };
 
 /* A model evaluation that failed stops KINSOL at once (-1: unrecoverable) and keeps the
@@ -713,11 +713,12 @@ static int solve_at(rs_steady *s, double *y, rs_stats *stats, rs_msg *msg)
    * there, and the pseudo-time steps' steady Newton cycle as well (a low tau_c0 with weak
    * hardening: bench/RESULTS.md, issue 42). From rest the coarsest grid has continued in k_rel
    * already. */
-  const int fast = s->fail_fast && !cold;
-  if (status != RS_OK && !s->failed && !cold && !fast && weak_hardening(m) &&
+  const int fast = s->fail_fast != RS_FAIL_NEVER && !cold,
+            quick = fast && s->fail_fast == RS_FAIL_FAST;
+  if (status != RS_OK && !s->failed && !cold && !quick && weak_hardening(m) &&
       harder_start(s, y, stats) == RS_OK)
     status = newton(s, y, 0, 40, stats, &kin_flag);
-  if (status != RS_OK && !s->failed && !fast) status = pseudo_time_steps(s, y, stats);
+  if (status != RS_OK && !s->failed && !quick) status = pseudo_time_steps(s, y, stats);
   int rolled = varies; /* the result comes from rolling the material (the physical path) */
   if (status != RS_OK && !s->failed && fast) {
     memcpy(y, start, (size_t)neq * sizeof *y);
@@ -837,7 +838,7 @@ int rs_steady_solve(rs_steady *s, double t, double *y, rs_stats *stats, rs_msg *
   return solve_at(s, y, stats, msg);
 }
 
-void rs_steady_set_fail_fast(rs_steady *s, int on) { s->fail_fast = on; }
+void rs_steady_set_fail_fast(rs_steady *s, rs_fail_mode mode) { s->fail_fast = mode; }
 
 const rs_work *rs_steady_evaluated(rs_steady *s, const double *y)
 {

@@ -25,13 +25,16 @@ int rs_steady_approximate(rs_steady *s, double t, double *y, double tol, int max
  * that was at y (3D Newton-Krylov), else NULL: a solution's diagnostics without an
  * evaluation of their own (rs_model_diagnostics_of). Valid until the next solve. */
 const rs_work *rs_steady_evaluated(rs_steady *s, const double *y);
-/* Fail fast from a warm start (on: 1; 0 by default): only Newton and grid sequencing, whose
- * coarse solves fail fast too, then RS_ERR_SOLVER with y unchanged, also when the zero found
- * is not a physical steady state; the continuation in k_rel, the pseudo-time steps and
- * rolling the material from the start are left out. For a continuation that can still
- * shorten its step, which costs far less where the start is far from the solution. Starts
- * from rest take every fallback either way. */
-void rs_steady_set_fail_fast(rs_steady *s, int on);
+/* How a solve from a warm start may fail fast (rs_steady_set_fail_fast; RS_FAIL_NEVER by
+ * default). RS_FAIL_FAST: only Newton and grid sequencing, whose coarse solves fail fast too,
+ * then RS_ERR_SOLVER with y unchanged, also when the zero found is not a physical steady state:
+ * for a continuation that can still shorten its step, which costs far less where the start is
+ * far from the solution. RS_FAIL_UNROLLED: the fallbacks too (continuation in k_rel, pseudo-time
+ * steps) but not rolling the material from the start, the one that can take thousands of
+ * Newton iterations: for a solve whose failure only costs a by-product (the error estimate's
+ * coarse grids). Starts from rest take every fallback either way. */
+typedef enum { RS_FAIL_NEVER = 0, RS_FAIL_FAST = 1, RS_FAIL_UNROLLED = 2 } rs_fail_mode;
+void rs_steady_set_fail_fast(rs_steady *s, rs_fail_mode mode);
 void rs_steady_free(rs_steady *s);
 
 #endif

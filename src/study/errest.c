@@ -130,6 +130,9 @@ int rs_errest_create(rs_errest *e, const rs_model *m, SUNContext ctx, rs_msg *ms
     if (!e->y[k] || !e->yp[k] || rs_work_create(&e->w[k], &e->m[k]) != RS_OK)
       status = rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory for the error estimate's grids");
     if (status == RS_OK) status = rs_steady_create(&e->st[k], &e->m[k], ctx, msg);
+    /* Where the companion's solve would have to roll the material from the finer solution
+     * (thousands of Newton iterations), the point gets no estimate instead. */
+    if (status == RS_OK) rs_steady_set_fail_fast(e->st[k], RS_FAIL_UNROLLED);
   }
   if (status != RS_OK) { /* a companion that cannot be built: no estimate, the point stands */
     rs_errest_free(e);

@@ -177,9 +177,9 @@ static int continue_to(steady_chain *ch, rs_rolling_input key, double x, double 
    * (bench/RESULTS.md, issue 42). */
   const int fast = ch->m.el.dim == 3 && !rs_friction_varies(&ch->m.par.friction);
   if (depth == 0 || !fast) secant(ch, x, y);
-  rs_steady_set_fail_fast(ch->st, fast && depth < MAX_HALVINGS);
+  rs_steady_set_fail_fast(ch->st, fast && depth < MAX_HALVINGS ? RS_FAIL_FAST : RS_FAIL_NEVER);
   int status = rs_steady_solve(ch->st, 0.0, y, stats, msg);
-  rs_steady_set_fail_fast(ch->st, 0);
+  rs_steady_set_fail_fast(ch->st, RS_FAIL_NEVER);
   int changed = 0;
   if (status == RS_OK && (status = regimes_of(ch, y, ch->reg_new)) == RS_OK)
     for (int i = 0; i < n; i++) changed += ch->reg_new[i] != ch->reg_last[i];
