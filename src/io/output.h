@@ -44,6 +44,10 @@ typedef struct rs_output_spec {
   /* Transient runs: IDA's relative tolerance as run (solver.rtol, `auto` resolved), written
    * as the global attribute solver_rtol (0: none written). */
   double rtol;
+  /* Transient runs with a temperature: block: the surface temperature's modes per cell
+   * (2 (K + 1), physics/thermal.h), written as temperature_modes over (time,
+   * temperature_mode, [y,] x) for --restart (0: none). */
+  int temperature_modes;
 } rs_output_spec;
 
 /* One record. Scalars per docs/model.md §7; field arrays have n = nx (3D: nx ny, y slowest)
@@ -68,6 +72,8 @@ typedef struct rs_record {
    * (degC) and the heat into each body (W; 2D: W/mm) */
   const double *T1, *T2;
   double T_max, heat_input_1, heat_input_2;
+  /* files with temperature_modes: the modes, mode slowest, then y, then x */
+  const double *temperature_modes;
 } rs_record;
 
 /* Create the file, define everything, write x, set status = "running". The file is
