@@ -126,8 +126,9 @@ int rs_thermal_create(rs_thermal *th, const rs_thermal_params *p, int nx, int ny
   th->decay_half = malloc((size_t)K * sizeof *th->decay_half);
   th->decay_full = malloc((size_t)K * sizeof *th->decay_full);
   th->gain_full = malloc((size_t)K * sizeof *th->gain_full);
+  th->inv_gain = malloc((size_t)(K + 1) * sizeof *th->inv_gain);
   th->theta = malloc(2 * (size_t)(K + 1) * sizeof *th->theta);
-  if (!th->decay_half || !th->decay_full || !th->gain_full || !th->theta) {
+  if (!th->decay_half || !th->decay_full || !th->gain_full || !th->inv_gain || !th->theta) {
     rs_thermal_free(th);
     return rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory for the temperature modes");
   }
@@ -136,7 +137,9 @@ int rs_thermal_create(rs_thermal *th, const rs_thermal_params *p, int nx, int ny
     th->decay_half[k] = exp(-0.5 * r * dx);
     th->decay_full[k] = exp(-r * dx);
     th->gain_full[k] = -expm1(-r * dx) / r;
+    th->inv_gain[k] = 1.0 / th->gain_full[k];
   }
+  th->inv_gain[K] = 1.0 / dx;
   th->self_half = rs_thermal_kernel_step(&th->ker, 0.5 * dx);
   return RS_OK;
 }
@@ -147,8 +150,9 @@ void rs_thermal_free(rs_thermal *th)
   free(th->decay_half);
   free(th->decay_full);
   free(th->gain_full);
+  free(th->inv_gain);
   free(th->theta);
-  th->decay_half = th->decay_full = th->gain_full = th->theta = NULL;
+  th->decay_half = th->decay_full = th->gain_full = th->inv_gain = th->theta = NULL;
 }
 
 /* Per body b and mode k the state theta = int q_b(l') e^(-rate_k (l - l')) dl' (W/mm) at the
@@ -265,13 +269,20 @@ void rs_thermal_state_eval(rs_thermal *th, double V, const double *q, const sign
  * at a time through `visit`, in the order of the march (from the leading edge), so that the
  * solve can use the modes upstream as just computed. */
 enum { DAE_RESIDUAL, DAE_RATES, DAE_SOLVE };
-static void dae_pass(const rs_thermal *th, int what, double V, const double *q,
+static void dae_pass(rs_thermal *th, int what, double V, const double *q,
                      const signed char *contact, double *state, const double *rate, double *out,
                      double cj, const double *pred, const double *ratepred)
 {
   const int nx = th->nx, n = th->nx * th->ny, K = th->ker.nmodes, M = K + 1;
   const int moving = V > 0.0;
   const double s = moving ? 1.0 / sqrt(V) : 0.0;
+  /* per mode c_k (without rolling the modes are frozen: no material path, docs/model.md §18)
+   * and, for the solve, 1/(cj + c_k) */
+  double *c = th->theta, *inv = th->theta + M;
+  for (int k = 0; k <= K; k++) {
+    c[k] = moving ? V * th->inv_gain[k] : 0.0;
+    inv[k] = what == DAE_SOLVE ? 1.0 / (cj + c[k]) : 0.0;
+  }
   for (int iy = 0; iy < th->ny; iy++)
     for (int ix = nx - 1; ix >= 0; ix--) {
       const int i = iy * nx + ix;
@@ -283,15 +294,13 @@ static void dae_pass(const rs_thermal *th, int what, double V, const double *q,
       for (int b = 0; b < 2; b++)
         for (int k = 0; k <= K; k++) {
           const size_t at = ((size_t)b * M + k) * n + i;
-          /* without rolling the modes are frozen (no material path: docs/model.md §18) */
-          const double c = moving ? V / (k == K ? th->dx : th->gain_full[k]) : 0.0;
           const double target = moving ? mode_out(th, up[b], n, k, qb[b]) : 0.0;
           if (what == DAE_RESIDUAL) {
-            out[at] = rate[at] - c * (target - state[at]);
+            out[at] = rate[at] - c[k] * (target - state[at]);
           } else if (what == DAE_RATES) {
-            out[at] = c * (target - state[at]);
+            out[at] = c[k] * (target - state[at]);
           } else { /* pred + cor solves ratepred + cj cor = c (target - pred - cor) */
-            const double cor = (c * (target - pred[at]) - ratepred[at]) / (cj + c);
+            const double cor = (c[k] * (target - pred[at]) - ratepred[at]) * inv[k];
             out[at] = cor;
             state[at] = pred[at] + cor;
           }
@@ -299,22 +308,21 @@ static void dae_pass(const rs_thermal *th, int what, double V, const double *q,
     }
 }
 
-void rs_thermal_dae_residual(const rs_thermal *th, double V, const double *q,
-                             const signed char *contact, const double *state, const double *rate,
-                             double *F)
+void rs_thermal_dae_residual(rs_thermal *th, double V, const double *q, const signed char *contact,
+                             const double *state, const double *rate, double *F)
 {
   dae_pass(th, DAE_RESIDUAL, V, q, contact, (double *)state, rate, F, 0.0, NULL, NULL);
 }
 
-void rs_thermal_dae_rates(const rs_thermal *th, double V, const double *q,
-                          const signed char *contact, const double *state, double *rate)
+void rs_thermal_dae_rates(rs_thermal *th, double V, const double *q, const signed char *contact,
+                          const double *state, double *rate)
 {
   dae_pass(th, DAE_RATES, V, q, contact, (double *)state, NULL, rate, 0.0, NULL, NULL);
 }
 
-void rs_thermal_dae_solve(const rs_thermal *th, double V, const double *q,
-                          const signed char *contact, double cj, const double *pred,
-                          const double *ratepred, double *state, double *cor)
+void rs_thermal_dae_solve(rs_thermal *th, double V, const double *q, const signed char *contact,
+                          double cj, const double *pred, const double *ratepred, double *state,
+                          double *cor)
 {
   dae_pass(th, DAE_SOLVE, V, q, contact, state, NULL, cor, cj, pred, ratepred);
 }

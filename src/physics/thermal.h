@@ -61,6 +61,7 @@ typedef struct rs_thermal {
   /* per mode: decay over half a cell and over a cell, and the integral of the decay over
    * them (mm) */
   double *decay_half, *decay_full, *gain_full;
+  double *inv_gain; /* 1/gain_full, then 1/dx for the mode of rate 0 (1/mm) [nmodes + 1] */
   double self_half; /* the step response of half a cell, sqrt(mm) */
   double *theta;    /* scratch: the modes of both bodies [2 (nmodes + 1)] */
 } rs_thermal;
@@ -111,18 +112,17 @@ void rs_thermal_state_eval(rs_thermal *th, double V, const double *q, const sign
                            const double *state, double *T1, double *T2, double *q1, double *q2,
                            rs_thermal_result *res);
 /* The DAE's rows F = theta' - f(theta) at (state, rate) [rs_thermal_nstate]. */
-void rs_thermal_dae_residual(const rs_thermal *th, double V, const double *q,
-                             const signed char *contact, const double *state, const double *rate,
-                             double *F);
+void rs_thermal_dae_residual(rs_thermal *th, double V, const double *q, const signed char *contact,
+                             const double *state, const double *rate, double *F);
 /* theta' = f(theta): the consistent rates of a state. */
-void rs_thermal_dae_rates(const rs_thermal *th, double V, const double *q,
-                          const signed char *contact, const double *state, double *rate);
+void rs_thermal_dae_rates(rs_thermal *th, double V, const double *q, const signed char *contact,
+                          const double *state, double *rate);
 /* A BDF step's rows solved exactly: the correction cor with state = pred + cor and
  * theta' = ratepred + cj cor zeroing the rows, one pass from the leading edge (each cell's
  * rows are linear in its own modes given those upstream). */
-void rs_thermal_dae_solve(const rs_thermal *th, double V, const double *q,
-                          const signed char *contact, double cj, const double *pred,
-                          const double *ratepred, double *state, double *cor);
+void rs_thermal_dae_solve(rs_thermal *th, double V, const double *q, const signed char *contact,
+                          double cj, const double *pred, const double *ratepred, double *state,
+                          double *cor);
 
 /* The heat sources of a contact evaluation (w evaluated at y: rs_model_residual or the
  * diagnostics): the power densities fric, plast (N/(mm s)) of rs_model_power_densities,

@@ -29,8 +29,8 @@ typedef struct nls_content {
   /* Direct path (no kry): the Newton iteration's own vectors, and what the factorisation
    * held by ls was set up at: its c_j and the branches of its cells. */
   N_Vector fval, delta, rhs;
-  /* With a tail (host.tail): views of the contact part of IDA's correction and weights, and
-   * full-length copies of a correction and a residual for IDA's system function. */
+  /* With a tail (host.tail): a view of the contact part of IDA's correction, the contact's
+   * weights, and full-length copies of a correction and a residual for IDA's system function. */
   N_Vector ycor_c, w_c, ycor_full, f_full;
   unsigned char *branch_held;
   double cj_held;
@@ -236,8 +236,12 @@ static int nls_solve(SUNNonlinearSolver nls, N_Vector y0, N_Vector ycor, N_Vecto
   nls_content *c = CONTENT(nls);
   if (!c->host.tail) return contact_solve(c, ycor, w, tol, mem);
   N_VSetArrayPointer(N_VGetArrayPointer(ycor), c->ycor_c);
-  N_VSetArrayPointer(N_VGetArrayPointer(w), c->w_c);
+  const double *wv = N_VGetArrayPointer(w);
+  double *wc = N_VGetArrayPointer(c->w_c);
+  for (int i = 0; i < c->m->lay.neq; i++) wc[i] = c->host.weight_scale * wv[i];
+  *c->host.tail_rows = 0;
   int flag = contact_solve(c, c->ycor_c, c->w_c, tol, mem);
+  *c->host.tail_rows = 1;
   if (flag != SUN_NLS_SUCCESS) return flag;
   const size_t bytes = (size_t)c->m->lay.neq * sizeof(double);
   if (memcmp(N_VGetArrayPointer(c->ycor_full), N_VGetArrayPointer(ycor), bytes) != 0) {
@@ -429,7 +433,7 @@ SUNNonlinearSolver rs_nls_kinsol_create(const rs_model *m, rs_work *w, rs_linsys
   if (!c->uscale || !c->fscale || !c->ybuf || !c->ypbuf) goto fail;
   if (host.tail) {
     c->ycor_c = N_VCloneEmpty(tmpl);
-    c->w_c = N_VCloneEmpty(tmpl);
+    c->w_c = N_VClone(tmpl);
     c->ycor_full = N_VNew_Serial(host.neq_full, ctx);
     c->f_full = N_VNew_Serial(host.neq_full, ctx);
     if (!c->ycor_c || !c->w_c || !c->ycor_full || !c->f_full) goto fail;

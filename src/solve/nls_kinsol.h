@@ -29,6 +29,12 @@ typedef struct rs_nls_host {
    * RS_OK or a failure. */
   int (*tail)(void *ctx, double cj, const double *ypred, const double *yppred, double *ycor);
   int neq_full; /* with tail: the length of the integrator's vectors */
+  /* with tail: set to 0 while the contact system is solved (the integrator's residual may then
+   * leave the tail's rows out: nothing reads them), to 1 otherwise */
+  int *tail_rows;
+  /* with tail: the contact's Newton test takes IDA's weights times this (the integrator scales
+   * them to keep the tail from diluting its error norm) */
+  double weight_scale;
 } rs_nls_host;
 
 /* The linear algebra: ls (direct: KLU or the Schur complement), or Newton-Krylov with

@@ -37,11 +37,13 @@ struct rs_transient {
   /* The temperature modes (opts.thermal, NULL: none): neq_full = neq + their count; the heat
    * sources of the last residual evaluation (scratch [n] each), and a vector of the contact
    * unknowns only for the contact solvers. */
-  const rs_thermal *thermal;
+  rs_thermal *thermal;
   int neq_full;
   double *fric, *plast, *q, *theta; /* theta: the modes of a step's solve [their count] */
   signed char *contact;
   N_Vector tmpl_c;
+  int tail_rows;       /* 0: the residual leaves the modes' rows out (nls_kinsol.h) */
+  double weight_scale; /* sqrt(neq_full/neq): IDA's error weights times it (error_weights) */
 };
 
 int rs_transient_neq(const rs_model *m, const rs_thermal *thermal)
@@ -60,7 +62,8 @@ static void ida_counters(const rs_transient *tr, rs_stats *st)
   IDAGetNumResEvals(tr->ida, &st->res_evals);
 }
 
-/* IDA's error weights in 3D: 1/(rtol |v| + atol) for both components of a cell's traction
+/* IDA's error weights, 1/(rtol |y| + atol) (2D with the temperature modes; without them 2D
+ * leaves the weights to IDA). 3D: 1/(rtol |v| + atol) for both components of a cell's traction
  * (and plastic displacement), |v| the vector's length, instead of each component's own size.
  * A component that is zero by symmetry (p_y of a slipping cell on the centre line) would be
  * held to atol, while its direction follows the slip direction and so the Newton solve's
@@ -72,7 +75,7 @@ static int error_weights(N_Vector yv, N_Vector ewt, void *data)
   const double *y = N_VGetArrayPointer(yv), *at = N_VGetArrayPointer(tr->atol);
   double *w = N_VGetArrayPointer(ewt);
   for (int k = 0; k < tr->neq_full; k++) w[k] = tr->rtol * fabs(y[k]) + at[k];
-  for (int I = 0; I < L->n; I++) {
+  for (int I = 0; I < L->n && L->ncomp == 2; I++) {
     const int vec[2][2] = {{rs_at_p(L, 0, I), rs_at_p(L, 1, I)},
                            {rs_at_upl(L, 0, I), rs_at_upl(L, 1, I)}};
     for (int q = 0; q < 2; q++) {
@@ -81,9 +84,14 @@ static int error_weights(N_Vector yv, N_Vector ewt, void *data)
       w[vec[q][1]] = tr->rtol * len + at[vec[q][1]];
     }
   }
+  /* With the temperature modes IDA's norm, an RMS over all unknowns, would average the contact's
+   * errors with the modes' and loosen the contact's error test by up to the square root of
+   * their counts' ratio: every weight times that root keeps the contact's part of the norm what
+   * it is without the modes, the modes' part adding to it. */
+  const double scale = tr->thermal ? tr->weight_scale : 1.0;
   for (int k = 0; k < tr->neq_full; k++) {
     if (!(w[k] > 0.0)) return -1;
-    w[k] = 1.0 / w[k];
+    w[k] = scale / w[k];
   }
   return 0;
 }
@@ -115,13 +123,14 @@ static int dae_residual(sunrealtype t, N_Vector y, N_Vector yp, N_Vector rr, voi
                                     N_VGetArrayPointer(yp), tr->cj, N_VGetArrayPointer(rr));
   if (status != RS_OK && tr->gmres)
     rs_msg_set(&tr->work.msg, status, "%s", rs_krylov_error(&tr->kry));
-  if (status == RS_OK && tr->thermal) { /* the modes' rows from this evaluation's sources */
+  if (status == RS_OK && tr->thermal) { /* this evaluation's heat sources, the modes' rows */
     const int neq = tr->m->lay.neq;
     const double *yv = N_VGetArrayPointer(y);
     rs_thermal_sources(tr->thermal, tr->m, tr->gmres ? &tr->kry.w : &tr->work, yv, tr->fric,
                        tr->plast, tr->q, tr->contact);
-    rs_thermal_dae_residual(tr->thermal, tr->in.velocity, tr->q, tr->contact, yv + neq,
-                            N_VGetArrayPointer(yp) + neq, N_VGetArrayPointer(rr) + neq);
+    if (tr->tail_rows)
+      rs_thermal_dae_residual(tr->thermal, tr->in.velocity, tr->q, tr->contact, yv + neq,
+                              N_VGetArrayPointer(yp) + neq, N_VGetArrayPointer(rr) + neq);
   }
   return status == RS_OK ? 0 : -1;
 }
@@ -182,6 +191,8 @@ int rs_transient_create(rs_transient **out, const rs_model *m, SUNContext ctx, d
   const rs_layout *L = &m->lay;
   const int neq = L->neq;
   tr->thermal = o->thermal;
+  tr->tail_rows = 1;
+  tr->weight_scale = sqrt((double)rs_transient_neq(m, o->thermal) / m->lay.neq);
   tr->neq_full = rs_transient_neq(m, o->thermal);
   const int nfull = tr->neq_full;
   N_Vector id = NULL; /* differential/algebraic components (force control) */
@@ -235,7 +246,7 @@ int rs_transient_create(rs_transient **out, const rs_model *m, SUNContext ctx, d
     for (int b = 0; b < 2; b++)
       for (int k = 0; k <= K; k++) {
         const double wk = k == K ? th->ker.weight0 : th->ker.weight[k];
-        const double a = o->rtol * th->beta[b] * sv / ((K + 1) * wk);
+        const double a = o->rtol * th->beta[b] * sv / wk;
         for (int i = 0; i < n; i++) at[neq + (b * (K + 1) + k) * n + i] = a;
       }
   }
@@ -271,7 +282,9 @@ int rs_transient_create(rs_transient **out, const rs_model *m, SUNContext ctx, d
                             .inputs_at = host_inputs,
                             .ctx = tr,
                             .tail = tr->thermal ? solve_tail : NULL,
-                            .neq_full = nfull};
+                            .neq_full = nfull,
+                            .tail_rows = &tr->tail_rows,
+                            .weight_scale = 1.0 / tr->weight_scale};
   /* Newton-Krylov: the largest forcing term follows the tolerance, 30 rtol within [1e-3, 0.1]
    * (the term itself follows the Newton test, nls_kinsol.c). A loose tolerance's Newton test is
    * loose too, and a tight linear solve there only costs GMRES iterations; at tight tolerances
@@ -286,7 +299,7 @@ int rs_transient_create(rs_transient **out, const rs_model *m, SUNContext ctx, d
   RS_SUN_CHECK(IDAInit(tr->ida, dae_residual, t0, tr->y, tr->yp), msg, what);
   RS_SUN_CHECK(IDASetUserData(tr->ida, tr), msg, what);
   tr->rtol = o->rtol;
-  if (L->ncomp == 2)
+  if (L->ncomp == 2 || tr->thermal)
     RS_SUN_CHECK(IDAWFtolerances(tr->ida, error_weights), msg, what);
   else
     RS_SUN_CHECK(IDASVtolerances(tr->ida, o->rtol, tr->atol), msg, what);

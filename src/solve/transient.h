@@ -70,7 +70,7 @@ typedef struct rs_transient_opts {
    * neq unknowns (rs_transient_neq). The contact rows do not depend on them: each step's
    * contact system is solved as without them, then the modes' rows exactly
    * (rs_thermal_dae_solve). Used from one solver at a time. */
-  const rs_thermal *thermal;
+  rs_thermal *thermal;
 } rs_transient_opts;
 
 /* Unknowns of the integrated system: the model's neq, plus the temperature modes. */
