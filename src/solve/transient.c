@@ -15,6 +15,10 @@
 #include "solve/nls_kinsol.h"
 #include "solve/transient.h"
 
+/* Temperature modes that forget within fewer cells than this are out of IDA's error test
+ * (rs_transient_create). */
+#define FAST_MODE_CELLS 10.0
+
 struct rs_transient {
   const rs_model *m;
   SUNContext own_ctx; /* created here when the caller gave none */
@@ -85,9 +89,10 @@ static int error_weights(N_Vector yv, N_Vector ewt, void *data)
     }
   }
   /* With the temperature modes IDA's norm, an RMS over all unknowns, would average the contact's
-   * errors with the modes' and loosen the contact's error test by up to the square root of
-   * their counts' ratio: every weight times that root keeps the contact's part of the norm what
-   * it is without the modes, the modes' part adding to it. */
+   * errors with the modes' (the fast ones masked out of the error test, but counted) and loosen
+   * the contact's error test by up to the square root of the counts' ratio: every weight times
+   * that root keeps the contact's part of the norm what it is without the modes, the slow
+   * modes' part adding to it. */
   const double scale = tr->thermal ? tr->weight_scale : 1.0;
   for (int k = 0; k < tr->neq_full; k++) {
     if (!(w[k] > 0.0)) return -1;
@@ -236,7 +241,8 @@ int rs_transient_create(rs_transient **out, const rs_model *m, SUNContext ctx, d
   for (int k = rs_at_upl(L, 0, 0); k < rs_at_extra(L, 0); k++) at[k] = 1e-4 * o->rtol * m->hertz_a;
   /* friction memory: mu is of order 0.1 to 1 */
   for (int k = 0; k < L->n && L->memory; k++) at[rs_at_mu(L, k)] = 1e-3 * o->rtol;
-  /* temperature modes: each mode's share of the temperature to rtol kelvin,
+  /* temperature modes (the fast ones out of the error test, below): each mode's share of the
+   * temperature to rtol kelvin,
    * |w_k theta_k|/(beta sqrt(V)) (the rate-0 mode with w_0) */
   if (tr->thermal) {
     const rs_thermal *th = tr->thermal;
@@ -252,7 +258,16 @@ int rs_transient_create(rs_transient **out, const rs_model *m, SUNContext ctx, d
   }
   /* With force control the creepage is an algebraic unknown fixed by a constraint on
    * differential ones (sum p dA = F_x): left out of the error test, as IDA allows. */
-  if (L->nextra > 0) {
+  /* The fast temperature modes are left out of the error test too: their sources are the heat
+   * of the contact, -p . v_s, whose slip velocity holds the BDF derivatives of the tractions,
+   * exact only to about the Newton error over the step; a mode that forgets within a few cells
+   * follows those sources as they come, and its error estimate does not fall with the step
+   * (friction memory's start of full sliding failed the error test at steps of 3e-13 s). Modes
+   * with a memory of FAST_MODE_CELLS cells or more (rate dx <= 1/FAST_MODE_CELLS, and the mode
+   * of rate 0) average the sources over their path and stay in the test: they carry the heat
+   * over the contact and set the steps where the contact alone would allow long ones (full
+   * sliding). docs/model.md §18; bench/RESULTS.md issue 43 for the choice. */
+  if (L->nextra > 0 || tr->thermal) {
     id = N_VNew_Serial(nfull, ctx);
     RS_SUN_CHECK(id == NULL, msg, what);
     RS_SUN_CHECK(rs_nvector_fast_ops(id), msg, what);
@@ -261,6 +276,12 @@ int rs_transient_create(rs_transient **out, const rs_model *m, SUNContext ctx, d
       at[rs_at_extra(L, k)] = 1e-4 * o->rtol;
       N_VGetArrayPointer(id)[rs_at_extra(L, k)] = 0.0;
     }
+    const rs_thermal *th = tr->thermal;
+    const int K = th ? th->ker.nmodes : 0, n = m->grid.n;
+    for (int b = 0; th && b < 2; b++)
+      for (int k = 0; k < K; k++)
+        if (th->ker.rate[k] * th->dx > 1.0 / FAST_MODE_CELLS)
+          for (int i = 0; i < n; i++) N_VGetArrayPointer(id)[neq + (b * (K + 1) + k) * n + i] = 0.0;
   }
   if (linear == RS_LINEAR_DENSE || linear == RS_LINEAR_AUTO)
     RS_SUN_CHECK(rs_linsys_use_reduced(&tr->ls, m, &tr->work, ctx), msg, what);
