@@ -27,7 +27,20 @@
  *    at the cell centres gives for this Abel equation: the quadrature of the 1/sqrt(t) flux
  *    is exact per cell, only its piecewise-constant representation errs).
  * 5. beta_2 -> infinity (1e8 beta_1): body 2 stays at its bulk temperature and takes all the
- *    heat; body 1 reads T_bulk_2 in the contact to 1e-6 K. */
+ *    heat; body 1 reads T_bulk_2 in the contact to 1e-6 K.
+ * 6. The modes as DAE state (docs/model.md §18, "Heat memory"), on a band with a varying source,
+ *    beta_2 = 2 beta_1 and bulk 20 / 60 degC:
+ *    - the march's modes are a steady state of the DAE: their rates are 0 exactly (the same
+ *      arithmetic cell by cell), and the temperatures of that state are the march's, bitwise;
+ *    - a BDF step's rows solved by rs_thermal_dae_solve: the residual at (pred + cor,
+ *      ratepred + cj cor) vanishes to 1e-12 of the rates' scale;
+ *    - a state uniform along x under a uniform source in a contact covering the grid (equal
+ *      bodies and bulks: shares q/2) is the material point's exact law: theta_k' = V q_b -
+ *      V r_k theta_k (V q_b for the mode of rate 0) away from the leading edge, to 1e-12; and the
+ *      state of a uniform source switched on a path l ago, theta_k = q_b (1 - e^(-r_k l))/r_k,
+ *      theta_0 = q_b l, gives T - T_bulk = q_b S(l + dx/2)/(beta sqrt(V)) at every cell but the
+ *      first (the cell centre counts the half cell it has crossed), to 1e-12, within the kernel
+ *      tolerance of 2 q_b sqrt(t + dx/(2V))/(beta sqrt(pi)), t = l/V. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -223,6 +236,116 @@ static void rigid_body_2(void)
   check(worst <= 1e-6, "beta_2 -> infinity: T1 = T_bulk_2 in the contact (K)", worst, 0.0);
 }
 
+static void dae_rows(void)
+{
+  enum { NX = 120 };
+  static double q[NX], T1[NX], T2[NX], U1[NX], U2[NX];
+  static signed char contact[NX];
+  rs_thermal_params p;
+  steel(&p, 2.0);
+  p.bulk[0] = 20.0;
+  p.bulk[1] = 60.0;
+  rs_thermal th;
+  rs_msg msg = {{0}};
+  const double dx = (X_HI - X_LO) / NX;
+  if (rs_thermal_create(&th, &p, NX, 1, dx, dx, &msg) != RS_OK) {
+    printf("FAIL thermal: %s\n", msg.text);
+    failures++;
+    return;
+  }
+  for (int i = 0; i < NX; i++) {
+    const double x = X_LO + (i + 0.5) * dx;
+    contact[i] = fabs(x) < A;
+    q[i] = contact[i] ? 10.0 * (1.0 - x * x) * (1.2 + x) : 0.0;
+  }
+  const int ns = rs_thermal_nstate(&th);
+  double *state = calloc((size_t)ns, sizeof *state), *rate = calloc((size_t)ns, sizeof *rate);
+  double *pred = calloc((size_t)ns, sizeof *pred), *ratepred = calloc((size_t)ns, sizeof *ratepred);
+  double *cor = calloc((size_t)ns, sizeof *cor), *F = calloc((size_t)ns, sizeof *F);
+  if (!state || !rate || !pred || !ratepred || !cor || !F) {
+    printf("FAIL out of memory\n");
+    failures++;
+    goto done;
+  }
+  rs_thermal_result r, rs;
+  rs_thermal_march_state(&th, V, q, contact, T1, T2, NULL, NULL, &r, state);
+  rs_thermal_dae_rates(&th, V, q, contact, state, rate);
+  double worst = 0.0;
+  for (int k = 0; k < ns; k++) worst = fmax(worst, fabs(rate[k]));
+  check(worst == 0.0, "the march's modes: DAE rates 0 exactly", worst, 0.0);
+  rs_thermal_state_eval(&th, V, q, contact, state, U1, U2, NULL, NULL, &rs);
+  int same = rs.T_max == r.T_max && rs.heat_input[0] == r.heat_input[0];
+  for (int i = 0; i < NX; i++) same &= U1[i] == T1[i] && U2[i] == T2[i];
+  check(same, "temperatures of the steady state = the march's, bitwise", rs.T_max, r.T_max);
+
+  /* a BDF step: predictor perturbed from the steady state, then solved */
+  double scale = 0.0;
+  for (int k = 0; k < ns; k++) {
+    pred[k] = state[k] * (1.0 + 0.01 * sin(0.7 * k));
+    ratepred[k] = 1e3 * V * state[k] * cos(0.3 * k) / (X_HI - X_LO);
+    scale = fmax(scale, fabs(ratepred[k]));
+  }
+  const double cj = 3.0 * V / dx;
+  rs_thermal_dae_solve(&th, V, q, contact, cj, pred, ratepred, state, cor);
+  for (int k = 0; k < ns; k++) rate[k] = ratepred[k] + cj * cor[k];
+  rs_thermal_dae_residual(&th, V, q, contact, state, rate, F);
+  worst = 0.0;
+  for (int k = 0; k < ns; k++) worst = fmax(worst, fabs(F[k]));
+  check(worst <= 1e-12 * scale, "a BDF step's rows solved exactly (residual / rate scale)",
+        worst / scale, 0.0);
+
+  /* uniform source, contact over the grid, equal bodies and bulks */
+  rs_thermal_free(&th);
+  steel(&p, 1.0);
+  p.bulk[0] = p.bulk[1] = 20.0;
+  if (rs_thermal_create(&th, &p, NX, 1, dx, dx, &msg) != RS_OK) {
+    printf("FAIL thermal: %s\n", msg.text);
+    failures++;
+    goto done;
+  }
+  const int K = th.ker.nmodes;
+  const double q0 = 5.0, qb = 0.5 * q0, l = 0.4; /* W/mm^2, mm of path since the start */
+  for (int i = 0; i < NX; i++) {
+    contact[i] = 1;
+    q[i] = q0;
+  }
+  for (int b = 0; b < 2; b++)
+    for (int k = 0; k <= K; k++)
+      for (int i = 0; i < NX; i++)
+        state[(b * (K + 1) + k) * NX + i] =
+            k == K ? qb * l : qb * -expm1(-th.ker.rate[k] * l) / th.ker.rate[k];
+  rs_thermal_dae_rates(&th, V, q, contact, state, rate);
+  double wrate = 0.0, wT = 0.0, wlaw = 0.0;
+  for (int b = 0; b < 2; b++)
+    for (int k = 0; k <= K; k++)
+      for (int i = 0; i < NX - 1; i++) {
+        const double th_k = state[(b * (K + 1) + k) * NX + i];
+        const double want = k == K ? V * qb : V * qb - V * th.ker.rate[k] * th_k;
+        wrate = fmax(wrate, fabs(rate[(b * (K + 1) + k) * NX + i] - want) / (V * qb));
+      }
+  check(wrate <= 1e-12, "uniform state: theta' = V q_b - V r_k theta (relative to V q_b)", wrate,
+        0.0);
+  rs_thermal_state_eval(&th, V, q, contact, state, U1, U2, NULL, NULL, &rs);
+  const double want_T = qb * rs_thermal_kernel_step(&th.ker, l + 0.5 * dx) / (th.beta[0] * sqrt(V));
+  const double law = 2.0 * qb * sqrt((l + 0.5 * dx) / V) / (th.beta[0] * sqrt(PI));
+  for (int i = 0; i < NX - 1; i++) {
+    wT = fmax(wT, fmax(fabs(U1[i] - 20.0 - want_T), fabs(U2[i] - 20.0 - want_T)) / want_T);
+    wlaw = fmax(wlaw, fabs(U1[i] - 20.0 - law) / law);
+  }
+  check(wT <= 1e-12, "uniform state: T - T_bulk = q_b S(l + dx/2)/(beta sqrt(V))", wT, 0.0);
+  check(wlaw <= p.kernel_tolerance,
+        "uniform state: 2 q_b sqrt(t + dx/(2V))/(beta sqrt(pi)) to the kernel tolerance", wlaw,
+        p.kernel_tolerance);
+done:
+  free(state);
+  free(rate);
+  free(pred);
+  free(ratepred);
+  free(cor);
+  free(F);
+  rs_thermal_free(&th);
+}
+
 int main(void)
 {
   kernel_table();
@@ -230,6 +353,7 @@ int main(void)
   band(3.0);
   cold_meets_hot();
   rigid_body_2();
+  dae_rows();
   printf("%s: %d failure(s)\n", failures ? "FAILED" : "passed", failures);
   return failures ? 1 : 0;
 }

@@ -11,3 +11,8 @@ add_test(NAME temperature_check_derived COMMAND ${SYSTEM_PYTHON3} ${RS_TESTS}/cl
   --stdout "^temperature.peclet: \\[6230, 6230\\]  # V a/\\(2 kappa\\)"
   --stdout "^temperature.kernel_modes: [0-9]+  # .* within 0.000[0-9]+$"
   -- ${RS_BIN} check ${RS_CASES}/ertz_temperature.yaml)
+# The heat memory of a transient (the modes as DAE state): steady = transient limit in 2D and 3D,
+# a sudden rise of the frictional heat against the conduction law, energy per record, restart.
+add_test(NAME temperature_heat_memory
+  COMMAND ${SYSTEM_PYTHON3} ${RS_TESTS}/check_heat_memory.py ${RS_BIN} ${RS_CASES}
+          ${CMAKE_CURRENT_BINARY_DIR}/heat_memory)

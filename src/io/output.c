@@ -530,6 +530,24 @@ static int define_file(rs_output *out, const rs_output_spec *spec, const char **
       return err;
   }
 
+  out->modes_id = -1;
+  if (spec->temperature_modes > 0) {
+    *what = "defining the temperature modes";
+    int mode_dim;
+    const int dims[4] = {time_dim, 0, three_d ? y_dim : x_dim, x_dim};
+    if ((err = nc_def_dim(ncid, "temperature_mode", (size_t)spec->temperature_modes, &mode_dim)))
+      return err;
+    const int mdims[4] = {dims[0], mode_dim, dims[2], dims[3]};
+    if ((err = nc_def_var(ncid, "temperature_modes", NC_DOUBLE, three_d ? 4 : 3, mdims,
+                          &out->modes_id)) ||
+        (err = rs_output_put_text(ncid, out->modes_id, "units", "W/mm")) ||
+        (err = rs_output_put_text(ncid, out->modes_id, "long_name",
+                                  "surface temperature modes of body 1, then body 2 (the "
+                                  "transient's heat memory, read by --restart)")))
+      return err;
+    out->nmodes = (size_t)spec->temperature_modes;
+  }
+
   /* Record data are written in full every time: no fill pass needed. */
   int old_fill;
   *what = "setting the fill mode";
@@ -660,6 +678,10 @@ int rs_output_write(rs_output *out, const rs_record *rec, rs_msg *msg)
                       "output file %s: record %zu has no surface temperatures", out->path,
                       out->records);
 
+  if (out->modes_id >= 0 && !rec->temperature_modes)
+    return rs_msg_set(msg, RS_ERR_INTERNAL, "output file %s: record %zu has no temperature modes",
+                      out->path, out->records);
+
   if ((err = nc_put_var1_double(ncid, out->time_id, start, &rec->time))) goto fail;
 
   for (int f = 0; f < RS_N_FIELDS; f++) {
@@ -710,6 +732,13 @@ int rs_output_write(rs_output *out, const rs_record *rec, rs_msg *msg)
     for (int k = 1; k < 5; k++)
       if (out->error_id[k] >= 0 && (err = nc_put_var1_double(ncid, out->error_id[k], start, &v[k])))
         goto fail;
+  }
+
+  if (out->modes_id >= 0) {
+    const size_t mstart[4] = {out->records, 0, 0, 0};
+    const size_t mcount[4] = {1, out->nmodes, out->three_d ? out->ny : out->nx, out->nx};
+    if ((err = nc_put_vara_double(ncid, out->modes_id, mstart, mcount, rec->temperature_modes)))
+      goto fail;
   }
 
   /* Data first, then numrecs: one nc_sync does both, in that order (see top). */

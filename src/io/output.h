@@ -49,6 +49,10 @@ typedef struct rs_output_spec {
    * grid_cells_used (the grid grid.accuracy chose: [nx] or [nx, ny]) when grid_chosen. */
   int error_estimate;
   int grid_chosen;
+  /* Transient runs with a temperature: block: the surface temperature's modes per cell
+   * (2 (K + 1), physics/thermal.h), written as temperature_modes over (time,
+   * temperature_mode, [y,] x) for --restart (0: none). */
+  int temperature_modes;
 } rs_output_spec;
 
 /* One record. Scalars per docs/model.md §7; field arrays have n = nx (3D: nx ny, y slowest)
@@ -77,6 +81,8 @@ typedef struct rs_record {
    * error_reliable 1 (observed order in the band), 0 (fallback) or -1 (no estimate). */
   double Fx_error, Fy_error, Mz_error;
   int error_reliable;
+  /* files with temperature_modes: the modes, mode slowest, then y, then x */
+  const double *temperature_modes;
 } rs_record;
 
 /* Create the file, define everything, write x, set status = "running". The file is

@@ -130,6 +130,16 @@ static int check_layout(rs_output *out, size_t nx, const double *x, size_t ny, c
                         path, want_t ? "has no" : "has the", rs_temperature_vars[v].name,
                         want_t ? "a" : "no");
   }
+  /* the temperature modes (a transient with a temperature: block): continued when present */
+  int mode_dim;
+  size_t nmodes = 0;
+  out->modes_id = -1;
+  if (want_t && nc_inq_dimid(ncid, "temperature_mode", &mode_dim) == NC_NOERR &&
+      nc_inq_dimlen(ncid, mode_dim, &nmodes) == NC_NOERR) {
+    const int mdims[4] = {time_dim, mode_dim, dims[1], dims[2]};
+    out->modes_id = var_over(ncid, "temperature_modes", ndims + 1, mdims);
+    out->nmodes = nmodes;
+  }
   out->records = nrec;
   if (nrec == 0) return layout_error(path, msg, "holds no records");
   return RS_OK;
@@ -180,6 +190,7 @@ int rs_output_open_append(rs_output **outp, const char *path, size_t nx, const d
   for (int f = 0; f < RS_N_FIELDS; f++) out->field_id2[f] = -1;
   for (int k = 0; k < RS_N_SCALARS_3D; k++) out->scalar3_id[k] = -1;
   for (int k = 0; k < RS_N_TEMPERATURE_VARS; k++) out->temp_id[k] = -1;
+  out->modes_id = -1;
   size_t block = RS_IO_BLOCK;
   int err = nc__open(path, NC_WRITE, &block, &out->ncid);
   int status = err ? rs_msg_set(msg, RS_ERR_INPUT, "--append %s: cannot open for writing: %s", path,

@@ -64,6 +64,8 @@ struct rs_output {
   int temp_id[RS_N_TEMPERATURE_VARS]; /* T1, T2, T_max, heat_input_1, heat_input_2; -1: none */
   int has_errors;  /* the error estimate's variables are in the file (steady runs) */
   int error_id[5]; /* error_reliable, Fx_error, traction_coefficient_error, Fy_error, Mz_error */
+  int modes_id;    /* temperature_modes, -1: none */
+  size_t nmodes;   /* its temperature_mode dimension */
   int has_rig;
   int rig_meta_id[6];
   int step_mu_id, step_slip_id, rev_mu_id, rev_slip_id; /* twin-disc summaries */

@@ -164,3 +164,39 @@ int rs_restart_read_provenance(const char *path, char **history, char **status, 
   }
   return RS_OK;
 }
+
+int rs_restart_read_modes(const char *path, const rs_restart_grid *g, int nmodes, double *modes,
+                          rs_msg *msg)
+{
+  int ncid, dim, var, dim_t, err = nc_open(path, NC_NOWRITE, &ncid);
+  if (err) return nc_fail(msg, path, "cannot open", err);
+  const size_t ny = g->ncomp == 2 ? g->ny : 1, n = g->nx * ny;
+  size_t len = 0, nrec = 0;
+  int status = RS_OK;
+  if (nc_inq_dimid(ncid, "temperature_mode", &dim) || nc_inq_dimlen(ncid, dim, &len) ||
+      nc_inq_varid(ncid, "temperature_modes", &var) || nc_inq_dimid(ncid, "time", &dim_t) ||
+      nc_inq_dimlen(ncid, dim_t, &nrec) || nrec == 0)
+    status = rs_msg_set(msg, RS_ERR_INPUT,
+                        "restart file %s: has no variable 'temperature_modes' (the surface "
+                        "temperature's heat memory: a transient run with a temperature: block "
+                        "writes it)",
+                        path);
+  else if (len != (size_t)nmodes)
+    status = rs_msg_set(msg, RS_ERR_INPUT,
+                        "restart file %s: holds %zu temperature modes per cell, the case has %d "
+                        "(temperature.kernel_tolerance and the grid must be those of the old run)",
+                        path, len, nmodes);
+  if (status == RS_OK) {
+    const size_t start[4] = {nrec - 1, 0, 0, 0};
+    const size_t count[4] = {1, len, g->ncomp == 2 ? g->ny : g->nx, g->nx};
+    if ((err = nc_get_vara_double(ncid, var, start, count, modes)))
+      status = nc_fail(msg, path, "reading temperature_modes", err);
+  }
+  for (size_t i = 0; status == RS_OK && i < (size_t)nmodes * n; i++)
+    if (!isfinite(modes[i]))
+      status =
+          rs_msg_set(msg, RS_ERR_INPUT,
+                     "restart file %s: temperature_modes is not finite at its last record", path);
+  nc_close(ncid);
+  return status;
+}

@@ -31,6 +31,14 @@ typedef struct rs_restart_grid {
 int rs_restart_read(const char *path, const rs_restart_grid *g, double *t_last, double *p,
                     double *upl, double *ustar, double *mu, double *extras, rs_msg *msg);
 
+/* The surface temperature's modes at the last record (the variable temperature_modes of a
+ * transient run with a temperature: block, docs/file-format.md): nmodes values per cell
+ * (2 (K + 1), mode slowest, then y, then x) into modes [nmodes n]. RS_ERR_INPUT with a
+ * message naming the file when it has none, another count of modes (the kernel of another
+ * grid or temperature.kernel_tolerance), or non-finite values. */
+int rs_restart_read_modes(const char *path, const rs_restart_grid *g, int nmodes, double *modes,
+                          rs_msg *msg);
+
 /* The history and status attributes of the file at path (malloc'ed; "" when absent),
  * for the history of a run that continues it. RS_ERR_INPUT when it cannot be read. */
 int rs_restart_read_provenance(const char *path, char **history, char **status, rs_msg *msg);

@@ -1,6 +1,8 @@
 /* Surface temperature (physics/thermal.h, docs/model.md §18). */
 #include "physics/thermal.h"
 
+#include "physics/model.h"
+
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -124,8 +126,9 @@ int rs_thermal_create(rs_thermal *th, const rs_thermal_params *p, int nx, int ny
   th->decay_half = malloc((size_t)K * sizeof *th->decay_half);
   th->decay_full = malloc((size_t)K * sizeof *th->decay_full);
   th->gain_full = malloc((size_t)K * sizeof *th->gain_full);
+  th->inv_gain = malloc((size_t)(K + 1) * sizeof *th->inv_gain);
   th->theta = malloc(2 * (size_t)(K + 1) * sizeof *th->theta);
-  if (!th->decay_half || !th->decay_full || !th->gain_full || !th->theta) {
+  if (!th->decay_half || !th->decay_full || !th->gain_full || !th->inv_gain || !th->theta) {
     rs_thermal_free(th);
     return rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory for the temperature modes");
   }
@@ -134,7 +137,9 @@ int rs_thermal_create(rs_thermal *th, const rs_thermal_params *p, int nx, int ny
     th->decay_half[k] = exp(-0.5 * r * dx);
     th->decay_full[k] = exp(-r * dx);
     th->gain_full[k] = -expm1(-r * dx) / r;
+    th->inv_gain[k] = 1.0 / th->gain_full[k];
   }
+  th->inv_gain[K] = 1.0 / dx;
   th->self_half = rs_thermal_kernel_step(&th->ker, 0.5 * dx);
   return RS_OK;
 }
@@ -145,8 +150,9 @@ void rs_thermal_free(rs_thermal *th)
   free(th->decay_half);
   free(th->decay_full);
   free(th->gain_full);
+  free(th->inv_gain);
   free(th->theta);
-  th->decay_half = th->decay_full = th->gain_full = th->theta = NULL;
+  th->decay_half = th->decay_full = th->gain_full = th->inv_gain = th->theta = NULL;
 }
 
 /* Per body b and mode k the state theta = int q_b(l') e^(-rate_k (l - l')) dl' (W/mm) at the
@@ -154,11 +160,47 @@ void rs_thermal_free(rs_thermal *th)
  * q_b constant over a cell the update is exact (the exponentially fitted upwind step):
  *   theta_out = theta_in e^(-rate dx) + q_b (1 - e^(-rate dx))/rate.
  * At the centre T_b = T_bulk + (H_b + S(dx/2) q_b)/(beta_b sqrt(V)) with H_b the history
- * decayed over half a cell; T1 = T2 and q1 + q2 = q in the contact fix q1. */
-void rs_thermal_march(rs_thermal *th, double V, const double *q, const signed char *contact,
-                      double *T1, double *T2, double *q1, double *q2, rs_thermal_result *res)
+ * decayed over half a cell; T1 = T2 and q1 + q2 = q in the contact fix q1. The march and the
+ * DAE's rows share this cell's arithmetic: up[b] points at body b's modes entering the cell
+ * (stride apart; NULL: fresh material). */
+static void cell_partition(const rs_thermal *th, double s, const double *const up[2], int stride,
+                           double q, int contact, double qb[2], double T[2])
 {
-  const int nx = th->nx, n = th->nx * th->ny, K = th->ker.nmodes;
+  const int K = th->ker.nmodes;
+  const double *w = th->ker.weight;
+  double H[2];
+  for (int b = 0; b < 2; b++) {
+    double hist = 0.0;
+    if (up[b]) {
+      hist = th->ker.weight0 * up[b][K * stride];
+      for (int k = 0; k < K; k++) hist += w[k] * up[b][k * stride] * th->decay_half[k];
+    }
+    H[b] = th->par.bulk[b] + s * hist / th->beta[b];
+  }
+  /* B_b: the temperature rise of body b at a cell centre per unit of its own flux there */
+  const double B[2] = {s * th->self_half / th->beta[0], s * th->self_half / th->beta[1]};
+  qb[0] = qb[1] = 0.0;
+  if (contact) {
+    qb[0] = (H[1] - H[0] + B[1] * q) / (B[0] + B[1]);
+    qb[1] = q - qb[0];
+  }
+  T[0] = H[0] + B[0] * qb[0];
+  T[1] = H[1] + B[1] * qb[1];
+}
+
+/* The modes leaving a cell whose entering modes are up (NULL: fresh) under the flux qb. */
+static double mode_out(const rs_thermal *th, const double *up, int stride, int k, double qb)
+{
+  const int K = th->ker.nmodes;
+  if (k == K) return (up ? up[K * stride] : 0.0) + qb * th->dx;
+  return (up ? up[k * stride] * th->decay_full[k] : 0.0) + qb * th->gain_full[k];
+}
+
+static void march(rs_thermal *th, double V, const double *q, const signed char *contact,
+                  const double *from_state, double *T1, double *T2, double *q1, double *q2,
+                  rs_thermal_result *res, double *state)
+{
+  const int nx = th->nx, n = th->nx * th->ny, K = th->ker.nmodes, M = K + 1;
   res->heat_input[0] = res->heat_input[1] = 0.0;
   if (!(V > 0.0)) {
     for (int i = 0; i < n; i++) {
@@ -169,38 +211,130 @@ void rs_thermal_march(rs_thermal *th, double V, const double *q, const signed ch
     res->T_max = res->heat_input[0] = res->heat_input[1] = NAN;
     return;
   }
-  const double *w = th->ker.weight;
   const double s = 1.0 / sqrt(V);
-  /* B_b: the temperature rise of body b at a cell centre per unit of its own flux there */
-  const double B[2] = {s * th->self_half / th->beta[0], s * th->self_half / th->beta[1]};
   double T_max = -INFINITY;
   for (int iy = 0; iy < th->ny; iy++) {
-    double *theta[2] = {th->theta, th->theta + K + 1};
-    memset(th->theta, 0, 2 * (size_t)(K + 1) * sizeof *th->theta); /* fresh material */
+    double *theta[2] = {th->theta, th->theta + M};
+    memset(th->theta, 0, 2 * (size_t)M * sizeof *th->theta); /* fresh material */
     for (int ix = nx - 1; ix >= 0; ix--) {
       const int i = iy * nx + ix;
-      double H[2], qb[2] = {0.0, 0.0};
-      for (int b = 0; b < 2; b++) {
-        double hist = th->ker.weight0 * theta[b][K];
-        for (int k = 0; k < K; k++) hist += w[k] * theta[b][k] * th->decay_half[k];
-        H[b] = th->par.bulk[b] + s * hist / th->beta[b];
+      double qb[2], T[2];
+      if (from_state) { /* the modes entering: those of the DAE state upstream */
+        const double *up[2] = {NULL, NULL};
+        if (ix + 1 < nx)
+          for (int b = 0; b < 2; b++) up[b] = from_state + (size_t)b * M * n + i + 1;
+        cell_partition(th, s, up, n, q[i], contact[i], qb, T);
+      } else {
+        const double *up[2] = {theta[0], theta[1]};
+        cell_partition(th, s, up, 1, q[i], contact[i], qb, T);
+        for (int b = 0; b < 2; b++) {
+          for (int k = 0; k <= K; k++) theta[b][k] = mode_out(th, theta[b], 1, k, qb[b]);
+          for (int k = 0; state && k <= K; k++) state[((size_t)b * M + k) * n + i] = theta[b][k];
+        }
       }
-      if (contact[i]) {
-        qb[0] = (H[1] - H[0] + B[1] * q[i]) / (B[0] + B[1]);
-        qb[1] = q[i] - qb[0];
-      }
-      T1[i] = H[0] + B[0] * qb[0];
-      T2[i] = H[1] + B[1] * qb[1];
+      T1[i] = T[0];
+      T2[i] = T[1];
       if (q1) q1[i] = qb[0];
       if (q2) q2[i] = qb[1];
       if (contact[i]) T_max = fmax(T_max, fmax(T1[i], T2[i]));
-      for (int b = 0; b < 2; b++) {
-        res->heat_input[b] += qb[b] * th->area;
-        for (int k = 0; k < K; k++)
-          theta[b][k] = theta[b][k] * th->decay_full[k] + qb[b] * th->gain_full[k];
-        theta[b][K] += qb[b] * th->dx;
-      }
+      for (int b = 0; b < 2; b++) res->heat_input[b] += qb[b] * th->area;
     }
   }
   res->T_max = T_max > -INFINITY ? T_max : NAN;
+}
+
+void rs_thermal_march(rs_thermal *th, double V, const double *q, const signed char *contact,
+                      double *T1, double *T2, double *q1, double *q2, rs_thermal_result *res)
+{
+  march(th, V, q, contact, NULL, T1, T2, q1, q2, res, NULL);
+}
+
+void rs_thermal_march_state(rs_thermal *th, double V, const double *q, const signed char *contact,
+                            double *T1, double *T2, double *q1, double *q2, rs_thermal_result *res,
+                            double *state)
+{
+  march(th, V, q, contact, NULL, T1, T2, q1, q2, res, state);
+}
+
+void rs_thermal_state_eval(rs_thermal *th, double V, const double *q, const signed char *contact,
+                           const double *state, double *T1, double *T2, double *q1, double *q2,
+                           rs_thermal_result *res)
+{
+  march(th, V, q, contact, state, T1, T2, q1, q2, res, NULL);
+}
+
+/* Per cell and mode the relaxation rate c_k = V/g_k (g_k = (1 - e^(-rate_k dx))/rate_k, dx for
+ * the mode of rate 0) and the mode the cell relaxes to, theta_out of the exact step: the
+ * right-hand side f of theta' = c_k (theta_out - theta) (docs/model.md §18). One cell's block
+ * at a time through `visit`, in the order of the march (from the leading edge), so that the
+ * solve can use the modes upstream as just computed. */
+enum { DAE_RESIDUAL, DAE_RATES, DAE_SOLVE };
+static void dae_pass(rs_thermal *th, int what, double V, const double *q,
+                     const signed char *contact, double *state, const double *rate, double *out,
+                     double cj, const double *pred, const double *ratepred)
+{
+  const int nx = th->nx, n = th->nx * th->ny, K = th->ker.nmodes, M = K + 1;
+  const int moving = V > 0.0;
+  const double s = moving ? 1.0 / sqrt(V) : 0.0;
+  /* per mode c_k (without rolling the modes are frozen: no material path, docs/model.md §18)
+   * and, for the solve, 1/(cj + c_k) */
+  double *c = th->theta, *inv = th->theta + M;
+  for (int k = 0; k <= K; k++) {
+    c[k] = moving ? V * th->inv_gain[k] : 0.0;
+    inv[k] = what == DAE_SOLVE ? 1.0 / (cj + c[k]) : 0.0;
+  }
+  for (int iy = 0; iy < th->ny; iy++)
+    for (int ix = nx - 1; ix >= 0; ix--) {
+      const int i = iy * nx + ix;
+      double qb[2] = {0.0, 0.0}, T[2];
+      const double *up[2] = {NULL, NULL};
+      if (ix + 1 < nx)
+        for (int b = 0; b < 2; b++) up[b] = state + (size_t)b * M * n + i + 1;
+      if (moving) cell_partition(th, s, up, n, q[i], contact[i], qb, T);
+      for (int b = 0; b < 2; b++)
+        for (int k = 0; k <= K; k++) {
+          const size_t at = ((size_t)b * M + k) * n + i;
+          const double target = moving ? mode_out(th, up[b], n, k, qb[b]) : 0.0;
+          if (what == DAE_RESIDUAL) {
+            out[at] = rate[at] - c[k] * (target - state[at]);
+          } else if (what == DAE_RATES) {
+            out[at] = c[k] * (target - state[at]);
+          } else { /* pred + cor solves ratepred + cj cor = c (target - pred - cor) */
+            const double cor = (c[k] * (target - pred[at]) - ratepred[at]) * inv[k];
+            out[at] = cor;
+            state[at] = pred[at] + cor;
+          }
+        }
+    }
+}
+
+void rs_thermal_dae_residual(rs_thermal *th, double V, const double *q, const signed char *contact,
+                             const double *state, const double *rate, double *F)
+{
+  dae_pass(th, DAE_RESIDUAL, V, q, contact, (double *)state, rate, F, 0.0, NULL, NULL);
+}
+
+void rs_thermal_dae_rates(rs_thermal *th, double V, const double *q, const signed char *contact,
+                          const double *state, double *rate)
+{
+  dae_pass(th, DAE_RATES, V, q, contact, (double *)state, NULL, rate, 0.0, NULL, NULL);
+}
+
+void rs_thermal_dae_solve(rs_thermal *th, double V, const double *q, const signed char *contact,
+                          double cj, const double *pred, const double *ratepred, double *state,
+                          double *cor)
+{
+  dae_pass(th, DAE_SOLVE, V, q, contact, state, NULL, cor, cj, pred, ratepred);
+}
+
+void rs_thermal_sources(const rs_thermal *th, const rs_model *m, const rs_work *w, const double *y,
+                        double *fric, double *plast, double *q, signed char *contact)
+{
+  const double frac = th->par.plastic_heat_fraction;
+  rs_model_power_densities(m, w, y, fric, plast);
+  /* N/(mm s) = N mm/(s mm^2) = 1e-3 W/mm^2 */
+  for (int i = 0; i < m->grid.n; i++) {
+    contact[i] = w->pn[i] > 0.0;
+    q[i] = 1e-3 * (fric[i] + frac * plast[i]);
+  }
 }

@@ -61,6 +61,7 @@ typedef struct rs_thermal {
   /* per mode: decay over half a cell and over a cell, and the integral of the decay over
    * them (mm) */
   double *decay_half, *decay_full, *gain_full;
+  double *inv_gain; /* 1/gain_full, then 1/dx for the mode of rate 0 (1/mm) [nmodes + 1] */
   double self_half; /* the step response of half a cell, sqrt(mm) */
   double *theta;    /* scratch: the modes of both bodies [2 (nmodes + 1)] */
 } rs_thermal;
@@ -86,5 +87,50 @@ typedef struct rs_thermal_result {
  * cools on its own. q1, q2 may be NULL. With V <= 0 (no material path) every output is NaN. */
 void rs_thermal_march(rs_thermal *th, double V, const double *q, const signed char *contact,
                       double *T1, double *T2, double *q1, double *q2, rs_thermal_result *res);
+
+/* The modes as state of the transient DAE (docs/model.md §18, "Heat memory"): per body b,
+ * mode k (the nmodes decaying ones, then the mode of rate 0) and cell I the mode leaving the
+ * cell at its downstream edge, stored by blocks, cells inside a block:
+ *   state[(b (nmodes + 1) + k) n + I],   rs_thermal_nstate values.
+ * Each obeys theta' = c_k (theta_out - theta), c_k = V rate_k/(1 - e^(-rate_k dx)) (V/dx for
+ * the mode of rate 0), theta_out the exact step of the march from the modes of the upstream
+ * cell (0 at the leading edge: material enters at its bulk temperature) under the cell's
+ * share q_b of the heat, the partition T1 = T2 solved in closed form per cell: the first-order
+ * upwind material derivative, exponentially fitted so that its steady state is the march.
+ * With V <= 0 the modes are frozen (theta' = 0). */
+static inline int rs_thermal_nstate(const rs_thermal *th)
+{
+  return 2 * (th->ker.nmodes + 1) * th->nx * th->ny;
+}
+/* The march that also stores its modes in state (the DAE's steady state). */
+void rs_thermal_march_state(rs_thermal *th, double V, const double *q, const signed char *contact,
+                            double *T1, double *T2, double *q1, double *q2, rs_thermal_result *res,
+                            double *state);
+/* The temperatures, shares and result of the DAE state `state` under the sources q: each
+ * cell as in the march, with the modes entering it taken from the state upstream. */
+void rs_thermal_state_eval(rs_thermal *th, double V, const double *q, const signed char *contact,
+                           const double *state, double *T1, double *T2, double *q1, double *q2,
+                           rs_thermal_result *res);
+/* The DAE's rows F = theta' - f(theta) at (state, rate) [rs_thermal_nstate]. */
+void rs_thermal_dae_residual(rs_thermal *th, double V, const double *q, const signed char *contact,
+                             const double *state, const double *rate, double *F);
+/* theta' = f(theta): the consistent rates of a state. */
+void rs_thermal_dae_rates(rs_thermal *th, double V, const double *q, const signed char *contact,
+                          const double *state, double *rate);
+/* A BDF step's rows solved exactly: the correction cor with state = pred + cor and
+ * theta' = ratepred + cj cor zeroing the rows, one pass from the leading edge (each cell's
+ * rows are linear in its own modes given those upstream). */
+void rs_thermal_dae_solve(rs_thermal *th, double V, const double *q, const signed char *contact,
+                          double cj, const double *pred, const double *ratepred, double *state,
+                          double *cor);
+
+/* The heat sources of a contact evaluation (w evaluated at y: rs_model_residual or the
+ * diagnostics): the power densities fric, plast (N/(mm s)) of rs_model_power_densities,
+ * q = 1e-3 (fric + beta_pl plast) W/mm^2 and contact = p_n > 0, per cell. */
+struct rs_model;
+struct rs_work;
+void rs_thermal_sources(const rs_thermal *th, const struct rs_model *m, const struct rs_work *w,
+                        const double *y, double *fric, double *plast, double *q,
+                        signed char *contact);
 
 #endif

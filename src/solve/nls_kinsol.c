@@ -29,12 +29,27 @@ typedef struct nls_content {
   /* Direct path (no kry): the Newton iteration's own vectors, and what the factorisation
    * held by ls was set up at: its c_j and the branches of its cells. */
   N_Vector fval, delta, rhs;
+  /* With a tail (host.tail): a view of the contact part of IDA's correction, the contact's
+   * weights, and full-length copies of a correction and a residual for IDA's system function. */
+  N_Vector ycor_c, w_c, ycor_full, f_full;
   unsigned char *branch_held;
   double cj_held;
   int held;
 } nls_content;
 
 #define CONTENT(nls) ((nls_content *)(nls)->content)
+
+/* IDA's system function on the contact unknowns: with a tail the correction is completed to
+ * full length (tail 0: the contact rows do not depend on it) and the contact rows returned. */
+static int sys(nls_content *c, N_Vector ycor, N_Vector f)
+{
+  if (!c->host.tail) return c->sysfn(ycor, f, c->ida_mem);
+  const size_t bytes = (size_t)c->m->lay.neq * sizeof(double);
+  memcpy(N_VGetArrayPointer(c->ycor_full), N_VGetArrayPointer(ycor), bytes);
+  const int flag = c->sysfn(c->ycor_full, c->f_full, c->ida_mem);
+  memcpy(N_VGetArrayPointer(f), N_VGetArrayPointer(c->f_full), bytes);
+  return flag;
+}
 
 /* Largest |v_i| s_i. */
 static double scaled_max_norm(N_Vector v, N_Vector scale)
@@ -56,7 +71,7 @@ static double scaled_max_norm(N_Vector v, N_Vector scale)
 static int kin_residual(N_Vector ycor, N_Vector f, void *data)
 {
   nls_content *c = data;
-  const int flag = c->sysfn(ycor, f, c->ida_mem);
+  const int flag = sys(c, ycor, f);
   if (flag == 0) {
     const double fmax_norm = scaled_max_norm(f, c->fscale);
     const double eta = fmax_norm > 0.0 ? c->tol_cur / fmax_norm : c->forcing;
@@ -177,7 +192,7 @@ static int direct_solve(nls_content *c, N_Vector ycor, double tol, double cj)
 {
   const double ftol = 0.01 * tol;
   N_VConst(0.0, ycor);
-  int flag = c->sysfn(ycor, c->fval, c->ida_mem);
+  int flag = sys(c, ycor, c->fval);
   if (flag != 0) return flag < 0 ? DIRECT_STOP : DIRECT_FAILED;
   double fnorm = scaled_max_norm(c->fval, c->fscale);
   if (fnorm <= 0.01 * ftol) return DIRECT_OK; /* the predictor solves the step */
@@ -193,8 +208,7 @@ static int direct_solve(nls_content *c, N_Vector ycor, double tol, double cj)
     if (flag != 0) return flag < 0 ? DIRECT_STOP : DIRECT_FAILED;
     N_VLinearSum(1.0, ycor, 1.0, c->delta, ycor);
     c->last_iters = it;
-    if ((flag = c->sysfn(ycor, c->fval, c->ida_mem)) != 0)
-      return flag < 0 ? DIRECT_STOP : DIRECT_FAILED;
+    if ((flag = sys(c, ycor, c->fval)) != 0) return flag < 0 ? DIRECT_STOP : DIRECT_FAILED;
     const double fnew = scaled_max_norm(c->fval, c->fscale);
     if (fnew <= ftol) return DIRECT_OK;
     if (scaled_step(c->delta, ycor, c->uscale) <= ftol) {
@@ -207,6 +221,11 @@ static int direct_solve(nls_content *c, N_Vector ycor, double tol, double cj)
   return DIRECT_FAILED;
 }
 
+static int contact_solve(nls_content *c, N_Vector ycor, N_Vector w, sunrealtype tol, void *mem);
+
+/* With a tail: the contact rows on views of the first neq entries, then the tail's rows at
+ * the converged point (the last residual evaluation was there; if Newton's last evaluation
+ * was elsewhere, one more at the point). */
 static int nls_solve(SUNNonlinearSolver nls, N_Vector y0, N_Vector ycor, N_Vector w,
                      sunrealtype tol, sunbooleantype call_lsetup, void *mem)
 {
@@ -215,6 +234,32 @@ static int nls_solve(SUNNonlinearSolver nls, N_Vector y0, N_Vector ycor, N_Vecto
                       * laws of J v are rebuilt at every iteration, the near-field
                       * preconditioner may lag */
   nls_content *c = CONTENT(nls);
+  if (!c->host.tail) return contact_solve(c, ycor, w, tol, mem);
+  N_VSetArrayPointer(N_VGetArrayPointer(ycor), c->ycor_c);
+  const double *wv = N_VGetArrayPointer(w);
+  double *wc = N_VGetArrayPointer(c->w_c);
+  for (int i = 0; i < c->m->lay.neq; i++) wc[i] = c->host.weight_scale * wv[i];
+  *c->host.tail_rows = 0;
+  int flag = contact_solve(c, c->ycor_c, c->w_c, tol, mem);
+  *c->host.tail_rows = 1;
+  if (flag != SUN_NLS_SUCCESS) return flag;
+  const size_t bytes = (size_t)c->m->lay.neq * sizeof(double);
+  if (memcmp(N_VGetArrayPointer(c->ycor_full), N_VGetArrayPointer(ycor), bytes) != 0) {
+    memcpy(N_VGetArrayPointer(c->ycor_full), N_VGetArrayPointer(ycor), bytes);
+    if (c->sysfn(c->ycor_full, c->f_full, mem) != 0) return SUN_NLS_CONV_RECVR;
+  }
+  sunrealtype tcur, cj;
+  N_Vector ypred, yppred, yn, ypn, res;
+  void *udata;
+  IDAGetNonlinearSystemData(mem, &tcur, &ypred, &yppred, &yn, &ypn, &res, &cj, &udata);
+  flag = c->host.tail(c->host.ctx, cj, N_VGetArrayPointer(ypred), N_VGetArrayPointer(yppred),
+                      N_VGetArrayPointer(ycor));
+  return flag == RS_OK ? SUN_NLS_SUCCESS : -1;
+}
+
+/* The contact rows (the whole system without a tail). */
+static int contact_solve(nls_content *c, N_Vector ycor, N_Vector w, sunrealtype tol, void *mem)
+{
   c->ida_mem = mem;
   sunrealtype tcur, cj;
   N_Vector ypred, yppred, yn, ypn, res;
@@ -300,6 +345,10 @@ static int nls_free(SUNNonlinearSolver nls)
     if (c->fval) N_VDestroy(c->fval);
     if (c->delta) N_VDestroy(c->delta);
     if (c->rhs) N_VDestroy(c->rhs);
+    if (c->ycor_c) N_VDestroy(c->ycor_c);
+    if (c->w_c) N_VDestroy(c->w_c);
+    if (c->ycor_full) N_VDestroy(c->ycor_full);
+    if (c->f_full) N_VDestroy(c->f_full);
     free(c->branch_held);
     free(c->ybuf);
     free(c->ypbuf);
@@ -382,6 +431,14 @@ SUNNonlinearSolver rs_nls_kinsol_create(const rs_model *m, rs_work *w, rs_linsys
   c->ybuf = malloc((size_t)m->lay.neq * sizeof *c->ybuf);
   c->ypbuf = malloc((size_t)m->lay.neq * sizeof *c->ypbuf);
   if (!c->uscale || !c->fscale || !c->ybuf || !c->ypbuf) goto fail;
+  if (host.tail) {
+    c->ycor_c = N_VCloneEmpty(tmpl);
+    c->w_c = N_VClone(tmpl);
+    c->ycor_full = N_VNew_Serial(host.neq_full, ctx);
+    c->f_full = N_VNew_Serial(host.neq_full, ctx);
+    if (!c->ycor_c || !c->w_c || !c->ycor_full || !c->f_full) goto fail;
+    N_VConst(0.0, c->ycor_full);
+  }
   if (!kry) { /* the direct path: modified Newton of its own (direct_solve) */
     c->fval = N_VClone(tmpl);
     c->delta = N_VClone(tmpl);

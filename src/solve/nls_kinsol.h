@@ -21,13 +21,27 @@ typedef struct rs_nls_host {
   double *cj_slot;
   const rs_inputs *(*inputs_at)(void *ctx, double t);
   void *ctx;
+  /* NULL, or the integrator's system extends the model's neq unknowns by a tail whose rows
+   * the contact rows do not depend on (the temperature modes, transient.h): the contact
+   * system is then solved on the first neq entries as without the tail, and tail() solves the
+   * tail's rows at the converged point, its correction into ycor[neq...] (ypred, yppred the
+   * predictors, full length; the last residual evaluation was at the converged point).
+   * RS_OK or a failure. */
+  int (*tail)(void *ctx, double cj, const double *ypred, const double *yppred, double *ycor);
+  int neq_full; /* with tail: the length of the integrator's vectors */
+  /* with tail: set to 0 while the contact system is solved (the integrator's residual may then
+   * leave the tail's rows out: nothing reads them), to 1 otherwise */
+  int *tail_rows;
+  /* with tail: the contact's Newton test takes IDA's weights times this (the integrator scales
+   * them to keep the tail from diluting its error norm) */
+  double weight_scale;
 } rs_nls_host;
 
 /* The linear algebra: ls (direct: KLU or the Schur complement), or Newton-Krylov with
  * kry's near-field preconditioner and exact products in the SPGMR solver gmres (kry
  * non-NULL; ls then unused), GMRES reducing the residual to about the Newton test, by a
  * factor forcing at least. max_iters: Newton iterations per step before the step is
- * declared failed. */
+ * declared failed. tmpl: a vector of the model's neq unknowns. */
 SUNNonlinearSolver rs_nls_kinsol_create(const rs_model *m, rs_work *w, rs_linsys *ls,
                                         rs_krylov *kry, SUNLinearSolver gmres, double forcing,
                                         rs_nls_host host, int max_iters, N_Vector tmpl,

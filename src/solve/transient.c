@@ -15,6 +15,10 @@
 #include "solve/nls_kinsol.h"
 #include "solve/transient.h"
 
+/* Temperature modes that forget within fewer cells than this are out of IDA's error test
+ * (rs_transient_create). */
+#define FAST_MODE_CELLS 10.0
+
 struct rs_transient {
   const rs_model *m;
   SUNContext own_ctx; /* created here when the caller gave none */
@@ -34,7 +38,22 @@ struct rs_transient {
   int (*step_hook)(void *ctx, double t, const double *y, const double *yp);
   void *hook_ctx;
   rs_stats before_restart; /* IDA's counters of the segments before the last IDAReInit */
+  /* The temperature modes (opts.thermal, NULL: none): neq_full = neq + their count; the heat
+   * sources of the last residual evaluation (scratch [n] each), and a vector of the contact
+   * unknowns only for the contact solvers. */
+  rs_thermal *thermal;
+  int neq_full;
+  double *fric, *plast, *q, *theta; /* theta: the modes of a step's solve [their count] */
+  signed char *contact;
+  N_Vector tmpl_c;
+  int tail_rows;       /* 0: the residual leaves the modes' rows out (nls_kinsol.h) */
+  double weight_scale; /* sqrt(neq_full/neq): IDA's error weights times it (error_weights) */
 };
+
+int rs_transient_neq(const rs_model *m, const rs_thermal *thermal)
+{
+  return m->lay.neq + (thermal ? rs_thermal_nstate(thermal) : 0);
+}
 
 /* IDA's own counters since the last (re)initialisation. */
 static void ida_counters(const rs_transient *tr, rs_stats *st)
@@ -47,7 +66,8 @@ static void ida_counters(const rs_transient *tr, rs_stats *st)
   IDAGetNumResEvals(tr->ida, &st->res_evals);
 }
 
-/* IDA's error weights in 3D: 1/(rtol |v| + atol) for both components of a cell's traction
+/* IDA's error weights, 1/(rtol |y| + atol) (2D with the temperature modes; without them 2D
+ * leaves the weights to IDA). 3D: 1/(rtol |v| + atol) for both components of a cell's traction
  * (and plastic displacement), |v| the vector's length, instead of each component's own size.
  * A component that is zero by symmetry (p_y of a slipping cell on the centre line) would be
  * held to atol, while its direction follows the slip direction and so the Newton solve's
@@ -58,8 +78,8 @@ static int error_weights(N_Vector yv, N_Vector ewt, void *data)
   const rs_layout *L = &tr->m->lay;
   const double *y = N_VGetArrayPointer(yv), *at = N_VGetArrayPointer(tr->atol);
   double *w = N_VGetArrayPointer(ewt);
-  for (int k = 0; k < L->neq; k++) w[k] = tr->rtol * fabs(y[k]) + at[k];
-  for (int I = 0; I < L->n; I++) {
+  for (int k = 0; k < tr->neq_full; k++) w[k] = tr->rtol * fabs(y[k]) + at[k];
+  for (int I = 0; I < L->n && L->ncomp == 2; I++) {
     const int vec[2][2] = {{rs_at_p(L, 0, I), rs_at_p(L, 1, I)},
                            {rs_at_upl(L, 0, I), rs_at_upl(L, 1, I)}};
     for (int q = 0; q < 2; q++) {
@@ -68,9 +88,15 @@ static int error_weights(N_Vector yv, N_Vector ewt, void *data)
       w[vec[q][1]] = tr->rtol * len + at[vec[q][1]];
     }
   }
-  for (int k = 0; k < L->neq; k++) {
+  /* With the temperature modes IDA's norm, an RMS over all unknowns, would average the contact's
+   * errors with the modes' (the fast ones masked out of the error test, but counted) and loosen
+   * the contact's error test by up to the square root of the counts' ratio: every weight times
+   * that root keeps the contact's part of the norm what it is without the modes, the slow
+   * modes' part adding to it. */
+  const double scale = tr->thermal ? tr->weight_scale : 1.0;
+  for (int k = 0; k < tr->neq_full; k++) {
     if (!(w[k] > 0.0)) return -1;
-    w[k] = 1.0 / w[k];
+    w[k] = scale / w[k];
   }
   return 0;
 }
@@ -102,7 +128,28 @@ static int dae_residual(sunrealtype t, N_Vector y, N_Vector yp, N_Vector rr, voi
                                     N_VGetArrayPointer(yp), tr->cj, N_VGetArrayPointer(rr));
   if (status != RS_OK && tr->gmres)
     rs_msg_set(&tr->work.msg, status, "%s", rs_krylov_error(&tr->kry));
+  if (status == RS_OK && tr->thermal) { /* this evaluation's heat sources, the modes' rows */
+    const int neq = tr->m->lay.neq;
+    const double *yv = N_VGetArrayPointer(y);
+    rs_thermal_sources(tr->thermal, tr->m, tr->gmres ? &tr->kry.w : &tr->work, yv, tr->fric,
+                       tr->plast, tr->q, tr->contact);
+    if (tr->tail_rows)
+      rs_thermal_dae_residual(tr->thermal, tr->in.velocity, tr->q, tr->contact, yv + neq,
+                              N_VGetArrayPointer(yp) + neq, N_VGetArrayPointer(rr) + neq);
+  }
   return status == RS_OK ? 0 : -1;
+}
+
+/* The modes' rows of a step, solved exactly at the converged contact point (nls_kinsol.h):
+ * the sources are those of the last residual evaluation, which was there. */
+static int solve_tail(void *data, double cj, const double *ypred, const double *yppred,
+                      double *ycor)
+{
+  rs_transient *tr = data;
+  const int neq = tr->m->lay.neq;
+  rs_thermal_dae_solve(tr->thermal, tr->in.velocity, tr->q, tr->contact, cj, ypred + neq,
+                       yppred + neq, tr->theta, ycor + neq);
+  return RS_OK;
 }
 
 void rs_transient_free(rs_transient *tr)
@@ -116,6 +163,12 @@ void rs_transient_free(rs_transient *tr)
   if (tr->y) N_VDestroy(tr->y);
   if (tr->yp) N_VDestroy(tr->yp);
   if (tr->atol) N_VDestroy(tr->atol);
+  if (tr->tmpl_c && tr->tmpl_c != tr->y) N_VDestroy(tr->tmpl_c);
+  free(tr->fric);
+  free(tr->plast);
+  free(tr->q);
+  free(tr->theta);
+  free(tr->contact);
   rs_work_free(&tr->work);
   if (tr->own_ctx) SUNContext_Free(&tr->own_ctx);
   free(tr);
@@ -142,26 +195,45 @@ int rs_transient_create(rs_transient **out, const rs_model *m, SUNContext ctx, d
   tr->frozen = o->frozen;
   const rs_layout *L = &m->lay;
   const int neq = L->neq;
+  tr->thermal = o->thermal;
+  tr->tail_rows = 1;
+  tr->weight_scale = sqrt((double)rs_transient_neq(m, o->thermal) / m->lay.neq);
+  tr->neq_full = rs_transient_neq(m, o->thermal);
+  const int nfull = tr->neq_full;
   N_Vector id = NULL; /* differential/algebraic components (force control) */
-  tr->y = N_VNew_Serial(neq, ctx);
-  tr->yp = N_VNew_Serial(neq, ctx);
-  tr->atol = N_VNew_Serial(neq, ctx);
+  tr->y = N_VNew_Serial(nfull, ctx);
+  tr->yp = N_VNew_Serial(nfull, ctx);
+  tr->atol = N_VNew_Serial(nfull, ctx);
+  tr->tmpl_c = tr->thermal ? N_VNew_Serial(neq, ctx) : tr->y;
+  if (tr->thermal) {
+    const size_t n = (size_t)m->grid.n;
+    tr->fric = malloc(n * sizeof *tr->fric);
+    tr->plast = malloc(n * sizeof *tr->plast);
+    tr->q = malloc(n * sizeof *tr->q);
+    tr->contact = malloc(n);
+    tr->theta = malloc((size_t)(nfull - neq) * sizeof *tr->theta);
+    if (!tr->fric || !tr->plast || !tr->q || !tr->theta || !tr->contact || !tr->tmpl_c) {
+      rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory (transient solver, temperature modes)");
+      goto fail;
+    }
+  }
   /* Linear algebra: the Schur-complement solver (linsys_reduced.h) whenever a 2D model
    * has the per-cell unknowns only, KLU on the whole matrix otherwise (as the steady
    * solver does); 3D: Newton-Krylov (the dense elastic block is 2N x 2N). */
   const int krylov = m->el.dim == 3;
   const rs_linear linear = krylov ? RS_LINEAR_KRYLOV : L->nextra > 0 ? RS_LINEAR_KLU : o->linear;
   if (!tr->y || !tr->yp || !tr->atol || rs_work_create(&tr->work, m) != RS_OK ||
-      (!krylov && rs_linsys_create(&tr->ls, m, tr->y, ctx) != RS_OK)) {
-    rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory (transient solver, %d unknowns)", neq);
+      (!krylov && rs_linsys_create(&tr->ls, m, tr->tmpl_c, ctx) != RS_OK)) {
+    rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory (transient solver, %d unknowns)", nfull);
     goto fail;
   }
   /* IDA's work vectors are clones of y: they inherit the optimised kernels. */
   RS_SUN_CHECK(rs_nvector_fast_ops(tr->y), msg, what);
   RS_SUN_CHECK(rs_nvector_fast_ops(tr->yp), msg, what);
   RS_SUN_CHECK(rs_nvector_fast_ops(tr->atol), msg, what);
-  memcpy(N_VGetArrayPointer(tr->y), y0, (size_t)neq * sizeof *y0);
-  memcpy(N_VGetArrayPointer(tr->yp), yp0, (size_t)neq * sizeof *yp0);
+  if (tr->thermal) RS_SUN_CHECK(rs_nvector_fast_ops(tr->tmpl_c), msg, what);
+  memcpy(N_VGetArrayPointer(tr->y), y0, (size_t)nfull * sizeof *y0);
+  memcpy(N_VGetArrayPointer(tr->yp), yp0, (size_t)nfull * sizeof *yp0);
   /* Absolute tolerances: tractions in N/mm^2 as given; plastic displacements in mm,
    * scaled to the contact size (docs/model.md §9: about 1e-4 rtol a). */
   double *at = N_VGetArrayPointer(tr->atol);
@@ -169,10 +241,34 @@ int rs_transient_create(rs_transient **out, const rs_model *m, SUNContext ctx, d
   for (int k = rs_at_upl(L, 0, 0); k < rs_at_extra(L, 0); k++) at[k] = 1e-4 * o->rtol * m->hertz_a;
   /* friction memory: mu is of order 0.1 to 1 */
   for (int k = 0; k < L->n && L->memory; k++) at[rs_at_mu(L, k)] = 1e-3 * o->rtol;
+  /* temperature modes (the fast ones out of the error test, below): each mode's share of the
+   * temperature to rtol kelvin,
+   * |w_k theta_k|/(beta sqrt(V)) (the rate-0 mode with w_0) */
+  if (tr->thermal) {
+    const rs_thermal *th = tr->thermal;
+    const int K = th->ker.nmodes, n = m->grid.n;
+    const double V = rs_history_max_abs(&m->par.velocity, t0, fmax(m->par.end_time, t0));
+    const double sv = V > 0.0 ? sqrt(V) : 1.0;
+    for (int b = 0; b < 2; b++)
+      for (int k = 0; k <= K; k++) {
+        const double wk = k == K ? th->ker.weight0 : th->ker.weight[k];
+        const double a = o->rtol * th->beta[b] * sv / wk;
+        for (int i = 0; i < n; i++) at[neq + (b * (K + 1) + k) * n + i] = a;
+      }
+  }
   /* With force control the creepage is an algebraic unknown fixed by a constraint on
    * differential ones (sum p dA = F_x): left out of the error test, as IDA allows. */
-  if (L->nextra > 0) {
-    id = N_VNew_Serial(neq, ctx);
+  /* The fast temperature modes are left out of the error test too: their sources are the heat
+   * of the contact, -p . v_s, whose slip velocity holds the BDF derivatives of the tractions,
+   * exact only to about the Newton error over the step; a mode that forgets within a few cells
+   * follows those sources as they come, and its error estimate does not fall with the step
+   * (friction memory's start of full sliding failed the error test at steps of 3e-13 s). Modes
+   * with a memory of FAST_MODE_CELLS cells or more (rate dx <= 1/FAST_MODE_CELLS, and the mode
+   * of rate 0) average the sources over their path and stay in the test: they carry the heat
+   * over the contact and set the steps where the contact alone would allow long ones (full
+   * sliding). docs/model.md §18; bench/RESULTS.md issue 43 for the choice. */
+  if (L->nextra > 0 || tr->thermal) {
+    id = N_VNew_Serial(nfull, ctx);
     RS_SUN_CHECK(id == NULL, msg, what);
     RS_SUN_CHECK(rs_nvector_fast_ops(id), msg, what);
     N_VConst(1.0, id);
@@ -180,13 +276,19 @@ int rs_transient_create(rs_transient **out, const rs_model *m, SUNContext ctx, d
       at[rs_at_extra(L, k)] = 1e-4 * o->rtol;
       N_VGetArrayPointer(id)[rs_at_extra(L, k)] = 0.0;
     }
+    const rs_thermal *th = tr->thermal;
+    const int K = th ? th->ker.nmodes : 0, n = m->grid.n;
+    for (int b = 0; th && b < 2; b++)
+      for (int k = 0; k < K; k++)
+        if (th->ker.rate[k] * th->dx > 1.0 / FAST_MODE_CELLS)
+          for (int i = 0; i < n; i++) N_VGetArrayPointer(id)[neq + (b * (K + 1) + k) * n + i] = 0.0;
   }
   if (linear == RS_LINEAR_DENSE || linear == RS_LINEAR_AUTO)
     RS_SUN_CHECK(rs_linsys_use_reduced(&tr->ls, m, &tr->work, ctx), msg, what);
   if (krylov) {
     /* GMRES with classical Gram-Schmidt, as the steady solver's (gmres.h): modified
      * Gram-Schmidt's sequential vector sums cost time for the same iteration counts. */
-    tr->gmres = rs_gmres_create(&tr->kry, tr->y, 60, 4, ctx);
+    tr->gmres = rs_gmres_create(&tr->kry, tr->tmpl_c, 60, 4, ctx);
     RS_SUN_CHECK(tr->gmres == NULL, msg, what);
     RS_SUN_CHECK(rs_krylov_create(&tr->kry, m, RS_KRYLOV_BAND_3D_TRANSIENT, RS_KRYLOV_BAND_3D_Y),
                  msg, what);
@@ -197,7 +299,13 @@ int rs_transient_create(rs_transient **out, const rs_model *m, SUNContext ctx, d
     rs_krylov_set_reuse(&tr->kry, 4.0, 2);
   }
   tr->cj = 0.0;
-  const rs_nls_host host = {.cj_slot = &tr->cj, .inputs_at = host_inputs, .ctx = tr};
+  const rs_nls_host host = {.cj_slot = &tr->cj,
+                            .inputs_at = host_inputs,
+                            .ctx = tr,
+                            .tail = tr->thermal ? solve_tail : NULL,
+                            .neq_full = nfull,
+                            .tail_rows = &tr->tail_rows,
+                            .weight_scale = 1.0 / tr->weight_scale};
   /* Newton-Krylov: the largest forcing term follows the tolerance, 30 rtol within [1e-3, 0.1]
    * (the term itself follows the Newton test, nls_kinsol.c). A loose tolerance's Newton test is
    * loose too, and a tight linear solve there only costs GMRES iterations; at tight tolerances
@@ -205,14 +313,14 @@ int rs_transient_create(rs_transient **out, const rs_model *m, SUNContext ctx, d
    * 2,017 failed solves). */
   const double forcing = fmin(0.1, fmax(1e-3, 30.0 * o->rtol));
   tr->nls = rs_nls_kinsol_create(m, &tr->work, &tr->ls, krylov ? &tr->kry : NULL, tr->gmres,
-                                 forcing, host, o->max_newton, tr->y, ctx);
+                                 forcing, host, o->max_newton, tr->tmpl_c, ctx);
   RS_SUN_CHECK(tr->nls == NULL, msg, what);
   tr->ida = IDACreate(ctx);
   RS_SUN_CHECK(tr->ida == NULL, msg, what);
   RS_SUN_CHECK(IDAInit(tr->ida, dae_residual, t0, tr->y, tr->yp), msg, what);
   RS_SUN_CHECK(IDASetUserData(tr->ida, tr), msg, what);
   tr->rtol = o->rtol;
-  if (L->ncomp == 2)
+  if (L->ncomp == 2 || tr->thermal)
     RS_SUN_CHECK(IDAWFtolerances(tr->ida, error_weights), msg, what);
   else
     RS_SUN_CHECK(IDASVtolerances(tr->ida, o->rtol, tr->atol), msg, what);
@@ -310,8 +418,8 @@ int rs_transient_advance(rs_transient *tr, double tout, double *y, double *yp, r
     return RS_ERR_SOLVER;
   }
   tr->t = tret;
-  memcpy(y, N_VGetArrayPointer(tr->y), (size_t)tr->m->lay.neq * sizeof *y);
-  memcpy(yp, N_VGetArrayPointer(tr->yp), (size_t)tr->m->lay.neq * sizeof *yp);
+  memcpy(y, N_VGetArrayPointer(tr->y), (size_t)tr->neq_full * sizeof *y);
+  memcpy(yp, N_VGetArrayPointer(tr->yp), (size_t)tr->neq_full * sizeof *yp);
   return RS_OK;
 }
 
@@ -325,8 +433,8 @@ int rs_transient_restart(rs_transient *tr, double t, const double *y, const doub
   tr->before_restart.nonlin_fails += seg.nonlin_fails;
   tr->before_restart.err_test_fails += seg.err_test_fails;
   tr->before_restart.res_evals += seg.res_evals;
-  memcpy(N_VGetArrayPointer(tr->y), y, (size_t)tr->m->lay.neq * sizeof *y);
-  memcpy(N_VGetArrayPointer(tr->yp), yp, (size_t)tr->m->lay.neq * sizeof *yp);
+  memcpy(N_VGetArrayPointer(tr->y), y, (size_t)tr->neq_full * sizeof *y);
+  memcpy(N_VGetArrayPointer(tr->yp), yp, (size_t)tr->neq_full * sizeof *yp);
   int flag = IDAReInit(tr->ida, t, tr->y, tr->yp);
   if (flag == 0 && isfinite(t_stop)) flag = IDASetStopTime(tr->ida, t_stop);
   if (flag != 0)

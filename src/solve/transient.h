@@ -11,6 +11,7 @@
 #include <sundials/sundials_context.h>
 
 #include "physics/model.h"
+#include "physics/thermal.h"
 #include "base/status.h"
 
 /* One SUNDIALS context per run: the driver creates it and every solver of the run
@@ -64,7 +65,16 @@ typedef struct rs_transient_opts {
   /* NULL, or inputs held at these values whatever the time (the steady solver's
    * pseudo-transient: the material rolls at the inputs of one time). */
   const rs_inputs *frozen;
+  /* NULL, or the surface temperature carried as DAE state (docs/model.md §18, "Heat
+   * memory"): y and y' then hold rs_thermal_nstate(thermal) mode values after the model's
+   * neq unknowns (rs_transient_neq). The contact rows do not depend on them: each step's
+   * contact system is solved as without them, then the modes' rows exactly
+   * (rs_thermal_dae_solve). Used from one solver at a time. */
+  rs_thermal *thermal;
 } rs_transient_opts;
+
+/* Unknowns of the integrated system: the model's neq, plus the temperature modes. */
+int rs_transient_neq(const rs_model *m, const rs_thermal *thermal);
 
 /* solver.rtol: auto (docs/model.md §9, "Tolerances"): the relative tolerance that keeps the
  * time integration's error below the grid's own discretisation error. 2D: 1e-6; 3D:

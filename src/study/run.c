@@ -94,7 +94,7 @@ static int write_record(run_state *s, double t, rs_diag *d, rs_msg *msg)
     s->mu[i] = s->y[rs_at_mu(L, i)];
   if (s->final && L->ncomp == 1)
     rs_fields_copy(s->final, s->m.grid.n, s->y, s->w.pn, s->slip, s->tauc, s->regime, s->mu);
-  /* quasi-steady: the temperature of this record's contact state (docs/model.md §18) */
+  /* from the modes of a transient, the steady march of the sources otherwise (§18) */
   rs_temperature_run_eval(&s->temp, &s->m, &s->w, &in, s->y, d);
   rs_record rec = {.time = t,
                    .Fx = d->Fx,
@@ -130,7 +130,8 @@ static int write_record(run_state *s, double t, rs_diag *d, rs_msg *msg)
                    .Mz_error = d->Mz_error,
                    .error_reliable = d->error_state == RS_ERROR_RELIABLE     ? 1
                                      : d->error_state == RS_ERROR_UNRELIABLE ? 0
-                                                                             : -1};
+                                                                             : -1,
+                   .temperature_modes = s->temp.modes ? s->y + L->neq : NULL};
   return s->out ? rs_output_write(s->out, &rec, msg) : RS_OK;
 }
 
@@ -221,7 +222,8 @@ static int run_transient(run_state *s, const rs_run_opts *o, rs_run_result *res,
                              .max_steps = c->max_steps,
                              .max_newton = 10,
                              .t_stop = fmin(rs_model_next_breakpoint(&s->m, t0), c->end_time),
-                             .interrupt = o->interrupt_flag};
+                             .interrupt = o->interrupt_flag,
+                             .thermal = s->temp.modes ? &s->temp.th : NULL};
   if (rig) {
     topts.step_hook = rs_rig_run_step;
     topts.hook_ctx = rig;
@@ -273,6 +275,8 @@ static int run_transient(run_state *s, const rs_run_opts *o, rs_run_result *res,
       rs_model_inputs_at(&s->m, t, &in);
       status = rs_model_project_state(&s->m, &s->w, &in, s->y, msg);
       if (status == RS_OK) status = rs_model_consistent_rates(&s->m, &s->w, &in, s->y, s->yp, msg);
+      if (status == RS_OK)
+        status = rs_temperature_run_rates(&s->temp, &s->m, &s->w, &in, s->y, s->yp, msg);
       if (status == RS_OK) status = rs_transient_restart(tr, t, s->y, s->yp, bp, msg);
     }
     rs_transient_get_stats(tr, &res->stats);
@@ -315,6 +319,9 @@ static int read_restart(run_state *s, const rs_run_opts *o, const char *out_path
       rs_restart_read(o->restart_path, &g, t0, s->y + rs_at_p(L, 0, 0), s->y + rs_at_upl(L, 0, 0),
                       s->y + rs_at_ustar(L, 0), L->memory ? s->y + rs_at_mu(L, 0) : NULL,
                       L->nextra ? s->y + rs_at_extra(L, 0) : NULL, msg);
+  if (status == RS_OK && s->temp.modes)
+    status = rs_restart_read_modes(o->restart_path, &g, 2 * (s->temp.th.ker.nmodes + 1),
+                                   s->y + L->neq, msg);
   if (status != RS_OK) return status;
   if (c->mode == RS_MODE_STEADY) { /* the stored state starts Newton at the case's inputs */
     *t0 = 0.0;
@@ -395,7 +402,13 @@ int rs_run(const rs_case *c, const rs_run_opts *o, rs_run_result *res, rs_msg *m
     res->grid_chosen = 1;
     res->accuracy_met = accuracy_reached;
   }
-  const int n = s.m.grid.n, neq = s.m.lay.neq;
+  if ((status = rs_temperature_run_create(&s.temp, c, &s.m, msg)) != RS_OK) {
+    free_state(&s);
+    return status;
+  }
+  /* A transient carries the temperature modes as DAE state after the model's unknowns. */
+  s.temp.modes = s.temp.on && c->mode == RS_MODE_TRANSIENT;
+  const int n = s.m.grid.n, neq = rs_transient_neq(&s.m, s.temp.modes ? &s.temp.th : NULL);
   res->mu = s.m.par.friction.mu;
   res->dx = s.m.grid.dx;
   res->rtol = c->rtol > 0.0 ? c->rtol : rs_transient_auto_rtol(&s.m);
@@ -410,10 +423,6 @@ int rs_run(const rs_case *c, const rs_run_opts *o, rs_run_result *res, rs_msg *m
     free(y_chosen);
     free_state(&s);
     return rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory for %d cells", n);
-  }
-  if ((status = rs_temperature_run_create(&s.temp, c, &s.m, msg)) != RS_OK) {
-    free_state(&s);
-    return status;
   }
   rs_model_rest_state(&s.m, s.y);
   if (y_chosen) memcpy(s.y, y_chosen, (size_t)neq * sizeof *s.y);
@@ -511,7 +520,8 @@ int rs_run(const rs_case *c, const rs_run_opts *o, rs_run_result *res, rs_msg *m
                          .hertz_load = s.m.normal_load,
                          .rtol = c->mode == RS_MODE_TRANSIENT ? res->rtol : 0.0,
                          .error_estimate = estimate,
-                         .grid_chosen = res->grid_chosen};
+                         .grid_chosen = res->grid_chosen,
+                         .temperature_modes = s.temp.modes ? 2 * (s.temp.th.ker.nmodes + 1) : 0};
   if (o->no_output)
     status = RS_OK;
   else if (o->append)
@@ -546,6 +556,12 @@ int rs_run(const rs_case *c, const rs_run_opts *o, rs_run_result *res, rs_msg *m
     rs_inputs in;
     rs_model_inputs_at(&s.m, t0, &in);
     status = rs_model_consistent_rates(&s.m, &s.w, &in, s.y, s.yp, msg);
+    /* the modes: steady ones from a steady start, else those read by a restart or rest (0),
+     * with their rates */
+    if (status == RS_OK && !o->restart_path && c->initial_state == RS_START_STEADY)
+      status = rs_temperature_run_steady_modes(&s.temp, &s.m, &s.w, &in, s.y, s.yp, msg);
+    else if (status == RS_OK)
+      status = rs_temperature_run_rates(&s.temp, &s.m, &s.w, &in, s.y, s.yp, msg);
   }
   if (status == RS_OK) {
     /* Appending: the file's last record already holds this state. */

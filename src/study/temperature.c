@@ -70,17 +70,51 @@ void rs_temperature_run_eval(rs_temperature_run *t, const rs_model *m, const rs_
                              const rs_inputs *in, const double *y, rs_diag *d)
 {
   if (!t->on) return;
-  const int n = m->grid.n;
-  const double frac = t->th.par.plastic_heat_fraction;
-  rs_model_power_densities(m, w, y, t->fric, t->plast);
-  /* N/(mm s) = N mm/(s mm^2) = 1e-3 W/mm^2 */
-  for (int i = 0; i < n; i++) {
-    t->contact[i] = w->pn[i] > 0.0;
-    t->q[i] = 1e-3 * (t->fric[i] + frac * t->plast[i]);
-  }
+  rs_thermal_sources(&t->th, m, w, y, t->fric, t->plast, t->q, t->contact);
   rs_thermal_result r;
-  rs_thermal_march(&t->th, in->velocity, t->q, t->contact, t->T1, t->T2, NULL, NULL, &r);
+  if (t->modes)
+    rs_thermal_state_eval(&t->th, in->velocity, t->q, t->contact, y + m->lay.neq, t->T1, t->T2,
+                          NULL, NULL, &r);
+  else
+    rs_thermal_march(&t->th, in->velocity, t->q, t->contact, t->T1, t->T2, NULL, NULL, &r);
   d->T_max = r.T_max;
   d->heat_input_1 = r.heat_input[0];
   d->heat_input_2 = r.heat_input[1];
+}
+
+/* The sources of the state (y, yp): the model evaluated there. */
+static int sources_at(rs_temperature_run *t, const rs_model *m, rs_work *w, const rs_inputs *in,
+                      const double *y, const double *yp, rs_msg *msg)
+{
+  const int status = rs_model_residual(m, w, in, y, yp, 0.0, NULL);
+  if (status != RS_OK) return rs_msg_set(msg, status, "%s", w->msg.text);
+  rs_thermal_sources(&t->th, m, w, y, t->fric, t->plast, t->q, t->contact);
+  return RS_OK;
+}
+
+int rs_temperature_run_steady_modes(rs_temperature_run *t, const rs_model *m, rs_work *w,
+                                    const rs_inputs *in, double *y, double *yp, rs_msg *msg)
+{
+  if (!t->modes) return RS_OK;
+  const int neq = m->lay.neq;
+  double *rest = calloc((size_t)neq, sizeof *rest);
+  if (!rest) return rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory for the steady modes");
+  const int status = sources_at(t, m, w, in, y, rest, msg);
+  free(rest);
+  if (status != RS_OK) return status;
+  rs_thermal_result r;
+  rs_thermal_march_state(&t->th, in->velocity, t->q, t->contact, t->T1, t->T2, NULL, NULL, &r,
+                         y + neq);
+  rs_thermal_dae_rates(&t->th, in->velocity, t->q, t->contact, y + neq, yp + neq);
+  return RS_OK;
+}
+
+int rs_temperature_run_rates(rs_temperature_run *t, const rs_model *m, rs_work *w,
+                             const rs_inputs *in, const double *y, double *yp, rs_msg *msg)
+{
+  if (!t->modes) return RS_OK;
+  const int status = sources_at(t, m, w, in, y, yp, msg);
+  if (status != RS_OK) return status;
+  rs_thermal_dae_rates(&t->th, in->velocity, t->q, t->contact, y + m->lay.neq, yp + m->lay.neq);
+  return RS_OK;
 }

@@ -16,6 +16,9 @@ typedef struct rs_temperature_run {
   double *q;            /* heat flux density into both bodies, W/mm^2 [n] */
   double *T1, *T2;      /* surface temperatures, degC [n] */
   signed char *contact; /* p_n > 0 [n] */
+  /* 1: a transient's modes are DAE state (docs/model.md §18, "Heat memory"), stored after
+   * the model's neq unknowns of y; 0: each state's temperature is the steady march's */
+  int modes;
 } rs_temperature_run;
 
 /* Nothing to do (on = 0) when the case has no temperature: block. */
@@ -23,9 +26,21 @@ int rs_temperature_run_create(rs_temperature_run *t, const rs_case *c, const rs_
                               rs_msg *msg);
 void rs_temperature_run_free(rs_temperature_run *t);
 /* The temperatures of the state y from a work evaluated at (in, y) (rs_model_diagnostics):
- * fills T1, T2 and d's T_max and heat inputs. */
+ * fills T1, T2 and d's T_max and heat inputs; with modes from the modes of y, else from the
+ * steady march of the sources. */
 void rs_temperature_run_eval(rs_temperature_run *t, const rs_model *m, const rs_work *w,
                              const rs_inputs *in, const double *y, rs_diag *d);
+
+/* With modes: the steady modes of the steady state y (rolling at in) into y after the
+ * model's unknowns, their rates (0) into yp: the march of the steady sources (those of y' = 0;
+ * the consistent rates of a steady state split the rates of cells at both bounds between slip
+ * and flow otherwise, by a few 1e-4 of the power). rs_temperature_run_rates: the consistent
+ * rates of the modes at (y, yp) into yp after the model's (the contact's rates consistent
+ * already). Each evaluates the model into w. */
+int rs_temperature_run_steady_modes(rs_temperature_run *t, const rs_model *m, rs_work *w,
+                                    const rs_inputs *in, double *y, double *yp, rs_msg *msg);
+int rs_temperature_run_rates(rs_temperature_run *t, const rs_model *m, rs_work *w,
+                             const rs_inputs *in, const double *y, double *yp, rs_msg *msg);
 
 /* rollsim check: beta of each body, the kernel's modes and error, and the Peclet number
  * V a/(2 kappa) of each body at t = 0 (docs/model.md §18). Nothing without the block. */
