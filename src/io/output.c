@@ -136,9 +136,7 @@ static int def_rig_var(int ncid, const char *name, int dim, const char *units,
   return NC_NOERR;
 }
 
-/* The error estimate's record variables (docs/file-format.md): the flag first, so that the
- * last record variable stays a double. */
-static int define_errors(rs_output *out, int time_dim, int three_d)
+int rs_output_define_error_vars(int ncid, int ndims, const int *dims, int three_d, int ids[5])
 {
   static const char *const names[5] = {"error_reliable", "Fx_error", "traction_coefficient_error",
                                        "Fy_error", "Mz_error"};
@@ -150,20 +148,26 @@ static int define_errors(rs_output *out, int time_dim, int three_d)
       "estimated discretisation error of Fy (magnitude)",
       "estimated discretisation error of Mz (magnitude)"};
   const char *units[5] = {"1", three_d ? "N" : "N/mm", "1", "N", "N mm"};
-  const int ncid = out->ncid;
   const double fill = NAN;
   int err = 0;
   for (int k = 0; k < 5 && !err; k++) {
-    out->error_id[k] = -1;
+    ids[k] = -1;
     if (k >= 3 && !three_d) continue;
-    err = nc_def_var(ncid, names[k], k ? NC_DOUBLE : NC_INT, 1, &time_dim, &out->error_id[k]);
-    if (!err) err = rs_output_put_text(ncid, out->error_id[k], "units", units[k]);
-    if (!err) err = rs_output_put_text(ncid, out->error_id[k], "long_name", long_names[k]);
-    if (!err && k)
-      err = nc_put_att_double(ncid, out->error_id[k], "_FillValue", NC_DOUBLE, 1, &fill);
+    err = nc_def_var(ncid, names[k], k ? NC_DOUBLE : NC_INT, ndims, dims, &ids[k]);
+    if (!err) err = rs_output_put_text(ncid, ids[k], "units", units[k]);
+    if (!err) err = rs_output_put_text(ncid, ids[k], "long_name", long_names[k]);
+    if (!err && k) err = nc_put_att_double(ncid, ids[k], "_FillValue", NC_DOUBLE, 1, &fill);
     if (!err && !k)
-      err = nc_put_att_int(ncid, out->error_id[k], "valid_range", NC_INT, 2, (const int[]){-1, 1});
+      err = nc_put_att_int(ncid, ids[k], "valid_range", NC_INT, 2, (const int[]){-1, 1});
   }
+  return err;
+}
+
+/* The error estimate's record variables (docs/file-format.md): the flag first, so that the
+ * last record variable stays a double. */
+static int define_errors(rs_output *out, int time_dim, int three_d)
+{
+  const int err = rs_output_define_error_vars(out->ncid, 1, &time_dim, three_d, out->error_id);
   out->has_errors = !err;
   return err;
 }

@@ -43,6 +43,12 @@ extern const rs_scalar_var rs_scalar_vars_3d[RS_N_SCALARS_3D];
 #define RS_N_TEMPERATURE_FIELDS 2
 extern const rs_scalar_var rs_temperature_vars[RS_N_TEMPERATURE_VARS];
 
+/* Defines the error estimate's variables error_reliable, Fx_error,
+ * traction_coefficient_error and, in 3D, Fy_error, Mz_error over dims [ndims] (docs/file-format.md)
+ * with their units, long names and fill values; ids[5] gets their ids, -1 for those not made.
+ * A netCDF status. */
+int rs_output_define_error_vars(int ncid, int ndims, const int *dims, int three_d, int ids[5]);
+
 /* Name of field f's variable: component comp (0, or 1 for the y component of the 3D
  * vector fields px, slip, upl); NULL when the field has no such component. */
 const char *rs_field_name(int f, int three_d, int comp);

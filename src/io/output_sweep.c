@@ -190,28 +190,7 @@ static const char *const error_names[5] = {"error_reliable", "Fx_error",
                                            "traction_coefficient_error", "Fy_error", "Mz_error"};
 static int define_errors(rs_sweep_output *o, const rs_sweep_output_spec *spec, const int *dims)
 {
-  static const char *const long_names[5] = {
-      "1: the error estimate's observed order lies in the asymptotic band; 0: it does not (the "
-      "conservative fallback); -1: no estimate",
-      "estimated discretisation error of Fx (magnitude)",
-      "estimated discretisation error of Fx/Fn (magnitude)",
-      "estimated discretisation error of Fy (magnitude)",
-      "estimated discretisation error of Mz (magnitude)"};
-  const int three = spec->dimension == 3;
-  const char *units[5] = {"1", three ? "N" : "N/mm", "1", "N", "N mm"};
-  const double fill = NAN;
-  int err = 0;
-  for (int k = 0; k < (three ? 5 : 3) && !err; k++) {
-    err = nc_def_var(o->ncid, error_names[k], k ? NC_DOUBLE : NC_INT, spec->naxes, dims,
-                     &o->err_id[k]);
-    if (!err) err = rs_output_put_text(o->ncid, o->err_id[k], "long_name", long_names[k]);
-    if (!err) err = rs_output_put_text(o->ncid, o->err_id[k], "units", units[k]);
-    if (!err && k)
-      err = nc_put_att_double(o->ncid, o->err_id[k], "_FillValue", NC_DOUBLE, 1, &fill);
-    if (!err && !k)
-      err = nc_put_att_int(o->ncid, o->err_id[k], "valid_range", NC_INT, 2, (const int[]){-1, 1});
-  }
-  return err;
+  return rs_output_define_error_vars(o->ncid, spec->naxes, dims, spec->dimension == 3, o->err_id);
 }
 
 static void free_output(rs_sweep_output *o)
