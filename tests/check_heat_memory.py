@@ -50,23 +50,10 @@ import sys
 import netCDF4
 import numpy as np
 
-failures = 0
+from temperature_checks import Checks, run
+
+check = Checks()
 V = 30000.0  # mm/s, the Carter cases' rolling velocity
-
-
-def check(ok, what, got, want):
-    global failures
-    print(f"{'ok  ' if ok else 'FAIL'} {what}: got {got!r}, want {want!r}")
-    failures += not ok
-
-
-def run(rollsim, args, out):
-    cmd = [rollsim] + args + ["-o", out, "--quiet"]
-    r = subprocess.run(cmd, capture_output=True, text=True)
-    if r.returncode != 0:
-        print("FAIL", " ".join(cmd), r.stdout, r.stderr)
-        sys.exit(1)
-    return netCDF4.Dataset(out)
 
 
 def limit(rollsim, case, extra, what, out):
@@ -214,8 +201,8 @@ def main():
               "<= 1e-10")
 
     restart(rollsim, cases, out)
-    print(f"{'passed' if not failures else 'FAILED'}: {failures} failure(s)")
-    return 1 if failures else 0
+    print(f"{'passed' if not check.failures else 'FAILED'}: {check.failures} failure(s)")
+    return 1 if check.failures else 0
 
 
 if __name__ == "__main__":

@@ -42,24 +42,11 @@ import csv
 import netCDF4
 import numpy as np
 
+from temperature_checks import Checks, run
+
 POST = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "postproc", "rollsim_post.py")
 
-failures = 0
-
-
-def check(ok, what, got, want):
-    global failures
-    print(f"{'ok  ' if ok else 'FAIL'} {what}: got {got!r}, want {want!r}")
-    failures += not ok
-
-
-def run(rollsim, args, out):
-    cmd = [rollsim] + args + ["-o", out, "--quiet"]
-    r = subprocess.run(cmd, capture_output=True, text=True)
-    if r.returncode != 0:
-        print("FAIL", " ".join(cmd), r.stdout, r.stderr)
-        sys.exit(1)
-    return netCDF4.Dataset(out)
+check = Checks()
 
 
 def energy(d, frac, what):
@@ -184,8 +171,8 @@ def main():
     names = [v for v in ("T1", "T2", "T_max", "heat_input_1", "heat_input_2") if v in dn.variables]
     check(not names, "no temperature: block, no temperature variables", names, [])
 
-    print(f"{'passed' if not failures else 'FAILED'}: {failures} failure(s)")
-    return 1 if failures else 0
+    print(f"{'passed' if not check.failures else 'FAILED'}: {check.failures} failure(s)")
+    return 1 if check.failures else 0
 
 
 if __name__ == "__main__":
