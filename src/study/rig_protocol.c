@@ -136,6 +136,8 @@ static int revolution_heat(rs_rig_run *r, size_t rev, double T)
     if (mass > 0.0)
       th->par.bulk[b] += r->rev_heat[b] * width / (mass * c->temperature.heat_capacity[b]);
   }
+  r->res->rig_bulk[0] = th->par.bulk[0];
+  r->res->rig_bulk[1] = th->par.bulk[1];
   const double v[7] = {isfinite(r->rev_T_max) ? r->rev_T_max : NAN,
                        r->rev_inlet[0] / T,
                        r->rev_inlet[1] / T,
