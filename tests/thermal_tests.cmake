@@ -22,4 +22,5 @@ add_test(NAME temperature_heat_memory
 # lumped bulk temperatures (docs/model.md §18 "Twin-disc rig", docs/verification.md 28).
 add_test(NAME temperature_rig_heat
   COMMAND ${SYSTEM_PYTHON3} ${RS_TESTS}/check_rig_heat.py ${RS_BIN}
-          ${RS_CASES}/twin_disc_temperature.yaml ${CMAKE_CURRENT_BINARY_DIR}/rig_heat)
+          ${RS_CASES}/twin_disc_temperature.yaml ${CMAKE_CURRENT_BINARY_DIR}/rig_heat
+          ${RS_CASES}/twin_disc_crowned.yaml)
