@@ -22,6 +22,8 @@
 #   hertz3d_traction.png    the same ellipse with a plastic layer at xi = -0.1 %, eta = 0.05 %,
 #                           spin 1e-4 1/mm: |p| with arrows and the Hertz ellipse (steady)
 #   hertz3d_regimes.png     its regimes (adhesion, slip, plastic)
+#   twin_disc_temperature.png cases/twin_disc_temperature.yaml: a twin-disc rig's traction and
+#                           surface temperatures per revolution (rollsim run, 30 revolutions)
 set -eu
 
 ROOT=$(cd "$(dirname "$0")/.." && pwd)
@@ -78,5 +80,11 @@ fi
 "$PY" "$POST" map "$DATA/hertz3d_plastic.nc" --field regime \
     -o "$OUT/hertz3d_regimes.png" --data "$DATA/hertz3d_regimes.csv"
 
+# A twin-disc rig with surface temperature: the heated track comes around every revolution.
+"$RS" run "$ROOT/cases/twin_disc_temperature.yaml" -o "$DATA/twin_disc_temperature.nc" --quiet >/dev/null
+"$PY" "$POST" rig "$DATA/twin_disc_temperature.nc" -o "$OUT/twin_disc_temperature.png" \
+    --data "$DATA/twin_disc_temperature.csv"
+
 echo "wrote $OUT/default_history.png $OUT/fig7_carter_plastic.png $OUT/fig8_meierhofer.png $OUT/fig9_creep_curves.png" \
-    "$OUT/hertz3d_creep.png $OUT/hertz3d_traction.png $OUT/hertz3d_regimes.png"
+    "$OUT/hertz3d_creep.png $OUT/hertz3d_traction.png $OUT/hertz3d_regimes.png" \
+    "$OUT/twin_disc_temperature.png"

@@ -57,6 +57,13 @@ add_test(NAME pp_run_rig
   COMMAND ${RS_BIN} run ${PROJECT_SOURCE_DIR}/tests/cases/twin_disc_small.yaml -o ${PP_RIG} --quiet
     --set "twin_disc.protocol=[{slip: 0.005, revolutions: 3}, {slip: 0.01, revolutions: 3}]")
 set_tests_properties(pp_run_rig PROPERTIES FIXTURES_SETUP pp_rig)
+# The same with surface temperature and lumped discs: the third panel, the temperatures per revolution.
+set(PP_RIG_T ${CMAKE_CURRENT_BINARY_DIR}/pp_rig_temperature.nc)
+add_test(NAME pp_run_rig_temperature
+  COMMAND ${RS_BIN} run ${PROJECT_SOURCE_DIR}/tests/cases/twin_disc_small.yaml -o ${PP_RIG_T} --quiet
+    --set "twin_disc.protocol=[{slip: 0.005, revolutions: 3}, {slip: 0.01, revolutions: 3}]"
+    --set "temperature={bulk: 20, disc_mass: 0.136}")
+set_tests_properties(pp_run_rig_temperature PROPERTIES FIXTURES_SETUP pp_rig_temperature)
 
 # Synthetic sweep files (the layout of docs/file-format.md) and a run
 # file without records.
@@ -92,6 +99,7 @@ list(GET PP_CREEP_FILES 0 PP_STEADY)
 pp_figure(pp_fig_history_steady pp_creep history_steady.png history ${PP_STEADY})
 
 pp_figure(pp_fig_rig pp_rig rig.png rig ${PP_RIG})
+pp_figure(pp_fig_rig_temperature pp_rig_temperature rig_temperature.png rig ${PP_RIG_T})
 
 # What the 2D figures draw (their --data CSV) against the files, read independently.
 set(PP_DRAWN ${SYSTEM_PYTHON3} ${PP_TESTS}/check_drawn.py)
@@ -106,7 +114,9 @@ add_test(NAME pp_drawn_plastic COMMAND ${PP_DRAWN} plastic ${PP_PLASTIC} ${PP_OU
 add_test(NAME pp_drawn_creepcurve COMMAND ${PP_DRAWN} creep ${PP_OUT}/creepcurve.png.csv
   ${PP_CREEP_FILES})
 add_test(NAME pp_drawn_rig COMMAND ${PP_DRAWN} rig ${PP_RIG} ${PP_OUT}/rig.png.csv)
-foreach(t traction traction_plastic regimes regimes_plastic plastic creepcurve rig)
+add_test(NAME pp_drawn_rig_temperature COMMAND ${PP_DRAWN} rig ${PP_RIG_T}
+  ${PP_OUT}/rig_temperature.png.csv)
+foreach(t traction traction_plastic regimes regimes_plastic plastic creepcurve rig rig_temperature)
   set_tests_properties(pp_drawn_${t} PROPERTIES FIXTURES_REQUIRED pp_fig_${t})
 endforeach()
 

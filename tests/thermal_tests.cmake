@@ -16,3 +16,11 @@ add_test(NAME temperature_check_derived COMMAND ${SYSTEM_PYTHON3} ${RS_TESTS}/cl
 add_test(NAME temperature_heat_memory
   COMMAND ${SYSTEM_PYTHON3} ${RS_TESTS}/check_heat_memory.py ${RS_BIN} ${RS_CASES}
           ${CMAKE_CURRENT_BINARY_DIR}/heat_memory)
+# The twin-disc rig's heating: the heated track comes around again (the modes re-entering after
+# each disc's period), against the 1D conduction of the earlier passages' heat pulses, with and
+# without a convective loss; no heat at slip 0; heat into the discs = energy dissipated, and the
+# lumped bulk temperatures (docs/model.md §18 "Twin-disc rig", docs/verification.md 28).
+add_test(NAME temperature_rig_heat
+  COMMAND ${SYSTEM_PYTHON3} ${RS_TESTS}/check_rig_heat.py ${RS_BIN}
+          ${RS_CASES}/twin_disc_temperature.yaml ${CMAKE_CURRENT_BINARY_DIR}/rig_heat
+          ${RS_CASES}/twin_disc_crowned.yaml)

@@ -449,9 +449,12 @@ class RigResults:
     """Twin-disc summaries of a rollsim run (twin_disc: block): per protocol step and
     per revolution of disc 1. Steps or revolutions not reached are NaN (dropped)."""
 
-    def __init__(self, step_slip, step_mu, rev_index, rev_slip, rev_mu):
+    def __init__(self, step_slip, step_mu, rev_index, rev_slip, rev_mu, rev_temperature=None):
         self.step_slip, self.step_mu = step_slip, step_mu
         self.rev_index, self.rev_slip, self.rev_mu = rev_index, rev_slip, rev_mu
+        # with a temperature: block, {variable name: per revolution} (revolution_T_max, the
+        # inlet temperatures, the bulk temperatures with disc_mass), else None
+        self.rev_temperature = rev_temperature
 
 
 def rig_results(run):
@@ -467,5 +470,11 @@ def rig_results(run):
     rev_done = np.isfinite(rev_mu)
     if not rev_done.any():
         raise PostError(f"{run.path}: no revolution completed yet")
+    temps = None
+    if run.has("revolution_T_max"):
+        names = ["revolution_T_max", "revolution_inlet_temperature_1",
+                 "revolution_inlet_temperature_2", "revolution_bulk_temperature_1",
+                 "revolution_bulk_temperature_2"]
+        temps = {n: np.asarray(run.values(n), dtype=float)[rev_done] for n in names if run.has(n)}
     return RigResults(step_slip[done], step_mu[done], np.nonzero(rev_done)[0] + 1,
-                      rev_slip[rev_done], rev_mu[rev_done])
+                      rev_slip[rev_done], rev_mu[rev_done], temps)

@@ -497,9 +497,14 @@ def plot_sweep_plastic(panels, title, out, rec=None):
 
 def plot_rig(rig, title, out, rec=None):
     """Twin-disc: traction coefficient per protocol step against slip (a rig's curve),
-    and per revolution with the slip on a second axis."""
+    and per revolution with the slip on a second axis; with a temperature: block a third
+    panel, the surface temperatures per revolution."""
     rec = rec or Recorder()
-    fig, (a1, a2) = plt.subplots(1, 2, figsize=(11.0, 4.4), layout="constrained")
+    temps = rig.rev_temperature
+    if temps:
+        fig, (a1, a2, a3) = plt.subplots(1, 3, figsize=(15.5, 4.4), layout="constrained")
+    else:
+        fig, (a1, a2) = plt.subplots(1, 2, figsize=(11.0, 4.4), layout="constrained")
     a1.set_title("per protocol step", fontsize=10)
     a2.set_title("per revolution (mean)", fontsize=10)
     rec.line(a1, 0, 100.0 * rig.step_slip, rig.step_mu, "o-", ms=5, series="step",
@@ -517,6 +522,21 @@ def plot_rig(rig, title, out, rec=None):
             100.0 * rig.rev_slip)
     b.plot(rig.rev_index, 100.0 * rig.rev_slip, "--", color="C1")
     b.set_ylabel("slip [%]", color="C1")
+    if temps:
+        a3.set_title("surface temperature per revolution", fontsize=10)
+        labels = {"revolution_T_max": ("largest in the contact", "-", "C3"),
+                  "revolution_inlet_temperature_1": ("entering the contact: disc 1", "-", "C0"),
+                  "revolution_inlet_temperature_2": ("entering the contact: disc 2", ":", "C2"),
+                  "revolution_bulk_temperature_1": ("bulk: disc 1", "--", "C0"),
+                  "revolution_bulk_temperature_2": ("bulk: disc 2", "-.", "C2")}
+        for name, (label, style, colour) in labels.items():
+            if name in temps:
+                rec.line(a3, 2, rig.rev_index, temps[name], style, color=colour, series=label,
+                         quantity="temperature_degC")
+        a3.set_xlabel("revolution of disc 1")
+        a3.set_ylabel("temperature [°C]")
+        a3.grid(alpha=0.25)
+        a3.legend(fontsize=8)
     if title:
         fig.suptitle(title, fontsize=11)
     save(fig, out)

@@ -184,6 +184,18 @@ def rig(path, csv_path):
     sl = groups.get((1, "revolution", "slip_percent"))
     check("per revolution: slip in % (1 ulp)",
           sl is not None and same(sl["x"], idx) and within_ulp(sl["y"], 100.0 * r_slip[rdone]))
+    # with a temperature: block, the third panel: each temperature per revolution as stored
+    series = {"revolution_T_max": "largest in the contact",
+              "revolution_inlet_temperature_1": "entering the contact: disc 1",
+              "revolution_inlet_temperature_2": "entering the contact: disc 2",
+              "revolution_bulk_temperature_1": "bulk: disc 1",
+              "revolution_bulk_temperature_2": "bulk: disc 2"}
+    with netCDF4.Dataset(path) as ds:
+        stored = {n: var(ds, n) for n in series if n in ds.variables}
+    for name, values in stored.items():
+        got = groups.get((2, series[name], "temperature_degC"))
+        check(f"per revolution: {name}", got is not None and same(got["x"], idx)
+              and same(got["y"], values[rdone]), f"{int(rdone.sum())} revolutions")
 
 
 def law_of(case_text):

@@ -288,6 +288,11 @@ static void print_summary(const rs_case *c, const cli_args *a, const rs_run_resu
     printf("  T_max = %.4g degC   (heat into body 1/2: %.6g/%.6g %s; bulk %g/%g degC)\n", d->T_max,
            d->heat_input_1, d->heat_input_2, three ? "W" : "W/mm", c->temperature.bulk[0],
            c->temperature.bulk[1]);
+  if (c->temperature.on && c->rig.on && res->rig_revolutions > 0 &&
+      (c->temperature.disc_mass[0] > 0.0 || c->temperature.disc_mass[1] > 0.0))
+    printf(
+        "  disc bulk temperatures after revolution %.0f: %.4f/%.4f degC (temperature.disc_mass)\n",
+        res->rig_revolutions, res->rig_bulk[0], res->rig_bulk[1]);
   /* A falling law can have several steady states: say which one this is. */
   if (rs_friction_varies(&c->friction) && c->mode == RS_MODE_STEADY)
     printf("  friction law %s (mu = %g at rest); steady branch: %s\n",

@@ -63,6 +63,7 @@ static void set_defaults(rs_case_input *in)
   in->t_conductivity = (rs_case_vec){1, {50e-3, 0.0}};
   in->t_heat_capacity = (rs_case_vec){1, {450.0, 0.0}};
   in->t_density = (rs_case_vec){1, {7.85e-6, 0.0}};
+  in->t_disc_mass = (rs_case_vec){1, {0.0, 0.0}};
   c->temperature.plastic_heat_fraction = 1.0;
   c->temperature.kernel_tolerance = 1e-3;
 }
@@ -171,6 +172,16 @@ static int resolve_temperature(const resolver *r, rs_case_input *in)
     dst[k][0] = v[k]->v[0];
     dst[k][1] = v[k]->n == 2 ? v[k]->v[1] : v[k]->v[0];
   }
+  t->disc_mass[0] = in->t_disc_mass.v[0];
+  t->disc_mass[1] = in->t_disc_mass.n == 2 ? in->t_disc_mass.v[1] : in->t_disc_mass.v[0];
+  /* the discs' cooling and bulk heating act between the contacts of a twin-disc rig */
+  const char *rig_keys[2] = {"temperature.convection", "temperature.disc_mass"};
+  const int rig_on[2] = {t->convection > 0.0, t->disc_mass[0] > 0.0 || t->disc_mass[1] > 0.0};
+  for (int k = 0; k < 2; k++)
+    if (rig_on[k] && (!in->c.rig.on || in->c.mode != RS_MODE_TRANSIENT))
+      return rs_case_error(r->d, given(r, rig_keys[k]), rig_keys[k],
+                           "acts between the contacts of a twin-disc rig: it needs a twin_disc: "
+                           "block and simulation.mode: transient (give 0 or leave it out)");
   return RS_OK;
 }
 
@@ -947,7 +958,8 @@ void rs_case_print(const rs_case *c, FILE *out)
       .t_bulk = {2, {c->temperature.bulk[0], c->temperature.bulk[1]}},
       .t_conductivity = {2, {c->temperature.conductivity[0], c->temperature.conductivity[1]}},
       .t_heat_capacity = {2, {c->temperature.heat_capacity[0], c->temperature.heat_capacity[1]}},
-      .t_density = {2, {c->temperature.density[0], c->temperature.density[1]}}};
+      .t_density = {2, {c->temperature.density[0], c->temperature.density[1]}},
+      .t_disc_mass = {2, {c->temperature.disc_mass[0], c->temperature.disc_mass[1]}}};
   char num[32];
   for (size_t i = 0; i < rs_case_nkeys; i++) {
     const rs_case_key *k = &rs_case_keys[i];

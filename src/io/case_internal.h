@@ -120,6 +120,7 @@ typedef struct rs_case_input {
   rs_case_vec mu_excess, half_velocity; /* friction: one or two terms */
   int force_n; /* rolling.tangential_force: 1 history, or 2 ([Fx, Fy], 3D) */
   rs_case_vec t_bulk, t_conductivity, t_heat_capacity, t_density; /* temperature: per body */
+  rs_case_vec t_disc_mass;                                        /* temperature.disc_mass */
 } rs_case_input;
 
 typedef struct rs_case_key {

@@ -146,6 +146,10 @@ const rs_case_key rs_case_keys[] = {
      0, 1, RS_KEY_NULLABLE, NULL},
     {"temperature.kernel_tolerance", RS_KEY_NUMBER, F(c.temperature.kernel_tolerance), "", 1e-8,
      0.1, RS_KEY_NULLABLE, NULL},
+    {"temperature.convection", RS_KEY_NUMBER, F(c.temperature.convection), "W/(mm^2 K)", 0, 1,
+     RS_KEY_HI_ABSURD | RS_KEY_NULLABLE, NULL},
+    {"temperature.disc_mass", RS_KEY_VECTOR, F(t_disc_mass), "kg", 0, 1e4,
+     RS_KEY_HI_ABSURD | RS_KEY_BODIES | RS_KEY_NULLABLE, NULL},
 
     {"simulation", RS_KEY_SECTION, 0, "", 0, 0, 0, NULL},
     {"simulation.mode", RS_KEY_CHOICE, F(c.mode), "", 0, 0, 0, mode_names},

@@ -218,6 +218,30 @@ static int define_rig(rs_output *out, const rs_output_rig *rig)
     if ((err = def_rig_var(ncid, vars[i].name, vars[i].dim, vars[i].units, vars[i].long_name,
                            vars[i].id)))
       return err;
+  /* with a temperature: block (docs/model.md §18, "Twin-disc rig") */
+  const char *en = out->three_d ? "J" : "J/mm";
+  const struct {
+    const char *name, *units, *long_name;
+  } tvars[7] = {
+      {"revolution_T_max", "degC",
+       "largest surface temperature in the contact over the revolution (at the accepted steps)"},
+      {"revolution_inlet_temperature_1", "degC",
+       "surface temperature of disc 1 entering the contact, mean over the revolution"},
+      {"revolution_inlet_temperature_2", "degC",
+       "surface temperature of disc 2 entering the contact, mean over the revolution"},
+      {"revolution_heat_input_1", en, "heat flowing into disc 1 over the revolution"},
+      {"revolution_heat_input_2", en, "heat flowing into disc 2 over the revolution"},
+      {"revolution_bulk_temperature_1", "degC",
+       "bulk temperature of disc 1 at the end of the revolution (temperature.disc_mass)"},
+      {"revolution_bulk_temperature_2", "degC",
+       "bulk temperature of disc 2 at the end of the revolution (temperature.disc_mass)"}};
+  for (int k = 0; k < 7; k++) {
+    out->rev_temp_id[k] = -1;
+    if (!rig->temperature || (k >= 5 && !rig->bulk)) continue;
+    if ((err = def_rig_var(ncid, tvars[k].name, rdim, tvars[k].units, tvars[k].long_name,
+                           &out->rev_temp_id[k])))
+      return err;
+  }
   if ((err = nc_put_att_double(ncid, NC_GLOBAL, "twin_disc_revolution_time", NC_DOUBLE, 1,
                                &rig->revolution_time)) ||
       (err =
@@ -247,6 +271,8 @@ static int write_rig_meta(rs_output *out, const rs_output_rig *rig)
   const int ids[7] = {out->step_mu_id,    out->step_slip_id, out->rev_mu_id,       out->rev_slip_id,
                       out->rev_energy_id, out->rev_ustar_id, out->rev_ustar_max_id};
   for (int k = 0; k < 7 && !err; k++) err = nc_put_var_double(ncid, ids[k], buf);
+  for (int k = 0; k < 7 && !err; k++)
+    if (out->rev_temp_id[k] >= 0) err = nc_put_var_double(ncid, out->rev_temp_id[k], buf);
   free(buf);
   return err;
 }
@@ -284,6 +310,19 @@ int rs_output_put_revolution_energy(rs_output *out, size_t i, double energy, dou
        (err = nc_sync(out->ncid))))
     status = rs_output_nc_failure(msg, out->path, "writing a twin-disc summary", err);
   return status;
+}
+
+int rs_output_put_revolution_temperature(rs_output *out, size_t i, const double v[7], rs_msg *msg)
+{
+  if (!out->has_rig)
+    return rs_msg_set(msg, RS_ERR_INTERNAL, "output file %s: no twin-disc variables", out->path);
+  int err = NC_NOERR;
+  for (int k = 0; k < 7 && !err; k++)
+    if (out->rev_temp_id[k] >= 0)
+      err = nc_put_var1_double(out->ncid, out->rev_temp_id[k], &i, &v[k]);
+  if (err || (err = nc_sync(out->ncid)))
+    return rs_output_nc_failure(msg, out->path, "writing a twin-disc summary", err);
+  return RS_OK;
 }
 
 int rs_output_nc_failure(rs_msg *msg, const char *path, const char *what, int err)

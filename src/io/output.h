@@ -20,6 +20,9 @@ typedef struct rs_output_rig {
   const double *window_start;          /* [nsteps], s: start of the averaging window */
   double revolution_time;              /* s */
   double recovery;
+  /* a temperature: block: the per-revolution temperatures (revolution_T_max, ...), and with
+   * bulk also the discs' bulk temperatures (temperature.disc_mass) */
+  int temperature, bulk;
 } rs_output_rig;
 
 typedef struct rs_output_spec {
@@ -114,6 +117,11 @@ int rs_output_put_revolution(rs_output *out, size_t i, double traction_coefficie
  * the surface leaving the contact, its mean over the revolution and its largest value (mm). */
 int rs_output_put_revolution_energy(rs_output *out, size_t i, double energy, double ustar_mean,
                                     double ustar_max, rs_msg *msg);
+/* Revolution i with temperature: v = the largest contact temperature (degC), the mean inlet
+ * temperature of disc 1 and 2 (degC), the heat input into disc 1 and 2 over the revolution
+ * (J/mm in 2D, J in 3D), the bulk temperatures of disc 1 and 2 at its end (degC; written only
+ * with the bulk variables). */
+int rs_output_put_revolution_temperature(rs_output *out, size_t i, const double v[7], rs_msg *msg);
 /* Number of records written so far. */
 size_t rs_output_records(const rs_output *out);
 /* The status attribute is stored NUL-padded to this fixed length (longer texts are

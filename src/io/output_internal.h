@@ -76,7 +76,8 @@ struct rs_output {
   int rig_meta_id[6];
   int step_mu_id, step_slip_id, rev_mu_id, rev_slip_id; /* twin-disc summaries */
   int rev_energy_id, rev_ustar_id, rev_ustar_max_id;    /* per revolution: wear inputs */
-  char backup[1040]; /* where an older file of the same name was kept, or "" */
+  int rev_temp_id[7]; /* per revolution: temperatures (rs_output_put_revolution_temperature) */
+  char backup[1040];  /* where an older file of the same name was kept, or "" */
 };
 
 /* "output file PATH: WHAT: netCDF message", RS_ERR_OUTPUT. */

@@ -104,6 +104,12 @@ void rs_rig_memory_inflow(const rs_rig_memory *mem, double t, double *state)
     state[k] = mem->recovery * 0.5 * (exit_value(mem, b0, k) + exit_value(mem, b1, k));
 }
 
+void rs_rig_memory_exit(const rs_rig_memory *mem, double s, double *state)
+{
+  const bracket b = find(mem, s);
+  for (int k = 0; k < mem->width; k++) state[k] = exit_value(mem, b, k);
+}
+
 double rs_rig_memory_max_step(const rs_rig_memory *mem)
 {
   return 0.5 * fmin(mem->delay[0], mem->delay[1]);

@@ -35,6 +35,9 @@ void rs_rig_memory_free(rs_rig_memory *mem);
 int rs_rig_memory_record(rs_rig_memory *mem, double t, const double *state, rs_msg *msg);
 /* State of the material entering the contact at time t (width values). */
 void rs_rig_memory_inflow(const rs_rig_memory *mem, double t, double *state);
+/* The exit state recorded at time s (width values; linear between samples, 0 before the
+ * first sample): the raw record, without recovery or averaging over the discs. */
+void rs_rig_memory_exit(const rs_rig_memory *mem, double s, double *state);
 /* Longest time step that keeps every lookup inside the recorded past (s). */
 double rs_rig_memory_max_step(const rs_rig_memory *mem);
 

@@ -2,6 +2,7 @@
 #include "physics/thermal.h"
 
 #include "physics/model.h"
+#include "physics/rig.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -120,7 +121,8 @@ int rs_thermal_create(rs_thermal *th, const rs_thermal_params *p, int nx, int ny
   th->area = area;
   for (int b = 0; b < 2; b++)
     th->beta[b] = sqrt(p->conductivity[b] * p->density[b] * p->heat_capacity[b]);
-  int status = rs_thermal_kernel_create(&th->ker, 0.5 * dx, nx * dx, p->kernel_tolerance, msg);
+  const double l_max = fmax(nx * dx, p->path_max);
+  int status = rs_thermal_kernel_create(&th->ker, 0.5 * dx, l_max, p->kernel_tolerance, msg);
   if (status != RS_OK) return status;
   const int K = th->ker.nmodes;
   th->decay_half = malloc((size_t)K * sizeof *th->decay_half);
@@ -152,7 +154,12 @@ void rs_thermal_free(rs_thermal *th)
   free(th->gain_full);
   free(th->inv_gain);
   free(th->theta);
+  free(th->transfer);
+  free(th->inflow);
+  free(th->exit_buf);
   th->decay_half = th->decay_full = th->gain_full = th->inv_gain = th->theta = NULL;
+  th->transfer = th->inflow = th->exit_buf = NULL;
+  th->memory = NULL;
 }
 
 /* Per body b and mode k the state theta = int q_b(l') e^(-rate_k (l - l')) dl' (W/mm) at the
@@ -196,6 +203,21 @@ static double mode_out(const rs_thermal *th, const double *up, int stride, int k
   return (up ? up[k * stride] * th->decay_full[k] : 0.0) + qb * th->gain_full[k];
 }
 
+/* The modes entering cell (ix, iy) of the DAE state: those of the cell upstream, at the
+ * leading edge a rig's inflow (stride ny) or none (fresh material). */
+static void entering(const rs_thermal *th, const double *state, int iy, int ix, const double *up[2],
+                     int *stride)
+{
+  const int n = th->nx * th->ny, M = th->ker.nmodes + 1, i = iy * th->nx + ix;
+  if (ix + 1 < th->nx) {
+    for (int b = 0; b < 2; b++) up[b] = state + (size_t)b * M * n + i + 1;
+    *stride = n;
+  } else if (th->inflow) {
+    for (int b = 0; b < 2; b++) up[b] = th->inflow + (size_t)b * M * th->ny + iy;
+    *stride = th->ny;
+  }
+}
+
 static void march(rs_thermal *th, double V, const double *q, const signed char *contact,
                   const double *from_state, double *T1, double *T2, double *q1, double *q2,
                   rs_thermal_result *res, double *state)
@@ -216,14 +238,16 @@ static void march(rs_thermal *th, double V, const double *q, const signed char *
   for (int iy = 0; iy < th->ny; iy++) {
     double *theta[2] = {th->theta, th->theta + M};
     memset(th->theta, 0, 2 * (size_t)M * sizeof *th->theta); /* fresh material */
+    for (int b = 0; th->inflow && b < 2; b++) /* or a rig's material coming around again */
+      for (int k = 0; k <= K; k++) theta[b][k] = th->inflow[((size_t)b * M + k) * th->ny + iy];
     for (int ix = nx - 1; ix >= 0; ix--) {
       const int i = iy * nx + ix;
       double qb[2], T[2];
       if (from_state) { /* the modes entering: those of the DAE state upstream */
         const double *up[2] = {NULL, NULL};
-        if (ix + 1 < nx)
-          for (int b = 0; b < 2; b++) up[b] = from_state + (size_t)b * M * n + i + 1;
-        cell_partition(th, s, up, n, q[i], contact[i], qb, T);
+        int stride = n;
+        entering(th, from_state, iy, ix, up, &stride);
+        cell_partition(th, s, up, stride, q[i], contact[i], qb, T);
       } else {
         const double *up[2] = {theta[0], theta[1]};
         cell_partition(th, s, up, 1, q[i], contact[i], qb, T);
@@ -288,13 +312,13 @@ static void dae_pass(rs_thermal *th, int what, double V, const double *q,
       const int i = iy * nx + ix;
       double qb[2] = {0.0, 0.0}, T[2];
       const double *up[2] = {NULL, NULL};
-      if (ix + 1 < nx)
-        for (int b = 0; b < 2; b++) up[b] = state + (size_t)b * M * n + i + 1;
-      if (moving) cell_partition(th, s, up, n, q[i], contact[i], qb, T);
+      int stride = n;
+      entering(th, state, iy, ix, up, &stride);
+      if (moving) cell_partition(th, s, up, stride, q[i], contact[i], qb, T);
       for (int b = 0; b < 2; b++)
         for (int k = 0; k <= K; k++) {
           const size_t at = ((size_t)b * M + k) * n + i;
-          const double target = moving ? mode_out(th, up[b], n, k, qb[b]) : 0.0;
+          const double target = moving ? mode_out(th, up[b], stride, k, qb[b]) : 0.0;
           if (what == DAE_RESIDUAL) {
             out[at] = rate[at] - c[k] * (target - state[at]);
           } else if (what == DAE_RATES) {
@@ -336,5 +360,98 @@ void rs_thermal_sources(const rs_thermal *th, const rs_model *m, const rs_work *
   for (int i = 0; i < m->grid.n; i++) {
     contact[i] = w->pn[i] > 0.0;
     q[i] = 1e-3 * (fric[i] + frac * plast[i]);
+  }
+}
+
+/* One disc's transfer matrix over its free path P (mm): without convection each mode decays
+ * by its exact factor e^(-rate P) (the mode of rate 0 is kept); with it the path is marched in
+ * segments growing geometrically from a cell (the excess decays like 1/sqrt(l) from the
+ * exit), each under the convective flux q = -h dT at its centre, dT the surface excess there
+ * (collocated like a cell of the march: dT = s (H + S(dl/2) q)/beta, solved for q), the
+ * modes then stepped exactly under that flux. Column j: the modes after the path from the
+ * unit mode j at the exit. */
+static int transfer_matrix(const rs_thermal *th, int b, double P, double V, double *A)
+{
+  const int K = th->ker.nmodes, M = K + 1;
+  const double *w = th->ker.weight, *r = th->ker.rate, h = th->par.convection;
+  memset(A, 0, (size_t)M * M * sizeof *A);
+  if (!(h > 0.0) || !(P > 0.0)) {
+    for (int k = 0; k < K; k++) A[k * M + k] = exp(-r[k] * fmax(P, 0.0));
+    A[K * M + K] = 1.0;
+    return RS_OK;
+  }
+  double *v = malloc((size_t)M * sizeof *v);
+  if (!v) return RS_ERR_INTERNAL;
+  const double s = 1.0 / sqrt(V), beta = th->beta[b];
+  for (int j = 0; j < M; j++) {
+    memset(v, 0, (size_t)M * sizeof *v);
+    v[j] = 1.0;
+    double done = 0.0, dl = th->dx;
+    while (done < P) {
+      if (done + 1.5 * dl > P) dl = P - done; /* the last segment takes the rest */
+      double hist = th->ker.weight0 * v[K];
+      for (int k = 0; k < K; k++) hist += w[k] * v[k] * exp(-0.5 * r[k] * dl);
+      const double self = rs_thermal_kernel_step(&th->ker, 0.5 * dl);
+      const double dT = s * hist / beta / (1.0 + s * self * h / beta), q = -h * dT;
+      for (int k = 0; k < K; k++) v[k] = v[k] * exp(-r[k] * dl) - q * expm1(-r[k] * dl) / r[k];
+      v[K] += q * dl;
+      done += dl;
+      dl *= 1.1;
+    }
+    for (int k = 0; k < M; k++) A[k * M + j] = v[k];
+  }
+  free(v);
+  return RS_OK;
+}
+
+int rs_thermal_rig_attach(rs_thermal *th, const rs_rig_memory *mem, const double path[2], double V,
+                          rs_msg *msg)
+{
+  const int M = th->ker.nmodes + 1;
+  const size_t width = 2 * (size_t)M * th->ny;
+  if (mem->width != (int)width || !(V > 0.0))
+    return rs_msg_set(msg, RS_ERR_INTERNAL, "temperature: the twin-disc memory does not fit");
+  th->transfer = malloc(2 * (size_t)M * M * sizeof *th->transfer);
+  th->inflow = calloc(width, sizeof *th->inflow);
+  th->exit_buf = malloc(width * sizeof *th->exit_buf);
+  if (!th->transfer || !th->inflow || !th->exit_buf)
+    return rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory for the twin-disc heat memory");
+  for (int b = 0; b < 2; b++)
+    if (transfer_matrix(th, b, path[b], V, th->transfer + (size_t)b * M * M) != RS_OK)
+      return rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory for the twin-disc heat memory");
+  th->memory = mem;
+  return RS_OK;
+}
+
+void rs_thermal_inflow_at(rs_thermal *th, double t)
+{
+  if (!th->memory) return;
+  const int M = th->ker.nmodes + 1, ny = th->ny;
+  for (int b = 0; b < 2; b++) {
+    /* disc b's own record, one free path ago (the other half of the buffer is not used) */
+    rs_rig_memory_exit(th->memory, t - th->memory->delay[b], th->exit_buf);
+    const double *A = th->transfer + (size_t)b * M * M, *e = th->exit_buf + (size_t)b * M * ny;
+    double *in = th->inflow + (size_t)b * M * ny;
+    for (int iy = 0; iy < ny; iy++)
+      for (int j = 0; j < M; j++) {
+        double sum = 0.0;
+        for (int k = 0; k < M; k++) sum += A[j * M + k] * e[k * ny + iy];
+        in[j * ny + iy] = sum;
+      }
+  }
+}
+
+void rs_thermal_inlet_temperature(const rs_thermal *th, double V, double T[2])
+{
+  const int K = th->ker.nmodes, M = K + 1, ny = th->ny;
+  for (int b = 0; b < 2; b++) {
+    double sum = 0.0;
+    for (int iy = 0; th->inflow && iy < ny; iy++) {
+      const double *in = th->inflow + (size_t)b * M * ny + iy;
+      double hist = th->ker.weight0 * in[K * ny];
+      for (int k = 0; k < K; k++) hist += th->ker.weight[k] * in[k * ny];
+      sum += hist;
+    }
+    T[b] = th->par.bulk[b] + sum / ny / (th->beta[b] * sqrt(V));
   }
 }

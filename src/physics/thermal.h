@@ -21,6 +21,14 @@ typedef struct rs_thermal_params {
   double density[2];            /* rho, kg/mm^3 */
   double plastic_heat_fraction; /* share of the plastic power turned into heat, [0, 1] */
   double kernel_tolerance;      /* relative error allowed in the kernel's step response */
+  /* twin-disc rig (docs/model.md §18, "Twin-disc rig"): the surface's convective loss to the
+   * disc's bulk temperature between contacts, W/(mm^2 K) (0: none), and each disc's mass for
+   * its lumped bulk temperature, kg (0: that bulk temperature held) */
+  double convection;
+  double disc_mass[2];
+  /* not a case key: the longest path length the kernel must cover, mm (0: the grid's length;
+   * a rig's run: the distance rolled over the run) */
+  double path_max;
 } rs_thermal_params;
 
 /* 1/sqrt(pi l) ~ sum_k weight_k exp(-rate_k l) + weight0 (a mode that does not decay) + a
@@ -64,12 +72,34 @@ typedef struct rs_thermal {
   double *inv_gain; /* 1/gain_full, then 1/dx for the mode of rate 0 (1/mm) [nmodes + 1] */
   double self_half; /* the step response of half a cell, sqrt(mm) */
   double *theta;    /* scratch: the modes of both bodies [2 (nmodes + 1)] */
+  /* Twin-disc rig (rs_thermal_rig_attach; all NULL otherwise: material enters at its bulk
+   * temperature): the modes leaving the trailing cells recorded in `memory` (per body, mode
+   * and row: [(b (nmodes + 1) + k) ny + iy]), re-entering after each disc's delay through the
+   * transfer matrix of its free path, transfer[b][j][k] (row j: the entering mode j). */
+  const struct rs_rig_memory *memory;
+  double *transfer; /* [2][nmodes + 1][nmodes + 1] */
+  double *inflow;   /* the modes entering the leading cells, laid out as in memory */
+  double *exit_buf; /* scratch [2 (nmodes + 1) ny] */
 } rs_thermal;
 
 /* Kernel fitted to the path lengths of the grid: half a cell to the whole path. */
 int rs_thermal_create(rs_thermal *th, const rs_thermal_params *p, int nx, int ny, double dx,
                       double area, rs_msg *msg);
 void rs_thermal_free(rs_thermal *th);
+
+/* A twin-disc rig's heat memory (docs/model.md §18, "Twin-disc rig"): the modes leaving the
+ * grid (recorded by the caller in mem, width 2 (nmodes + 1) ny, delays those of the discs)
+ * re-enter at the leading edge after the free path path[b] (mm) of disc b, each decayed over
+ * it by e^(-rate_k path) (pure conduction into the depth), or with par.convection > 0 marched
+ * over the path under the surface loss h (T - T_bulk) at rolling velocity V > 0. */
+struct rs_rig_memory;
+int rs_thermal_rig_attach(rs_thermal *th, const struct rs_rig_memory *mem, const double path[2],
+                          double V, rs_msg *msg);
+/* The modes entering at time t (s) into th->inflow (nothing without a rig). */
+void rs_thermal_inflow_at(rs_thermal *th, double t);
+/* The mean over the rows of each body's surface temperature entering the contact (degC), from
+ * th->inflow as set by rs_thermal_inflow_at, at rolling velocity V > 0. */
+void rs_thermal_inlet_temperature(const rs_thermal *th, double V, double T[2]);
 
 /* What the march reports: the hottest surface point and the heat flowing into each body. */
 typedef struct rs_thermal_result {

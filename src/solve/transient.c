@@ -133,6 +133,7 @@ static int dae_residual(sunrealtype t, N_Vector y, N_Vector yp, N_Vector rr, voi
     const double *yv = N_VGetArrayPointer(y);
     rs_thermal_sources(tr->thermal, tr->m, tr->gmres ? &tr->kry.w : &tr->work, yv, tr->fric,
                        tr->plast, tr->q, tr->contact);
+    rs_thermal_inflow_at(tr->thermal, tr->in.t); /* a rig's heat coming around again */
     if (tr->tail_rows)
       rs_thermal_dae_residual(tr->thermal, tr->in.velocity, tr->q, tr->contact, yv + neq,
                               N_VGetArrayPointer(yp) + neq, N_VGetArrayPointer(rr) + neq);

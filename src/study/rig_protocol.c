@@ -8,6 +8,8 @@
 void rs_rig_run_free(rs_rig_run *r)
 {
   rs_rig_memory_free(&r->mem);
+  rs_rig_memory_free(&r->heat);
+  free(r->heat_buf);
   free(r->window_start);
   free(r->slip_start);
   free(r->slip_end);
@@ -78,6 +80,23 @@ int rs_rig_run_create(rs_rig_run *r, const rs_case *c, const rs_model *m, rs_run
   return RS_OK;
 }
 
+int rs_rig_run_heat(rs_rig_run *r, rs_temperature_run *temp, rs_msg *msg)
+{
+  const rs_model *m = r->m;
+  rs_thermal *th = &temp->th;
+  const int width = 2 * (th->ker.nmodes + 1) * m->grid.ny;
+  int status = rs_rig_memory_create(&r->heat, width, r->mem.delay[0], r->mem.delay[1], 1.0, msg);
+  if (status != RS_OK) return status;
+  r->temp = temp;
+  if (!(r->heat_buf = malloc((size_t)width * sizeof *r->heat_buf)))
+    return rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory (twin-disc heat memory)");
+  rs_inputs in;
+  rs_model_inputs_at(m, 0.0, &in);
+  /* the free path of each disc: from the trailing edge around to the leading edge */
+  const double path[2] = {r->mem.delay[0] * in.velocity, r->mem.delay[1] * in.velocity};
+  return rs_thermal_rig_attach(th, &r->heat, path, in.velocity, msg);
+}
+
 rs_output_rig rs_rig_run_output(const rs_rig_run *r)
 {
   return (rs_output_rig){.nsteps = r->c->rig.nsteps,
@@ -88,7 +107,10 @@ rs_output_rig rs_rig_run_output(const rs_rig_run *r)
                          .time_end = r->time_end,
                          .window_start = r->window_start,
                          .revolution_time = r->c->rig.revolution_time,
-                         .recovery = r->c->rig.recovery};
+                         .recovery = r->c->rig.recovery,
+                         .temperature = r->temp != NULL,
+                         .bulk = r->temp && (r->c->temperature.disc_mass[0] > 0.0 ||
+                                             r->c->temperature.disc_mass[1] > 0.0)};
 }
 
 /* Integral of the linear function through (t0, f0), (t1, f1) over [a, b] n [t0, t1]. */
@@ -99,6 +121,31 @@ static double overlap_integral(double t0, double f0, double t1, double f1, doubl
   const double flo = f0 + (f1 - f0) * (lo - t0) / (t1 - t0);
   const double fhi = f0 + (f1 - f0) * (hi - t0) / (t1 - t0);
   return 0.5 * (flo + fhi) * (hi - lo);
+}
+
+/* A completed revolution's temperatures (of duration T, s): written, and with
+ * temperature.disc_mass each disc's bulk temperature raised by its heat input over the
+ * revolution / (m c) (2D: the heat per mm of width times the discs' width). */
+static int revolution_heat(rs_rig_run *r, size_t rev, double T)
+{
+  rs_thermal *th = &r->temp->th;
+  const rs_case *c = r->c;
+  const double width = c->dimension == 3 ? 1.0 : c->rig.width;
+  for (int b = 0; b < 2; b++) {
+    const double mass = c->temperature.disc_mass[b];
+    if (mass > 0.0)
+      th->par.bulk[b] += r->rev_heat[b] * width / (mass * c->temperature.heat_capacity[b]);
+  }
+  r->res->rig_bulk[0] = th->par.bulk[0];
+  r->res->rig_bulk[1] = th->par.bulk[1];
+  const double v[7] = {isfinite(r->rev_T_max) ? r->rev_T_max : NAN,
+                       r->rev_inlet[0] / T,
+                       r->rev_inlet[1] / T,
+                       r->rev_heat[0],
+                       r->rev_heat[1],
+                       th->par.bulk[0],
+                       th->par.bulk[1]};
+  return r->out ? rs_output_put_revolution_temperature(r->out, rev, v, &r->msg) : RS_OK;
 }
 
 int rs_rig_run_step(void *ctx, double t, const double *y, const double *yp)
@@ -115,6 +162,12 @@ int rs_rig_run_step(void *ctx, double t, const double *y, const double *yp)
   }
   int status = rs_rig_memory_record(&r->mem, t, exit_state, &r->msg);
   if (status != RS_OK) return status;
+  if (r->temp) { /* the modes leaving the trailing cells, per body, mode and row */
+    const int n = m->grid.n, MM = 2 * (r->temp->th.ker.nmodes + 1);
+    for (int j = 0; j < MM; j++)
+      for (int iy = 0; iy < ny; iy++) r->heat_buf[j * ny + iy] = y[L->neq + j * n + iy * nx];
+    if ((status = rs_rig_memory_record(&r->heat, t, r->heat_buf, &r->msg)) != RS_OK) return status;
+  }
   double fx = 0.0;
   for (int i = 0; i < m->grid.n; i++) fx += y[rs_at_p(L, 0, i)] * m->grid.area;
   /* The slip jumps where a held step starts: the segment ending at t takes its left
@@ -133,6 +186,14 @@ int rs_rig_run_step(void *ctx, double t, const double *y, const double *yp)
                                      NULL)) != RS_OK)
     return rs_msg_set(&r->msg, status, "twin-disc: the dissipated power at t = %g s", t);
   const double power = d.frictional_power + d.plastic_power;
+  double inlet[2] = {0.0, 0.0}, heat[2] = {0.0, 0.0}, T_max = -INFINITY;
+  if (r->temp) {
+    rs_temperature_run_eval(r->temp, m, &r->w, r->started ? &before : &in, y, &d);
+    rs_thermal_inlet_temperature(&r->temp->th, in.velocity, inlet);
+    heat[0] = d.heat_input_1;
+    heat[1] = d.heat_input_2;
+    if (isfinite(d.T_max)) T_max = d.T_max;
+  }
   double ustar = 0.0, ustar_max = 0.0;
   for (int iy = 0; iy < ny; iy++) {
     ustar += exit_state[iy * (nc + 1) + nc] / ny;
@@ -141,6 +202,7 @@ int rs_rig_run_step(void *ctx, double t, const double *y, const double *yp)
   if (!r->started) {
     r->started = 1;
     r->rev_ustar_max = ustar_max;
+    r->rev_T_max = T_max;
   } else {
     const double t0 = r->t_prev, T = r->c->rig.revolution_time, t_end = r->c->end_time;
     while (r->rev < r->nrev) {
@@ -150,6 +212,11 @@ int rs_rig_run_step(void *ctx, double t, const double *y, const double *yp)
       r->rev_energy += overlap_integral(t0, r->power_prev, t, power, a, b);
       r->rev_ustar += overlap_integral(t0, r->ustar_prev, t, ustar, a, b);
       if (t > a) r->rev_ustar_max = fmax(r->rev_ustar_max, ustar_max);
+      for (int disc = 0; r->temp && disc < 2; disc++) {
+        r->rev_inlet[disc] += overlap_integral(t0, r->inlet_prev[disc], t, inlet[disc], a, b);
+        r->rev_heat[disc] += overlap_integral(t0, r->heat_prev[disc], t, heat[disc], a, b);
+      }
+      if (t > a) r->rev_T_max = fmax(r->rev_T_max, T_max);
       if (t < b * (1.0 - 1e-12)) break;
       if (r->out && ((status = rs_output_put_revolution(r->out, r->rev, r->rev_mu / (b - a),
                                                         r->rev_slip / (b - a), &r->msg)) != RS_OK ||
@@ -157,11 +224,14 @@ int rs_rig_run_step(void *ctx, double t, const double *y, const double *yp)
                           r->out, r->rev, r->rev_energy, r->rev_ustar / (b - a), r->rev_ustar_max,
                           &r->msg)) != RS_OK))
         return status;
+      if (r->temp && (status = revolution_heat(r, r->rev, b - a)) != RS_OK) return status;
       r->res->rig_revolutions = (double)(r->rev + 1);
       r->res->rig_rev_mu[r->rev] = r->rev_mu / (b - a);
       r->rev++;
       r->rev_mu = r->rev_slip = r->rev_energy = r->rev_ustar = 0.0;
       r->rev_ustar_max = ustar_max; /* the state at the boundary belongs to both */
+      r->rev_T_max = T_max;
+      r->rev_inlet[0] = r->rev_inlet[1] = r->rev_heat[0] = r->rev_heat[1] = 0.0;
     }
     while (r->step < r->c->rig.nsteps) {
       const size_t j = r->step;
@@ -183,5 +253,9 @@ int rs_rig_run_step(void *ctx, double t, const double *y, const double *yp)
   r->slip_prev = slip_next;
   r->power_prev = power;
   r->ustar_prev = ustar;
+  for (int b = 0; b < 2; b++) {
+    r->inlet_prev[b] = inlet[b];
+    r->heat_prev[b] = heat[b];
+  }
   return RS_OK;
 }

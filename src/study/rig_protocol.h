@@ -11,6 +11,7 @@
 #include "io/output.h"
 #include "physics/rig.h"
 #include "study/run.h"
+#include "study/temperature.h"
 
 typedef struct rs_rig_run {
   const rs_case *c;
@@ -25,6 +26,15 @@ typedef struct rs_rig_run {
   double rev_mu, rev_slip, step_mu, step_slip; /* integrals so far */
   double rev_energy, rev_ustar, rev_ustar_max; /* of the current revolution so far */
   rs_work w;                                   /* the dissipated power's evaluation */
+  /* With a temperature: block (rs_rig_run_heat; temp NULL otherwise): the surface modes
+   * leaving the contact, carried around like the plastic state (docs/model.md §18), and per
+   * revolution the largest contact temperature, the time integrals of each disc's inlet
+   * temperature and heat input, and the discs' bulk temperatures (temperature.disc_mass). */
+  rs_temperature_run *temp;
+  rs_rig_memory heat;
+  double *heat_buf;                            /* the modes leaving, [heat.width] */
+  double rev_T_max, rev_inlet[2], rev_heat[2]; /* of the current revolution so far */
+  double inlet_prev[2], heat_prev[2];
   int started;
   rs_msg msg;
 } rs_rig_run;
@@ -34,6 +44,9 @@ typedef struct rs_rig_run {
 int rs_rig_run_create(rs_rig_run *r, const rs_case *c, const rs_model *m, rs_run_result *res,
                       rs_msg *msg);
 void rs_rig_run_free(rs_rig_run *r);
+/* The rig's heat memory for the temperature modes of temp (a transient with a temperature:
+ * block): attaches it to temp's thermal model. */
+int rs_rig_run_heat(rs_rig_run *r, rs_temperature_run *temp, rs_msg *msg);
 /* After every accepted time step (rs_transient_opts.step_hook): record the exit state,
  * integrate, write completed revolutions and steps. */
 int rs_rig_run_step(void *rig, double t, const double *y, const double *yp);

@@ -479,6 +479,12 @@ int rs_run(const rs_case *c, const rs_run_opts *o, rs_run_result *res, rs_msg *m
       rs_run_result_free(res);
       return status;
     }
+    if (s.temp.modes && (status = rs_rig_run_heat(&rig_run, &s.temp, msg)) != RS_OK) {
+      rs_rig_run_free(&rig_run);
+      free_state(&s);
+      rs_run_result_free(res);
+      return status;
+    }
     rig = &rig_run;
     s.m.memory = &rig->mem;
     rig_spec = rs_rig_run_output(rig);

@@ -66,6 +66,9 @@ typedef struct rs_run_result {
   size_t rig_nrev;    /* revolutions of the protocol */
   double *rig_rev_mu; /* per revolution: mean traction coefficient (NaN if not reached) */
   double rig_revolutions;
+  /* temperature.disc_mass: each disc's bulk temperature after the last completed revolution
+   * (degC; the case's bulk temperatures otherwise) */
+  double rig_bulk[2];
   double dx;           /* cell size, mm */
   double rolled;       /* transient: distance rolled from the start to the last record, mm */
   double rtol;         /* transient: the relative tolerance run (solver.rtol, auto resolved) */

@@ -11,7 +11,14 @@ int rs_temperature_run_create(rs_temperature_run *t, const rs_case *c, const rs_
   if (!c->temperature.on) return RS_OK;
   const rs_grid *g = &m->grid;
   const size_t n = (size_t)g->n;
-  int status = rs_thermal_create(&t->th, &c->temperature, g->nx, g->ny, g->dx, g->area, msg);
+  rs_thermal_params par = c->temperature;
+  if (c->rig.on && c->mode == RS_MODE_TRANSIENT) {
+    /* a rig's heat comes around again: the kernel covers the paths of the whole run */
+    rs_inputs in;
+    rs_model_inputs_at(m, 0.0, &in);
+    par.path_max = in.velocity * c->end_time + g->nx * g->dx;
+  }
+  int status = rs_thermal_create(&t->th, &par, g->nx, g->ny, g->dx, g->area, msg);
   if (status != RS_OK) return status;
   t->on = 1;
   t->fric = malloc(n * sizeof *t->fric);
@@ -71,6 +78,7 @@ void rs_temperature_run_eval(rs_temperature_run *t, const rs_model *m, const rs_
 {
   if (!t->on) return;
   rs_thermal_sources(&t->th, m, w, y, t->fric, t->plast, t->q, t->contact);
+  rs_thermal_inflow_at(&t->th, in->t);
   rs_thermal_result r;
   if (t->modes)
     rs_thermal_state_eval(&t->th, in->velocity, t->q, t->contact, y + m->lay.neq, t->T1, t->T2,
@@ -89,6 +97,7 @@ static int sources_at(rs_temperature_run *t, const rs_model *m, rs_work *w, cons
   const int status = rs_model_residual(m, w, in, y, yp, 0.0, NULL);
   if (status != RS_OK) return rs_msg_set(msg, status, "%s", w->msg.text);
   rs_thermal_sources(&t->th, m, w, y, t->fric, t->plast, t->q, t->contact);
+  rs_thermal_inflow_at(&t->th, in->t);
   return RS_OK;
 }
 
