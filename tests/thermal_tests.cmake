@@ -24,3 +24,9 @@ add_test(NAME temperature_rig_heat
   COMMAND ${SYSTEM_PYTHON3} ${RS_TESTS}/check_rig_heat.py ${RS_BIN}
           ${RS_CASES}/twin_disc_temperature.yaml ${CMAKE_CURRENT_BINARY_DIR}/rig_heat
           ${RS_CASES}/twin_disc_crowned.yaml)
+# mu(T) in steady runs and sweeps (friction.temperature_table): a constant table against
+# friction.mu, full sliding against sum mu(T1) p_n dx from the file, |p| = mu(T1) p_n cell by cell,
+# and the creep curve's falling branch against its estimate (docs/verification.md 29).
+add_test(NAME temperature_mu_table
+  COMMAND ${SYSTEM_PYTHON3} ${RS_TESTS}/check_mu_temperature.py ${RS_BIN}
+          ${RS_CASES}/hot_creep_curve.yaml ${CMAKE_CURRENT_BINARY_DIR}/mu_table)

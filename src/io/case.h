@@ -85,6 +85,9 @@ typedef struct rs_case {
   /* friction: */
   double mu;            /* coulomb; with another law mu(0), the coefficient at rest */
   rs_friction friction; /* the law (kind from friction.law) and its parameters */
+  /* friction.temperature_table: the coefficient at rest against the contact temperature,
+   * piecewise linear (t: degC, strictly increasing; v: mu); n = 0: none (docs/model.md §18) */
+  rs_history mu_table;
 
   /* layer: */
   double layer_thickness;     /* h3, mm */
