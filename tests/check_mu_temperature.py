@@ -15,6 +15,8 @@ docs/verification.md 29).
    tolerance, and the file's floats.
 3. The fixed point, cell by cell: in every slipping cell |p_x| = mu_table(T1) p_n to 1e-8
    relative (the same budget as 2), and the file's mu is the table at T1 to the same tolerance.
+   The same in 3D: cases/ertz_temperature.yaml (full sliding at 1 m/s) with mu_T 0.3 at 0 degC
+   to 0.15 at 300 degC, |p| = mu_T(T1) p_n in every contact cell.
 4. The creep curve of the case: without the table (friction.mu = 0.4) it saturates, F_x/F_n at
    the largest creepage 0.4 to 1e-9 and never above; with the falling mu(T) it peaks inside the
    range and falls all the way after. The last point (full sliding) against an estimate: the
@@ -81,6 +83,20 @@ def main():
     check(rel <= 1e-8, "the file's mu is the table at the file's T1", float(rel), "<= 1e-8")
     check(float(np.min(mu_used)) < 0.32, "the contact is hot enough to matter (min mu < 0.32)",
           float(np.min(mu_used)), "< 0.32")
+
+    # 3D: Ertz & Knothe's contact in full sliding with mu_T 0.3 at 0 degC to 0.15 at 300 degC,
+    # |p| = mu_T(T1) p_n in every contact cell (all slip), the same budget as in 2D
+    ertz = os.path.join(os.path.dirname(case), "ertz_temperature.yaml")
+    d3 = run(rollsim, ["run", ertz, "--set",
+                       "friction.temperature_table={temperature: [0, 300], mu: [0.3, 0.15]}",
+                       "--set", "output.fields=[px, pn]"], os.path.join(out, "ertz.nc"))
+    pn3, T3 = (np.asarray(d3[v][-1], dtype=float) for v in ("pn", "T1"))
+    p3 = np.hypot(np.asarray(d3["px"][-1], dtype=float), np.asarray(d3["py"][-1], dtype=float))
+    c3 = pn3 > 0
+    mu3 = np.interp(T3[c3], [0.0, 300.0], [0.3, 0.15])
+    rel = np.max(np.abs(p3[c3] - mu3 * pn3[c3]) / (mu3 * pn3[c3]))
+    check(rel <= 1e-8, f"3D full sliding: |p| = mu_T(T1) p_n in all {int(c3.sum())} contact cells "
+          f"(T_max {float(d3['T_max'][-1]):.1f} degC)", float(rel), "<= 1e-8")
 
     # 4. the creep curve
     hot = run(rollsim, ["sweep", case], os.path.join(out, "hot.nc"))
