@@ -15,6 +15,8 @@ docs/verification.md 29).
    tolerance, and the file's floats.
 3. The fixed point, cell by cell: in every slipping cell |p_x| = mu_table(T1) p_n to 1e-8
    relative (the same budget as 2), and the file's mu is the table at T1 to the same tolerance.
+   A velocity law keeps its shape: with the rational law mu_law = 0.3 + 0.1/(1 + |v_s|/500 mm/s)
+   every slipping cell has |p| = mu_law(|v_s|) mu_T(T1)/mu_law(0) p_n (v_s = V slip from the file).
    The same in 3D: cases/ertz_temperature.yaml (full sliding at 1 m/s) with mu_T 0.3 at 0 degC
    to 0.15 at 300 degC, |p| = mu_T(T1) p_n in every contact cell.
 4. The creep curve of the case: without the table (friction.mu = 0.4) it saturates, F_x/F_n at
@@ -83,6 +85,21 @@ def main():
     check(rel <= 1e-8, "the file's mu is the table at the file's T1", float(rel), "<= 1e-8")
     check(float(np.min(mu_used)) < 0.32, "the contact is hot enough to matter (min mu < 0.32)",
           float(np.min(mu_used)), "< 0.32")
+
+    # a velocity law keeps its shape: rational mu_law = 0.3 + 0.1/(1 + |v_s|/500 mm/s) (0.4 at
+    # rest) times mu_T(T)/0.4, in every slipping cell at xi = -2 % (v_s = V slip, V = 60 m/s)
+    rat = ["--set", "friction.mu=null", "--set", "friction.law=rational", "--set",
+           "friction.mu_kinetic=0.3", "--set", "friction.mu_excess=[0.1]", "--set",
+           "friction.half_velocity=[500]", "--set", "rolling.creepage=-0.02", "--set",
+           "output.fields=[px, pn, slip]"]
+    dr = run(rollsim, ["run", case] + rat, os.path.join(out, "rational.nc"))
+    pr, pnr, Tr = (np.asarray(dr[v][-1], dtype=float) for v in ("px", "pn", "T1"))
+    vs = float(dr["velocity"][-1]) * np.abs(np.asarray(dr["slip"][-1], dtype=float))
+    cr = (pnr > 0) & (vs > 0)
+    mur = (0.3 + 0.1 / (1 + vs[cr] / 500.0)) * mu_table(Tr[cr]) / 0.4
+    rel = np.max(np.abs(np.abs(pr[cr]) - mur * pnr[cr]) / (mur * pnr[cr]))
+    check(rel <= 1e-8 and cr.sum() > 50, f"rational law times mu_T(T)/mu_law(0) in {int(cr.sum())} "
+          "slipping cells", float(rel), "<= 1e-8")
 
     # 3D: Ertz & Knothe's contact in full sliding with mu_T 0.3 at 0 degC to 0.15 at 300 degC,
     # |p| = mu_T(T1) p_n in every contact cell (all slip), the same budget as in 2D
