@@ -24,6 +24,8 @@
 #   hertz3d_regimes.png     its regimes (adhesion, slip, plastic)
 #   twin_disc_temperature.png cases/twin_disc_temperature.yaml: a twin-disc rig's traction and
 #                           surface temperatures per revolution (rollsim run, 30 revolutions)
+#   hot_creep_curve.png     cases/hot_creep_curve.yaml: a creep curve with mu falling with the
+#                           contact temperature, and the same without the table (steady)
 set -eu
 
 ROOT=$(cd "$(dirname "$0")/.." && pwd)
@@ -85,6 +87,15 @@ fi
 "$PY" "$POST" rig "$DATA/twin_disc_temperature.nc" -o "$OUT/twin_disc_temperature.png" \
     --data "$DATA/twin_disc_temperature.csv"
 
+# A hot contact: mu(T) falling with the contact temperature against the same without the table.
+"$RS" sweep "$ROOT/cases/hot_creep_curve.yaml" -o "$DATA/hot_creep_curve.nc" --quiet >/dev/null
+"$RS" sweep "$ROOT/cases/hot_creep_curve.yaml" --set friction.temperature_table=null \
+    --set output.error_estimate=false -o "$DATA/cold_creep_curve.nc" --quiet >/dev/null
+"$PY" "$POST" creepcurve "$DATA/hot_creep_curve.nc" "$DATA/cold_creep_curve.nc" \
+    --label "mu(T): 0.4 at 20 degC to 0.2 at 400 degC" --label "mu = 0.4 (no table)" \
+    --abs --percent --title "Creep curve of a hot contact (V = 60 m/s, Table 1 contact, elastic)" \
+    -o "$OUT/hot_creep_curve.png" --data "$DATA/hot_creep_curve.csv"
+
 echo "wrote $OUT/default_history.png $OUT/fig7_carter_plastic.png $OUT/fig8_meierhofer.png $OUT/fig9_creep_curves.png" \
     "$OUT/hertz3d_creep.png $OUT/hertz3d_traction.png $OUT/hertz3d_regimes.png" \
-    "$OUT/twin_disc_temperature.png"
+    "$OUT/twin_disc_temperature.png $OUT/hot_creep_curve.png"

@@ -7,11 +7,11 @@
 
 int main(void)
 {
-  static const char *const kinds[] = {"section", "opaque",   "number", "integer",
-                                      "long",    "text",     "choice", "history",
-                                      "fields",  "protocol", "range",  "vector"};
+  static const char *const kinds[] = {"section", "opaque", "number",  "integer", "long",
+                                      "text",    "choice", "history", "fields",  "protocol",
+                                      "range",   "vector", "ttable"};
   /* one name per rs_case_key_kind: a kind added there must be named here */
-  _Static_assert(sizeof kinds / sizeof kinds[0] == RS_KEY_VECTOR + 1, "a key kind has no name");
+  _Static_assert(sizeof kinds / sizeof kinds[0] == RS_KEY_TTABLE + 1, "a key kind has no name");
   for (size_t i = 0; i < rs_case_nkeys; i++) {
     const rs_case_key *k = &rs_case_keys[i];
     printf("%s\t%s\t%s\t", k->path, kinds[k->kind], k->unit);

@@ -24,3 +24,16 @@ add_test(NAME temperature_rig_heat
   COMMAND ${SYSTEM_PYTHON3} ${RS_TESTS}/check_rig_heat.py ${RS_BIN}
           ${RS_CASES}/twin_disc_temperature.yaml ${CMAKE_CURRENT_BINARY_DIR}/rig_heat
           ${RS_CASES}/twin_disc_crowned.yaml)
+# mu(T) in steady runs and sweeps (friction.temperature_table): a constant table against
+# friction.mu, full sliding against sum mu(T1) p_n dx from the file, |p| = mu(T1) p_n cell by cell,
+# and the creep curve's falling branch against its estimate (docs/verification.md 29).
+add_test(NAME temperature_mu_table
+  COMMAND ${SYSTEM_PYTHON3} ${RS_TESTS}/check_mu_temperature.py ${RS_BIN}
+          ${RS_CASES}/hot_creep_curve.yaml ${CMAKE_CURRENT_BINARY_DIR}/mu_table)
+# A fixed point that does not settle (a saw-tooth mu(T), 0.8 and 0.01 every 5 degC): exit 3 with
+# the change reached, after the iteration cap.
+add_test(NAME temperature_mu_table_no_fixed_point COMMAND ${SYSTEM_PYTHON3} ${RS_TESTS}/cli_expect.py
+  --exit 3 --stderr "friction.temperature_table: the coupled steady state .* did not converge in 200 iterations"
+  -- ${RS_BIN} run ${RS_CASES}/hot_creep_curve.yaml --set sweep=null --set rolling.creepage=-0.04
+  --set "friction.temperature_table={temperature: [20, 25, 30, 35, 40], mu: [0.8, 0.01, 0.8, 0.01, 0.8]}"
+  -o ${CMAKE_CURRENT_BINARY_DIR}/mu_table_no_fixed_point.nc --quiet)

@@ -318,8 +318,10 @@ def plot_creepcurve(panels, out, absolute=False, title=None, percent=False, mu=N
     rec = rec or Recorder()
     if panels and not isinstance(panels[0], tuple):
         panels = [("", panels)]  # a plain list of series: one panel
-    colours = _colour_map(s.label for _, series in panels for s in series
-                          if not getattr(s, "elastic", False))
+    every = [s for _, series in panels for s in series]
+    # the elastic style marks the elastic curve among plastic ones; all elastic: colours
+    plain = all(getattr(s, "elastic", False) for s in every)
+    colours = _colour_map(s.label for s in every if plain or not getattr(s, "elastic", False))
     n = len(panels)
     fig, axes = plt.subplots(1, n, figsize=(6.6 if n == 1 else 4.6 * n, 4.6 + (0.6 if n > 1 else 0)),
                              sharey=True, squeeze=False, layout="constrained" if n == 1 else None)
@@ -330,9 +332,9 @@ def plot_creepcurve(panels, out, absolute=False, title=None, percent=False, mu=N
         for s in series:
             x, y = (np.abs(s.creepage), np.abs(s.traction)) if absolute else (s.creepage, s.traction)
             order = np.argsort(x, kind="stable")
-            style = dict(ELASTIC_STYLE) if getattr(s, "elastic", False) else \
-                dict(color=colours[s.label], lw=1.4)
-            marker = "" if getattr(s, "elastic", False) or x.size > 25 else "o-"
+            elastic = getattr(s, "elastic", False) and not plain
+            style = dict(ELASTIC_STYLE) if elastic else dict(color=colours[s.label], lw=1.4)
+            marker = "" if elastic or x.size > 25 else "o-"
             if marker:
                 style["marker"] = "o"
             rec.line(ax, k, x[order] * factor, y[order], ms=4, series=s.label,
@@ -349,7 +351,7 @@ def plot_creepcurve(panels, out, absolute=False, title=None, percent=False, mu=N
                 x = np.abs(s.creepage) if absolute else s.creepage
                 order = np.argsort(x, kind="stable")
                 colour = ELASTIC_STYLE.get("color", "k") if getattr(s, "elastic", False) \
-                    else colours[s.label]
+                    and not plain else colours[s.label]
                 rec.line(tax, k, x[order] * factor, s.t_max[order], color=colour, lw=1.0, ls="--",
                          series=s.label, quantity="T_max", point=getattr(s, "values", None))
             tax.set_ylabel("T_max [degC] (dashed)")

@@ -616,6 +616,24 @@ static int resolve_friction(const resolver *r, rs_case_input *in)
   return RS_OK;
 }
 
+/* friction.temperature_table (docs/model.md §18): the steady coupling only, with a temperature. */
+static int resolve_mu_table(const resolver *r, const rs_case *c)
+{
+  const yaml_node_t *n = given(r, "friction.temperature_table");
+  if (!n) return RS_OK;
+  if (!c->temperature.on)
+    return rs_case_error(r->d, n, "friction.temperature_table",
+                         "needs a temperature: block (the contact temperature it is read at)");
+  if (c->mode == RS_MODE_TRANSIENT)
+    return rs_case_error(r->d, n, "friction.temperature_table",
+                         "is not yet in transients: the temperature modes do not enter the "
+                         "contact equations; use simulation.mode: steady");
+  if (rs_friction_has_memory(&c->friction))
+    return rs_case_error(r->d, n, "friction.temperature_table",
+                         "is not available with friction memory (friction.memory_distance > 0)");
+  return RS_OK;
+}
+
 static int resolve(const rs_case_doc *d, rs_case_input *in, const yaml_node_t **where,
                    const int *sorted)
 {
@@ -633,8 +651,8 @@ static int resolve(const rs_case_doc *d, rs_case_input *in, const yaml_node_t **
                          "rolling.shift_velocity", "rolling.lateral_creepage", "rolling.spin"};
   for (int i = 0; i < 6; i++)
     if ((status = check_history(&r, names[i], hs[i], c)) != RS_OK) return status;
-  if ((status = resolve_friction(&r, in)) != RS_OK || (status = resolve_force(&r, c)) != RS_OK ||
-      (status = resolve_grid(&r, c)) != RS_OK)
+  if ((status = resolve_friction(&r, in)) != RS_OK || (status = resolve_mu_table(&r, c)) != RS_OK ||
+      (status = resolve_force(&r, c)) != RS_OK || (status = resolve_grid(&r, c)) != RS_OK)
     return status;
   if (c->mode == RS_MODE_STEADY && !(rs_history_min(&c->velocity, 0.0, c->end_time) > 0))
     return rs_case_error(d, given(&r, "rolling.velocity"), "rolling.velocity",
@@ -642,6 +660,16 @@ static int resolve(const rs_case_doc *d, rs_case_input *in, const yaml_node_t **
                          "mode is for rolling (V > 0)");
   /* transient runs estimate their errors only when asked (companion runs: docs/case-file.md) */
   if (c->mode == RS_MODE_TRANSIENT && !given(&r, "output.error_estimate")) c->error_estimate = 0;
+  /* the companion grids of the error estimate solve the case without the mu(T) coupling */
+  if (c->mu_table.n && given(&r, "grid.accuracy"))
+    return rs_case_error(d, given(&r, "grid.accuracy"), "grid.accuracy",
+                         "is not available with friction.temperature_table (the error estimate "
+                         "does not include the temperature coupling)");
+  if (c->mu_table.n && c->error_estimate && given(&r, "output.error_estimate"))
+    return rs_case_error(d, given(&r, "output.error_estimate"), "output.error_estimate",
+                         "is not available with friction.temperature_table (the estimate does "
+                         "not include the temperature coupling): leave it out or give false");
+  if (c->mu_table.n) c->error_estimate = 0;
   if ((status = resolve_accuracy(&r, c)) != RS_OK) return status;
   if (c->output_file && !*c->output_file)
     return rs_case_error(d, given(&r, "output.file"), "output.file", "empty file name");
@@ -681,7 +709,7 @@ static int input_copy(rs_case_input *dst, const rs_case_input *src)
   const rs_case *s = &src->c;
   c->title = c->output_file = NULL;
   c->normal_load = c->velocity = c->creepage = c->tangential_force = c->tangential_force_y =
-      c->lateral_creepage = c->spin = c->shift_velocity = (rs_history){0};
+      c->lateral_creepage = c->spin = c->shift_velocity = c->mu_table = (rs_history){0};
   c->rig.steps = NULL;
   int ok = (!s->title || (c->title = strdup(s->title))) &&
            (!s->output_file || (c->output_file = strdup(s->output_file)));
@@ -692,7 +720,8 @@ static int input_copy(rs_case_input *dst, const rs_case_input *src)
        rs_history_copy(&c->tangential_force_y, &s->tangential_force_y) == RS_OK &&
        rs_history_copy(&c->lateral_creepage, &s->lateral_creepage) == RS_OK &&
        rs_history_copy(&c->spin, &s->spin) == RS_OK &&
-       rs_history_copy(&c->shift_velocity, &s->shift_velocity) == RS_OK;
+       rs_history_copy(&c->shift_velocity, &s->shift_velocity) == RS_OK &&
+       rs_history_copy(&c->mu_table, &s->mu_table) == RS_OK;
   if (ok && s->rig.nsteps > 0) {
     c->rig.steps = malloc(s->rig.nsteps * sizeof *c->rig.steps);
     ok = c->rig.steps != NULL;
@@ -883,6 +912,7 @@ void rs_case_free(rs_case *c)
   rs_history_free(&c->spin);
   free(c->rig.steps);
   rs_history_free(&c->shift_velocity);
+  rs_history_free(&c->mu_table);
   source_free(c->source);
   memset(c, 0, sizeof *c);
 }
@@ -1040,6 +1070,21 @@ void rs_case_print(const rs_case *c, FILE *out)
                 rs_case_fmt(c->x_range[1], hi, sizeof hi));
       else
         fprintf(out, "%s: null  # mm (not given: grid.extent)\n", k->path);
+      continue;
+    }
+    if (k->kind == RS_KEY_TTABLE) {
+      const rs_history *h = field;
+      if (h->n == 0) {
+        fprintf(out, "%s: null  # not given\n", k->path);
+        continue;
+      }
+      fprintf(out, "%s: {%s: [", k->path, k->choices[0]);
+      for (size_t j = 0; j < h->n; j++)
+        fprintf(out, "%s%s", j ? ", " : "", rs_case_fmt(h->t[j], num, sizeof num));
+      fprintf(out, "], %s: [", k->choices[1]);
+      for (size_t j = 0; j < h->n; j++)
+        fprintf(out, "%s%s", j ? ", " : "", rs_case_fmt(h->v[j], num, sizeof num));
+      fprintf(out, "]}  # degC, %s\n", *k->unit ? k->unit : "1");
       continue;
     }
     if (!strncmp(k->path, "friction.", 9) && strcmp(k->path, "friction.law") &&

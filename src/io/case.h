@@ -21,8 +21,8 @@ enum {
   RS_FIELD_USTAR = 1 << 4,
   RS_FIELD_TAUC = 1 << 5,
   RS_FIELD_REGIME = 1 << 6,
-  /* mu(|v_s|) per cell: written whenever the friction law is not Coulomb (not a choice of
-   * output.fields) */
+  /* mu(|v_s|) (with friction.temperature_table mu(|v_s|, T)) per cell: written whenever the
+   * friction law is not Coulomb or the table is given (not a choice of output.fields) */
   RS_FIELD_MU = 1 << 7,
   /* the surface temperatures T1, T2 and the scalars T_max, heat_input_1, heat_input_2: written
    * whenever the case has a temperature: block (not a choice of output.fields) */
@@ -85,6 +85,9 @@ typedef struct rs_case {
   /* friction: */
   double mu;            /* coulomb; with another law mu(0), the coefficient at rest */
   rs_friction friction; /* the law (kind from friction.law) and its parameters */
+  /* friction.temperature_table: the coefficient at rest against the contact temperature,
+   * piecewise linear (t: degC, strictly increasing; v: mu); n = 0: none (docs/model.md §18) */
+  rs_history mu_table;
 
   /* layer: */
   double layer_thickness;     /* h3, mm */

@@ -87,7 +87,9 @@ typedef enum rs_case_key_kind {
   RS_KEY_FIELDS,   /* unsigned mask of RS_FIELD_* */
   RS_KEY_PROTOCOL, /* rs_twin_disc steps: a list of {slip|ramp_to, revolutions} (case_rig.c) */
   RS_KEY_RANGE,    /* double[2]: [lo, hi] with lo < hi, each within the key's range */
-  RS_KEY_VECTOR    /* rs_case_vec: a number or a list of two (2D / 3D), each within range */
+  RS_KEY_VECTOR,   /* rs_case_vec: a number or a list of two (2D / 3D), each within range */
+  RS_KEY_TTABLE    /* rs_history (kind table): {temperature: [...], <choices[1]>: [...]}, the
+                      temperatures strictly increasing, the values within range */
 } rs_case_key_kind;
 
 enum {

@@ -20,6 +20,7 @@ static const char *const scaling_names[] = {"auto", "difference", "self", NULL};
 static const char *const bool_names[] = {"false", "true", NULL};
 static const char *const law_names[] = {"coulomb",  "linear", "exponential",
                                         "rational", "polach", NULL};
+static const char *const mu_table_columns[] = {"temperature", "mu", NULL};
 const char *const rs_case_field_names[] = {"px",    "pn",   "slip",   "upl",
                                            "ustar", "tauc", "regime", NULL};
 
@@ -74,6 +75,8 @@ const rs_case_key rs_case_keys[] = {
     {"friction.A", RS_KEY_NUMBER, F(c.friction.polach_a), "", 0, 1, RS_KEY_NULLABLE, NULL},
     {"friction.B", RS_KEY_NUMBER, F(c.friction.polach_b), "s/mm", 0, 1e6,
      RS_KEY_HI_ABSURD | RS_KEY_NULLABLE, NULL},
+    {"friction.temperature_table", RS_KEY_TTABLE, F(c.mu_table), "", 0, 1000,
+     RS_KEY_LO_OPEN | RS_KEY_HI_ABSURD | RS_KEY_NULLABLE, mu_table_columns},
     {"friction.memory_distance", RS_KEY_NUMBER, F(c.friction.memory_distance), "mm", 0, 1e6,
      RS_KEY_HI_ABSURD | RS_KEY_NULLABLE, NULL},
     {"friction.memory_velocity", RS_KEY_NUMBER, F(c.friction.memory_velocity), "mm/s", 0, 1e12,
@@ -287,6 +290,69 @@ static int parse_range(const rs_case_doc *d, const yaml_node_t *n, const rs_case
   return RS_OK;
 }
 
+/* A property against temperature (RS_KEY_TTABLE): {temperature: [T...], <value>: [v...]}, the
+ * two lists of equal length >= 2, the temperatures (degC) strictly increasing, every value within
+ * the key's range; stored as a table history (t: temperature, v: value). */
+static int parse_ttable(const rs_case_doc *d, const yaml_node_t *n, const rs_case_key *spec,
+                        rs_history *h)
+{
+  char got[96], sub[2][320];
+  const char *const *col = spec->choices;
+  if (n->type != YAML_MAPPING_NODE)
+    return rs_case_error(d, n, spec->path,
+                         "expected a mapping {%s: [degC, ...], %s: [...]}, got %s", col[0], col[1],
+                         rs_case_describe(n, got, sizeof got));
+  int status = rs_case_check_mapping(d, n, spec->path, col);
+  if (status != RS_OK) return status;
+  const yaml_node_t *list[2];
+  size_t count[2];
+  for (int k = 0; k < 2; k++) {
+    snprintf(sub[k], sizeof sub[k], "%s.%s", spec->path, col[k]);
+    list[k] = rs_case_lookup(d, n, col[k]);
+    if (!list[k])
+      return rs_case_error(d, n, spec->path,
+                           "missing: give %s: [...] and %s: [...] of equal length", col[0], col[1]);
+    if (list[k]->type != YAML_SEQUENCE_NODE)
+      return rs_case_error(d, list[k], sub[k], "expected a list of numbers, got %s",
+                           rs_case_describe(list[k], got, sizeof got));
+    count[k] = (size_t)(list[k]->data.sequence.items.top - list[k]->data.sequence.items.start);
+  }
+  if (count[0] < 2)
+    return rs_case_error(d, list[0], sub[0], "expected at least 2 temperatures (degC), got %zu",
+                         count[0]);
+  if (count[1] != count[0])
+    return rs_case_error(d, list[1], sub[1],
+                         "has %zu values for %zu temperatures: give one per "
+                         "temperature",
+                         count[1], count[0]);
+  rs_history_free(h);
+  h->kind = RS_HISTORY_TABLE;
+  h->t = malloc(count[0] * sizeof *h->t);
+  h->v = malloc(count[0] * sizeof *h->v);
+  if (!h->t || !h->v) return rs_msg_set(d->msg, RS_ERR_INTERNAL, "out of memory");
+  for (size_t i = 0; i < count[0]; i++) {
+    const yaml_node_t *nt =
+        yaml_document_get_node((yaml_document_t *)&d->doc, list[0]->data.sequence.items.start[i]);
+    const yaml_node_t *nv =
+        yaml_document_get_node((yaml_document_t *)&d->doc, list[1]->data.sequence.items.start[i]);
+    if ((status = rs_case_number(d, nt, sub[0], &h->t[i])) != RS_OK ||
+        (status = rs_case_number(d, nv, sub[1], &h->v[i])) != RS_OK ||
+        (status = rs_case_check_range(d, nv, spec, sub[1], h->v[i])) != RS_OK)
+      return status;
+    h->n = i + 1;
+    if (!(h->t[i] > -273.15 && h->t[i] < 1e5))
+      return rs_case_error(d, nt, sub[0],
+                           "temperature %g degC: must be above -273.15 degC (and "
+                           "below 1e5)",
+                           h->t[i]);
+    if (i > 0 && !(h->t[i] > h->t[i - 1]))
+      return rs_case_error(d, nt, sub[0],
+                           "temperatures must be strictly increasing: %g degC after %g degC",
+                           h->t[i], h->t[i - 1]);
+  }
+  return RS_OK;
+}
+
 /* A number, or a list of two (3D); whole numbers when RS_KEY_WHOLE; each in range. */
 static int parse_vector(const rs_case_doc *d, const yaml_node_t *n, const rs_case_key *spec,
                         rs_case_vec *out)
@@ -393,6 +459,7 @@ int rs_case_parse_value(const rs_case_doc *d, const rs_case_key *spec, const yam
   case RS_KEY_PROTOCOL: return rs_case_protocol(d, n, spec->path, (rs_twin_disc *)field);
   case RS_KEY_RANGE: return parse_range(d, n, spec, (double *)field);
   case RS_KEY_VECTOR: return parse_vector(d, n, spec, (rs_case_vec *)field);
+  case RS_KEY_TTABLE: return parse_ttable(d, n, spec, (rs_history *)field);
   case RS_KEY_SECTION:
   case RS_KEY_OPAQUE: break;
   }

@@ -417,6 +417,10 @@ void rs_model_cell_law(const rs_model *m, const rs_work *w, const double *y, int
     in.vs[c] = w->vslip[c * L->n + I];
     in.flow[c] = w->dupl[c * L->n + I];
   }
+  if (m->mu_factor) { /* mu(T): the bound's factor, through p_n in every law's g = mu p_n */
+    in.g *= m->mu_factor[I];
+    in.pn *= m->mu_factor[I];
+  }
   rs_contact_law(&m->par.plasticity, &in, jac, out);
 }
 

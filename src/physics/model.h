@@ -80,6 +80,9 @@ typedef struct rs_model {
   /* State of the material entering at the leading edge: fresh (0), or the twin-disc
    * memory when set (physics/rig.h; owned by the caller, updated between time steps). */
   const struct rs_rig_memory *memory;
+  /* Per-cell factor on the friction bound (docs/model.md §18, mu(T)): g = f_I mu(...) p_n;
+   * NULL: none (factor 1). Owned by the caller, read at every evaluation. */
+  const double *mu_factor;
 } rs_model;
 
 /* Grid, elastic operator and the normal solution from plain parameters. */

@@ -52,7 +52,8 @@ void rs_model_cell_law(const rs_model *m, const rs_work *w, const double *y, int
  * bound of the memoryless model (the law at rest). */
 static inline double rs_model_bound(const rs_model *m, const rs_work *w, const double *y, int I)
 {
-  return m->lay.memory ? y[rs_at_mu(&m->lay, I)] * w->pn[I] : w->bound[I];
+  const double g = m->lay.memory ? y[rs_at_mu(&m->lay, I)] * w->pn[I] : w->bound[I];
+  return m->mu_factor ? m->mu_factor[I] * g : g;
 }
 
 static inline double rs_sign_of(double v) { return v > 0.0 ? 1.0 : (v < 0.0 ? -1.0 : 0.0); }

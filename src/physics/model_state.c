@@ -405,7 +405,7 @@ int rs_model_sliding_state(const rs_model *m, rs_work *w, const rs_inputs *in, d
       if (!(w->pn[I] > 0.0)) continue;
       const double wx = in->creepage - in->spin * g->y[iy] + in->shift_velocity / V;
       const double wy = in->lateral_creepage + in->spin * g->x[ix];
-      gmax = fmax(gmax, w->bound[I]);
+      gmax = fmax(gmax, rs_model_bound(m, w, y, I));
       wmin = fmin(wmin, hypot(wx, wy));
     }
   if (!(gmax > 0.0) || !(wmin >= SLIDE_FACTOR * gmax / m->par.shear_modulus)) return RS_ERR_SOLVER;
@@ -417,7 +417,8 @@ int rs_model_sliding_state(const rs_model *m, rs_work *w, const rs_inputs *in, d
       if (w->pn[I] > 0.0) {
         const double wx = in->creepage - in->spin * g->y[iy] + in->shift_velocity / V;
         const double wy = in->lateral_creepage + in->spin * g->x[ix];
-        const double wn = hypot(wx, wy), b = w->bound[I], tau_up = rs_yield_limit(pl, us);
+        const double wn = hypot(wx, wy), b = rs_model_bound(m, w, y, I),
+                     tau_up = rs_yield_limit(pl, us);
         const double full = us + g->dx * wn; /* u* when the flow takes the whole slip */
         /* plastic (the flow takes the whole slip), hardening up to the bound within the cell
          * and then sliding, or sliding without flow (|p| = g, u* carried) */

@@ -504,9 +504,10 @@ int rs_run(const rs_case *c, const rs_run_opts *o, rs_run_result *res, rs_msg *m
    * whatever output.fields asks for (twin-disc runs cannot be restarted). */
   const unsigned asked = c->has_plasticity ? c->fields : (c->fields & ~(unsigned)RS_FIELD_TAUC);
   const unsigned state = RS_FIELD_PX | RS_FIELD_UPL | RS_FIELD_USTAR;
-  const unsigned fields = (c->mode == RS_MODE_TRANSIENT && !rig ? asked | state : asked) |
-                          (rs_friction_varies(&c->friction) ? (unsigned)RS_FIELD_MU : 0u) |
-                          (c->temperature.on ? (unsigned)RS_FIELD_TEMPERATURE : 0u);
+  const unsigned fields =
+      (c->mode == RS_MODE_TRANSIENT && !rig ? asked | state : asked) |
+      (rs_friction_varies(&c->friction) || c->mu_table.n ? (unsigned)RS_FIELD_MU : 0u) |
+      (c->temperature.on ? (unsigned)RS_FIELD_TEMPERATURE : 0u);
   rs_output_spec spec = {.path = path,
                          .title = c->title ? c->title : "",
                          .case_text = c->yaml_text ? c->yaml_text : "",
@@ -551,6 +552,8 @@ int rs_run(const rs_case *c, const rs_run_opts *o, rs_run_result *res, rs_msg *m
     rs_steady *st = NULL;
     status = rs_steady_create(&st, &s.m, s.ctx, msg);
     if (status == RS_OK) status = rs_steady_solve(st, 0.0, s.y, &res->stats, msg);
+    if (status == RS_OK) /* mu(T): the coupled steady state */
+      status = rs_temperature_couple(&s.temp, &s.m, &s.w, st, s.y, &res->stats, msg);
     rs_steady_free(st);
   }
   if (status == RS_OK && estimate && !res->grid_chosen && !*res->error_note)

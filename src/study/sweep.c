@@ -47,6 +47,7 @@ typedef struct steady_chain {
   int have_diag;                   /* diag is of the solution in hand */
   rs_errest est;                   /* the error estimate's companion grids of m */
   int est_tried;                   /* est built, or m found too coarse for it */
+  rs_temperature_run temp;         /* mu(T): the coupling's temperatures (temp.mu_table) */
 } steady_chain;
 
 static void chain_drop(steady_chain *ch)
@@ -55,6 +56,7 @@ static void chain_drop(steady_chain *ch)
   ch->jac_now = 0;
   rs_steady_free(ch->st);
   ch->st = NULL;
+  rs_temperature_run_free(&ch->temp);
   rs_work_free(&ch->w);
   free(ch->yp);
   free(ch->yprev);
@@ -227,6 +229,8 @@ static int steady_point(const rs_case *c, steady_chain *ch, double **y, int *ny,
         rs_work_create(&ch->w, &ch->m) != RS_OK)
       status = rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory");
     if (status == RS_OK) status = rs_steady_create(&ch->st, &ch->m, ch->ctx, msg);
+    if (status == RS_OK && c->mu_table.n)
+      status = rs_temperature_run_create(&ch->temp, c, &ch->m, msg);
   }
   if (status == RS_OK && (!warm || *ny != ch->m.lay.neq)) {
     free(*y);
@@ -249,6 +253,11 @@ static int steady_point(const rs_case *c, steady_chain *ch, double **y, int *ny,
       ch->xlast = x;
       ch->nsolved = reuse ? 1 : 0; /* a chain starts only along a rolling input */
     }
+  }
+  if (status == RS_OK && ch->temp.mu_table) { /* mu(T): the coupled steady state */
+    status = rs_temperature_couple(&ch->temp, &ch->m, &ch->w, ch->st, *y, &stats, msg);
+    if (status == RS_OK) status = regimes_of(ch, *y, ch->reg_last);
+    if (status == RS_OK) memcpy(ch->ylast, *y, (size_t)ch->m.lay.neq * sizeof **y);
   }
   /* the point's profiles (output.fields; 2D sweep files) */
   const int keep = f && f->n == ch->m.grid.n && ch->m.lay.ncomp == 1;

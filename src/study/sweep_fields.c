@@ -62,7 +62,8 @@ unsigned rs_sweep_profile_fields(const rs_case *c, int warn)
 {
   const unsigned fields =
       (c->has_plasticity ? c->fields : c->fields & ~(unsigned)RS_FIELD_TAUC) |
-      (c->fields && rs_friction_varies(&c->friction) ? (unsigned)RS_FIELD_MU : 0u);
+      (c->fields && (rs_friction_varies(&c->friction) || c->mu_table.n) ? (unsigned)RS_FIELD_MU
+                                                                        : 0u);
   if (fields && c->dimension == 3) {
     if (warn)
       fprintf(stderr, "rollsim sweep: warning: output.fields not stored: a 3D sweep file holds "

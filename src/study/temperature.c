@@ -1,8 +1,11 @@
 /* Surface temperature of records and sweep points (study/temperature.h). */
 #include "study/temperature.h"
 
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
+
+#include "physics/history.h"
 
 int rs_temperature_run_create(rs_temperature_run *t, const rs_case *c, const rs_model *m,
                               rs_msg *msg)
@@ -27,7 +30,20 @@ int rs_temperature_run_create(rs_temperature_run *t, const rs_case *c, const rs_
   t->T1 = malloc(n * sizeof *t->T1);
   t->T2 = malloc(n * sizeof *t->T2);
   t->contact = malloc(n);
-  if (!t->fric || !t->plast || !t->q || !t->T1 || !t->T2 || !t->contact) {
+  if (c->mu_table.n) { /* mu(T): from the contact temperature of cold surfaces */
+    t->mu_table = &c->mu_table;
+    t->mu_rest = rs_friction_mu(&m->par.friction, 0.0);
+    t->T_used = malloc(n * sizeof *t->T_used);
+    t->mu_factor = malloc(n * sizeof *t->mu_factor);
+    const double *b = t->th.beta, *Tb = c->temperature.bulk;
+    const double T0 = (b[0] * Tb[0] + b[1] * Tb[1]) / (b[0] + b[1]);
+    for (size_t i = 0; t->T_used && t->mu_factor && i < n; i++) {
+      t->T_used[i] = T0;
+      t->mu_factor[i] = rs_history_eval(t->mu_table, T0) / t->mu_rest;
+    }
+  }
+  if (!t->fric || !t->plast || !t->q || !t->T1 || !t->T2 || !t->contact ||
+      (c->mu_table.n && (!t->T_used || !t->mu_factor))) {
     rs_temperature_run_free(t);
     return rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory for the temperature of %zu cells", n);
   }
@@ -43,6 +59,8 @@ void rs_temperature_run_free(rs_temperature_run *t)
   free(t->T1);
   free(t->T2);
   free(t->contact);
+  free(t->T_used);
+  free(t->mu_factor);
   memset(t, 0, sizeof *t);
 }
 
@@ -126,4 +144,50 @@ int rs_temperature_run_rates(rs_temperature_run *t, const rs_model *m, rs_work *
   if (status != RS_OK) return status;
   rs_thermal_dae_rates(&t->th, in->velocity, t->q, t->contact, y + m->lay.neq, yp + m->lay.neq);
   return RS_OK;
+}
+
+int rs_temperature_couple(rs_temperature_run *t, rs_model *m, rs_work *w, rs_steady *st, double *y,
+                          rs_stats *stats, rs_msg *msg)
+{
+  if (!t->mu_table) return RS_OK;
+  const int n = m->grid.n;
+  m->mu_factor = t->mu_factor;
+  double *rest = calloc((size_t)m->lay.neq, sizeof *rest);
+  if (!rest) return rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory for the mu(T) coupling");
+  rs_inputs in;
+  rs_model_inputs_at(m, 0.0, &in);
+  const double *b = t->th.beta, *Tb = t->th.par.bulk;
+  const double T0 = (b[0] * Tb[0] + b[1] * Tb[1]) / (b[0] + b[1]);
+  double omega = 1.0, last = INFINITY, change = INFINITY, rise = 0.0;
+  int status = RS_OK, k;
+  for (k = 1; k <= RS_COUPLING_MAX && status == RS_OK; k++) {
+    status = rs_steady_solve(st, 0.0, y, stats, msg);
+    if (status == RS_OK) status = sources_at(t, m, w, &in, y, rest, msg);
+    if (status != RS_OK) break;
+    rs_thermal_result r;
+    rs_thermal_march(&t->th, in.velocity, t->q, t->contact, t->T1, t->T2, NULL, NULL, &r);
+    t->couplings++;
+    change = rise = 0.0; /* over the contact, where the factor acts */
+    for (int i = 0; i < n; i++)
+      if (t->contact[i]) {
+        change = fmax(change, fabs(t->T1[i] - t->T_used[i]));
+        rise = fmax(rise, fabs(t->T1[i] - T0));
+      }
+    if (change <= RS_COUPLING_TOL * rise || rise == 0.0) break;
+    if (change > last) omega = fmax(0.5 * omega, 1.0 / 64); /* the iteration overshoots */
+    last = change;
+    for (int i = 0; i < n; i++) {
+      t->T_used[i] += omega * (t->T1[i] - t->T_used[i]);
+      t->mu_factor[i] = rs_history_eval(t->mu_table, t->T_used[i]) / t->mu_rest;
+    }
+  }
+  free(rest);
+  if (status == RS_OK && k > RS_COUPLING_MAX)
+    status = rs_msg_set(msg, RS_ERR_SOLVER,
+                        "friction.temperature_table: the coupled steady state (mu from the "
+                        "contact temperature) did not converge in %d iterations: the contact "
+                        "temperature still changes by %.3g degC (rise %.4g degC, tolerance %g of "
+                        "the rise)",
+                        RS_COUPLING_MAX, change, rise, RS_COUPLING_TOL);
+  return status;
 }
