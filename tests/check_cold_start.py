@@ -23,7 +23,7 @@ import sys
 
 import netCDF4
 
-from solver_checks import Checks, eurosprinter, sweep_counts
+from solver_checks import Checks, eurosprinter, sweep_counts, write_case
 
 CASE = eurosprinter("cold start: Eurosprinter contact, 44 x 44 cells", 44) + """plasticity: {tau_c0: 150.0, k_rel: 0.3}
 rolling: {velocity: 10000.0, creepage: -0.25}
@@ -50,10 +50,7 @@ def point(binary, path, out, xi, plastic):
 
 def main():
     binary, work = sys.argv[1], sys.argv[2]
-    os.makedirs(work, exist_ok=True)
-    path = os.path.join(work, "cold_start.yaml")
-    with open(path, "w") as f:
-        f.write(CASE)
+    path = write_case(work, "cold_start", CASE)
     out = os.path.join(work, "point.nc")
     for xi in (-0.25, -0.04):
         elastic = point(binary, path, out, xi, None)

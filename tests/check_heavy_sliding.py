@@ -36,7 +36,7 @@ import sys
 
 import netCDF4
 
-from solver_checks import Checks, eurosprinter
+from solver_checks import Checks, eurosprinter, write_case
 
 G, K_REL, TAU_C0, MU = 82000.0, -0.001, 150.0, 0.33
 K_TAU = G * K_REL / (1.0 - K_REL)
@@ -84,11 +84,9 @@ def self_yielding(regime, ustar, pn):
 def main():
     binary, work = sys.argv[1], sys.argv[2]
     cells = int(sys.argv[3]) if len(sys.argv) > 3 else 22
-    os.makedirs(work, exist_ok=True)
-    path = os.path.join(work, "heavy_sliding.yaml")
-    with open(path, "w") as f:
-        f.write(eurosprinter(f"heavy sliding with softening: Eurosprinter contact, {cells} x {cells} "
-                             "cells, xi -25 %", cells) + CASE)
+    path = write_case(work, "heavy_sliding",
+                      eurosprinter(f"heavy sliding with softening: Eurosprinter contact, {cells} x "
+                                   f"{cells} cells, xi -25 %", cells) + CASE)
     tr_nc, st_nc = os.path.join(work, "transient.nc"), os.path.join(work, "steady.nc")
     text = run(binary, path, tr_nc, [])
     check("the transient from rest finished", text is not None)

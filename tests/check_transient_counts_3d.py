@@ -24,7 +24,7 @@ import sys
 
 import netCDF4
 
-from solver_checks import Checks
+from solver_checks import Checks, write_case
 
 CASE = """title: "3D start-up counts: Hertz ellipse a/b = 1.6, 22 x 22 cells"
 contact: {dimension: 3, normal_load: 10000.0, radius: [300.0, 150.0]}
@@ -55,10 +55,7 @@ def run(binary, path, out, extra):
 
 def main():
     binary, work = sys.argv[1], sys.argv[2]
-    os.makedirs(work, exist_ok=True)
-    path = os.path.join(work, "startup.yaml")
-    with open(path, "w") as f:
-        f.write(CASE)
+    path = write_case(work, "startup", CASE)
     for name, extra in [("elastic", []),
                         ("plastic", ["--set", "plasticity.tau_c0=150",
                                      "--set", "plasticity.k_rel=0.3"])]:

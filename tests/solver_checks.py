@@ -1,6 +1,6 @@
 """Shared by the 3D solver checks (check_weak_hardening, check_low_yield, check_cold_start,
-check_heavy_sliding, check_transient_counts_3d): the pass/fail line, the contact of
-bench/cases/tractcurve_plast.yaml as case text, and a sweep's counts."""
+check_heavy_sliding, check_transient_counts_3d, check_softening_curve): the pass/fail line, the
+contact of bench/cases/tractcurve_plast.yaml as case text, writing a case, and a sweep's counts."""
 import os
 import re
 import subprocess
@@ -43,14 +43,20 @@ def sweep_counts(binary, path, out, extra, timeout=300):
     return int(m.group(1)), int(m.group(2)), int(m.group(3))
 
 
-def plastic_and_elastic(check, binary, work, name, case, elastic_sets):
-    """Writes CASE to WORK/NAME.yaml and sweeps it as it is and with ELASTIC_SETS (the elastic
-    curve over the same points): (path, plastic .nc, elastic .nc, plastic counts, elastic
-    counts), the counts as sweep_counts gives them, or None if either sweep did not run."""
+def write_case(work, name, case):
+    """Writes the case text CASE to WORK/NAME.yaml (WORK made if missing); its path."""
     os.makedirs(work, exist_ok=True)
     path = os.path.join(work, name + ".yaml")
     with open(path, "w") as f:
         f.write(case)
+    return path
+
+
+def plastic_and_elastic(check, binary, work, name, case, elastic_sets):
+    """Writes CASE to WORK/NAME.yaml and sweeps it as it is and with ELASTIC_SETS (the elastic
+    curve over the same points): (path, plastic .nc, elastic .nc, plastic counts, elastic
+    counts), the counts as sweep_counts gives them, or None if either sweep did not run."""
+    path = write_case(work, name, case)
     plastic_nc, elastic_nc = os.path.join(work, name + ".nc"), os.path.join(work, "elastic.nc")
     elastic = sweep_counts(binary, path, elastic_nc, elastic_sets)
     plastic = sweep_counts(binary, path, plastic_nc, [])
