@@ -7,6 +7,16 @@
 
 #include "physics/history.h"
 
+int rs_temperature_coupled(const rs_case *c) { return c->mu_table.n || c->tau_c0_table.n; }
+
+/* The factors of cell i at its temperature T_used[i] (those of the tables given). */
+static void set_factors(rs_temperature_run *t, size_t i)
+{
+  if (t->mu_factor) t->mu_factor[i] = rs_history_eval(t->mu_table, t->T_used[i]) / t->mu_rest;
+  if (t->yield_factor)
+    t->yield_factor[i] = rs_history_eval(t->tau_table, t->T_used[i]) / t->tau_rest;
+}
+
 int rs_temperature_run_create(rs_temperature_run *t, const rs_case *c, const rs_model *m,
                               rs_msg *msg)
 {
@@ -30,20 +40,26 @@ int rs_temperature_run_create(rs_temperature_run *t, const rs_case *c, const rs_
   t->T1 = malloc(n * sizeof *t->T1);
   t->T2 = malloc(n * sizeof *t->T2);
   t->contact = malloc(n);
-  if (c->mu_table.n) { /* mu(T): from the contact temperature of cold surfaces */
-    t->mu_table = &c->mu_table;
-    t->mu_rest = rs_friction_mu(&m->par.friction, 0.0);
-    t->T_used = malloc(n * sizeof *t->T_used);
-    t->mu_factor = malloc(n * sizeof *t->mu_factor);
+  if (rs_temperature_coupled(c)) { /* from the contact temperature of cold surfaces */
     const double *b = t->th.beta, *Tb = c->temperature.bulk;
     const double T0 = (b[0] * Tb[0] + b[1] * Tb[1]) / (b[0] + b[1]);
-    for (size_t i = 0; t->T_used && t->mu_factor && i < n; i++) {
-      t->T_used[i] = T0;
-      t->mu_factor[i] = rs_history_eval(t->mu_table, T0) / t->mu_rest;
+    t->T_used = malloc(n * sizeof *t->T_used);
+    for (size_t i = 0; t->T_used && i < n; i++) t->T_used[i] = T0;
+    if (c->mu_table.n) {
+      t->mu_table = &c->mu_table;
+      t->mu_rest = rs_friction_mu(&m->par.friction, 0.0);
+      t->mu_factor = malloc(n * sizeof *t->mu_factor);
     }
+    if (c->tau_c0_table.n) {
+      t->tau_table = &c->tau_c0_table;
+      t->tau_rest = m->par.plasticity.tau_c0;
+      t->yield_factor = malloc(n * sizeof *t->yield_factor);
+    }
+    for (size_t i = 0; t->T_used && i < n; i++) set_factors(t, i);
   }
   if (!t->fric || !t->plast || !t->q || !t->T1 || !t->T2 || !t->contact ||
-      (c->mu_table.n && (!t->T_used || !t->mu_factor))) {
+      (rs_temperature_coupled(c) && !t->T_used) || (c->mu_table.n && !t->mu_factor) ||
+      (c->tau_c0_table.n && !t->yield_factor)) {
     rs_temperature_run_free(t);
     return rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory for the temperature of %zu cells", n);
   }
@@ -61,6 +77,7 @@ void rs_temperature_run_free(rs_temperature_run *t)
   free(t->contact);
   free(t->T_used);
   free(t->mu_factor);
+  free(t->yield_factor);
   memset(t, 0, sizeof *t);
 }
 
@@ -149,11 +166,12 @@ int rs_temperature_run_rates(rs_temperature_run *t, const rs_model *m, rs_work *
 int rs_temperature_couple(rs_temperature_run *t, rs_model *m, rs_work *w, rs_steady *st, double *y,
                           rs_stats *stats, rs_msg *msg)
 {
-  if (!t->mu_table) return RS_OK;
+  if (!t->T_used) return RS_OK;
   const int n = m->grid.n;
   m->mu_factor = t->mu_factor;
+  m->yield_factor = t->yield_factor;
   double *rest = calloc((size_t)m->lay.neq, sizeof *rest);
-  if (!rest) return rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory for the mu(T) coupling");
+  if (!rest) return rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory for the temperature coupling");
   rs_inputs in;
   rs_model_inputs_at(m, 0.0, &in);
   const double *b = t->th.beta, *Tb = t->th.par.bulk;
@@ -167,7 +185,7 @@ int rs_temperature_couple(rs_temperature_run *t, rs_model *m, rs_work *w, rs_ste
     rs_thermal_result r;
     rs_thermal_march(&t->th, in.velocity, t->q, t->contact, t->T1, t->T2, NULL, NULL, &r);
     t->couplings++;
-    change = rise = 0.0; /* over the contact, where the factor acts */
+    change = rise = 0.0; /* over the contact, where the factors act */
     for (int i = 0; i < n; i++)
       if (t->contact[i]) {
         change = fmax(change, fabs(t->T1[i] - t->T_used[i]));
@@ -178,16 +196,22 @@ int rs_temperature_couple(rs_temperature_run *t, rs_model *m, rs_work *w, rs_ste
     last = change;
     for (int i = 0; i < n; i++) {
       t->T_used[i] += omega * (t->T1[i] - t->T_used[i]);
-      t->mu_factor[i] = rs_history_eval(t->mu_table, t->T_used[i]) / t->mu_rest;
+      set_factors(t, (size_t)i);
     }
   }
   free(rest);
   if (status == RS_OK && k > RS_COUPLING_MAX)
     status = rs_msg_set(msg, RS_ERR_SOLVER,
-                        "friction.temperature_table: the coupled steady state (mu from the "
-                        "contact temperature) did not converge in %d iterations: the contact "
-                        "temperature still changes by %.3g degC (rise %.4g degC, tolerance %g of "
-                        "the rise)",
+                        "%s: the coupled steady state (%s from the contact temperature) did not "
+                        "converge in %d iterations: the contact temperature still changes by %.3g "
+                        "degC (rise %.4g degC, tolerance %g of the rise)",
+                        t->mu_table && t->tau_table ? "friction.temperature_table, "
+                                                      "plasticity.tau_c0_table"
+                        : t->mu_table               ? "friction.temperature_table"
+                                                    : "plasticity.tau_c0_table",
+                        t->mu_table && t->tau_table ? "mu and tau_c0"
+                        : t->mu_table               ? "mu"
+                                                    : "tau_c0",
                         RS_COUPLING_MAX, change, rise, RS_COUPLING_TOL);
   return status;
 }
