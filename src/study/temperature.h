@@ -60,8 +60,8 @@ int rs_temperature_coupled(const rs_case *c);
 /* The steady state coupled with mu(T) and tau_c0(T) (docs/model.md §18): from the last
  * temperatures (the contact temperature of cold surfaces at the first call), the steady solve
  * with the factors of T_used warm-started from y, then the march of its sources, until the
- * largest change of the contact temperature is below RS_COUPLING_TOL of the rise,
- * under-relaxed when the change grows. Sets m->mu_factor and m->yield_factor (those of its
+ * largest change of the contact temperature is below RS_COUPLING_TOL of the rise, each update
+ * Anderson-accelerated over the last iterates. Sets m->mu_factor and m->yield_factor (those of its
  * tables). RS_ERR_SOLVER when it does not converge in RS_COUPLING_MAX iterations. Nothing to do
  * without a table. */
 #define RS_COUPLING_TOL 1e-9
