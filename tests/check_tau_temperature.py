@@ -1,13 +1,14 @@
 #!/usr/bin/env python3
-"""tau_c0(T), plasticity.tau_c0_table, in steady runs (docs/model.md §18 "Couplings",
+"""tau_c0(T), plasticity.tau_c0_table, in steady runs and sweeps (docs/model.md §18 "Couplings",
 docs/verification.md 30).
 
   check_tau_temperature.py ROLLSIM CASE CASE3D OUT_DIR
       (CASE: cases/hot_creep_curve.yaml, CASE3D: cases/ertz_temperature.yaml)
 
 The 2D case is the hot creep curve's contact (p0 = 1978 N/mm^2, V = 60 m/s) with Coulomb friction
-mu = 0.4 (its mu(T) left out but in 4) and plasticity tau_c0 = 300 N/mm^2, so that most of the contact flows plastically once it
-slides; the table lowers tau_c0 from 300 N/mm^2 at 20 degC to 150 N/mm^2 at 400 degC.
+mu = 0.4 (its mu(T) left out but in 4) and plasticity tau_c0 = 300 N/mm^2, so that most of the
+contact flows plastically once it slides; the table lowers tau_c0 from 300 N/mm^2 at 20 degC to
+150 N/mm^2 at 400 degC.
 
 1. A constant table tau_c0(T) = 200 N/mm^2 with plasticity.tau_c0 = 300 is the case with
    plasticity.tau_c0 = 200 and no table (its floor 0.1 tau_c0 keeping its ratio): F_x at three
@@ -30,6 +31,10 @@ slides; the table lowers tau_c0 from 300 N/mm^2 at 20 degC to 150 N/mm^2 at 400 
 5. 3D: Ertz & Knothe's contact in full sliding (1 m/s at 30 m/s, mu = 0.3) with tau_c0 from
    150 N/mm^2 at 0 degC to 100 N/mm^2 at 300 degC, perfectly plastic: every flowing cell at
    |p| = tau_T(T1), every slipping one at mu p_n, to 1e-8.
+6. The creep curve (perfectly plastic): with the table it peaks inside the range and falls all the
+   way after (the contact heats with the sliding speed, its yield limit falls), without it it does
+   not fall; a sweep point, started from the last point's temperatures and state, is the single run
+   started cold at its creepage to 1e-8 (two fixed points of tolerance 1e-9 of the rise).
 """
 import os
 import sys
@@ -137,6 +142,26 @@ def main():
           f"3D full sliding: |p| = tau_T(T1) in {int(flow.sum())} flowing cells, mu p_n in "
           f"{int(slip.sum())} slipping (T_max {float(d['T_max'][-1]):.1f} degC)", float(rel),
           "<= 1e-8")
+    # 6. the creep curve
+    sw = ["sweep", case, "--set", "friction.temperature_table=null"] + plastic(0.0)
+    hot = run(rollsim, sw + ["--set", TABLE], os.path.join(out, "hot.nc"))
+    cold = run(rollsim, sw, os.path.join(out, "cold.nc"))
+    xs = np.asarray(hot["rolling_creepage"][:], dtype=float).ravel()
+    fh = np.abs(np.asarray(hot["Fx"][:], dtype=float)).ravel()
+    fc = np.abs(np.asarray(cold["Fx"][:], dtype=float)).ravel()
+    peak = int(np.argmax(fh))
+    check(0 < peak < len(fh) - 1 and bool(np.all(np.diff(fh[peak:]) < 0)),
+          "with tau_c0(T) the plastic creep curve peaks inside the range and falls after",
+          f"peak at point {peak} of {len(fh)}", "interior, falling")
+    check(bool(np.all(np.diff(fc[peak:]) >= -1e-9 * fc[peak:-1])), "without the table it does not "
+          "fall", float(np.min(np.diff(fc[peak:]))), ">= 0")
+    for j in (10, 40):
+        d = run(rollsim, base + plastic(0.0) + ["--set", TABLE, "--set",
+                                                f"rolling.creepage={xs[j]}"],
+                os.path.join(out, "point.nc"))
+        rel = abs(abs(float(d["Fx"][-1])) - fh[j]) / fh[j]
+        check(rel <= 1e-8, f"sweep point {j} (from the last point's temperatures) = the single run "
+              f"from cold at xi = {xs[j]:.4g}", rel, "<= 1e-8")
     if check.failures:
         sys.exit(1)
 

@@ -52,3 +52,10 @@ add_test(NAME temperature_tau_table_no_fixed_point COMMAND ${SYSTEM_PYTHON3} ${R
   --set friction.temperature_table=null --set "plasticity={tau_c0: 300, k_rel: 0.0}"
   --set "plasticity.tau_c0_table={temperature: [20, 25, 30, 35, 40, 45, 50, 55, 60], tau_c0: [600, 30, 600, 30, 600, 30, 600, 30, 600]}"
   -o ${CMAKE_CURRENT_BINARY_DIR}/tau_table_no_fixed_point.nc --quiet)
+# plasticity.tau_c0 swept with the table that replaces it: exit 2.
+add_test(NAME temperature_tau_table_sweep_tau_c0 COMMAND ${SYSTEM_PYTHON3} ${RS_TESTS}/cli_expect.py
+  --exit 2 --stderr "sweep: plasticity.tau_c0 is not swept with plasticity.tau_c0_table"
+  -- ${RS_BIN} sweep ${RS_CASES}/hot_creep_curve.yaml --set "plasticity={tau_c0: 300, k_rel: 0.0}"
+  --set "plasticity.tau_c0_table={temperature: [20, 400], tau_c0: [300, 150]}"
+  --set "sweep={plasticity.tau_c0: [200, 300]}"
+  -o ${CMAKE_CURRENT_BINARY_DIR}/tau_table_sweep_tau_c0.nc --quiet)
