@@ -59,3 +59,9 @@ add_test(NAME temperature_tau_table_sweep_tau_c0 COMMAND ${SYSTEM_PYTHON3} ${RS_
   --set "plasticity.tau_c0_table={temperature: [20, 400], tau_c0: [300, 150]}"
   --set "sweep={plasticity.tau_c0: [200, 300]}"
   -o ${CMAKE_CURRENT_BINARY_DIR}/tau_table_sweep_tau_c0.nc --quiet)
+# ... nor fitted with it: exit 2 naming the parameter.
+add_test(NAME temperature_tau_table_fit_tau_c0 COMMAND ${SYSTEM_PYTHON3} ${RS_TESTS}/cli_expect.py
+  --exit 2 --stderr "fit.parameters.plasticity.tau_c0: plasticity.tau_c0 is not fitted with plasticity.tau_c0_table"
+  -- ${RS_BIN} fit ${RS_CASES}/fit_creep_curve.yaml --set "temperature={bulk: 20}"
+  --set "plasticity.tau_c0_table={temperature: [20, 400], tau_c0: [200, 100]}"
+  -o ${CMAKE_CURRENT_BINARY_DIR}/tau_table_fit_tau_c0.nc --quiet)
