@@ -46,7 +46,7 @@ static void check_solution(double k_rel, int cells)
     double fbig = 0.0, gmax = 0.0, excess = 0.0, usmin = INFINITY, decrease = 0.0, usmax = 0.0;
     for (int i = 0; i < m.lay.neq; i++) fbig = fmax(fbig, fabs(F[i]));
     for (int i = 0; i < n; i++) {
-      const double g = m.bound[i], lim = fmin(g, rs_model_yield_limit(&m, y[2 * n + i]));
+      const double g = m.bound[i], lim = fmin(g, rs_model_yield_limit(&m, i, y[2 * n + i]));
       gmax = fmax(gmax, g);
       excess = fmax(excess, fabs(y[i]) - lim);
       usmin = fmin(usmin, y[2 * n + i]);

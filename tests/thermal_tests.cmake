@@ -37,3 +37,31 @@ add_test(NAME temperature_mu_table_no_fixed_point COMMAND ${SYSTEM_PYTHON3} ${RS
   -- ${RS_BIN} run ${RS_CASES}/hot_creep_curve.yaml --set sweep=null --set rolling.creepage=-0.04
   --set "friction.temperature_table={temperature: [20, 25, 30, 35, 40], mu: [0.8, 0.01, 0.8, 0.01, 0.8]}"
   -o ${CMAKE_CURRENT_BINARY_DIR}/mu_table_no_fixed_point.nc --quiet)
+# tau_c0(T) in steady runs (plasticity.tau_c0_table): a constant table against plasticity.tau_c0,
+# every flowing cell at tau_table(T1) + k_tau u*, the traction falling with the bulk temperature,
+# both tables together, and 3D full sliding (docs/verification.md 30).
+add_test(NAME temperature_tau_table
+  COMMAND ${SYSTEM_PYTHON3} ${RS_TESTS}/check_tau_temperature.py ${RS_BIN}
+          ${RS_CASES}/hot_creep_curve.yaml ${RS_CASES}/ertz_temperature.yaml
+          ${CMAKE_CURRENT_BINARY_DIR}/tau_table)
+# A fixed point that does not settle (a saw-tooth tau_c0(T), 600 and 30 N/mm^2 every 5 degC): exit 3
+# naming the table, after the iteration cap.
+add_test(NAME temperature_tau_table_no_fixed_point COMMAND ${SYSTEM_PYTHON3} ${RS_TESTS}/cli_expect.py
+  --exit 3 --stderr "plasticity.tau_c0_table: the coupled steady state \\(tau_c0 from the contact temperature\\) did not converge in 200 iterations"
+  -- ${RS_BIN} run ${RS_CASES}/hot_creep_curve.yaml --set sweep=null --set rolling.creepage=-0.04
+  --set friction.temperature_table=null --set "plasticity={tau_c0: 300, k_rel: 0.0}"
+  --set "plasticity.tau_c0_table={temperature: [20, 25, 30, 35, 40, 45, 50, 55, 60], tau_c0: [600, 30, 600, 30, 600, 30, 600, 30, 600]}"
+  -o ${CMAKE_CURRENT_BINARY_DIR}/tau_table_no_fixed_point.nc --quiet)
+# plasticity.tau_c0 swept with the table that replaces it: exit 2.
+add_test(NAME temperature_tau_table_sweep_tau_c0 COMMAND ${SYSTEM_PYTHON3} ${RS_TESTS}/cli_expect.py
+  --exit 2 --stderr "sweep: plasticity.tau_c0 is not swept with plasticity.tau_c0_table"
+  -- ${RS_BIN} sweep ${RS_CASES}/hot_creep_curve.yaml --set "plasticity={tau_c0: 300, k_rel: 0.0}"
+  --set "plasticity.tau_c0_table={temperature: [20, 400], tau_c0: [300, 150]}"
+  --set "sweep={plasticity.tau_c0: [200, 300]}"
+  -o ${CMAKE_CURRENT_BINARY_DIR}/tau_table_sweep_tau_c0.nc --quiet)
+# ... nor fitted with it: exit 2 naming the parameter.
+add_test(NAME temperature_tau_table_fit_tau_c0 COMMAND ${SYSTEM_PYTHON3} ${RS_TESTS}/cli_expect.py
+  --exit 2 --stderr "fit.parameters.plasticity.tau_c0: plasticity.tau_c0 is not fitted with plasticity.tau_c0_table"
+  -- ${RS_BIN} fit ${RS_CASES}/fit_creep_curve.yaml --set "temperature={bulk: 20}"
+  --set "plasticity.tau_c0_table={temperature: [20, 400], tau_c0: [200, 100]}"
+  -o ${CMAKE_CURRENT_BINARY_DIR}/tau_table_fit_tau_c0.nc --quiet)

@@ -616,22 +616,33 @@ static int resolve_friction(const resolver *r, rs_case_input *in)
   return RS_OK;
 }
 
-/* friction.temperature_table (docs/model.md §18): the steady coupling only, with a temperature. */
-static int resolve_mu_table(const resolver *r, const rs_case *c)
+/* friction.temperature_table and plasticity.tau_c0_table (docs/model.md §18): the steady
+ * coupling only, with a temperature. */
+static int resolve_temperature_table(const resolver *r, const rs_case *c, const char *key)
 {
-  const yaml_node_t *n = given(r, "friction.temperature_table");
+  const yaml_node_t *n = given(r, key);
   if (!n) return RS_OK;
   if (!c->temperature.on)
-    return rs_case_error(r->d, n, "friction.temperature_table",
+    return rs_case_error(r->d, n, key,
                          "needs a temperature: block (the contact temperature it is read at)");
   if (c->mode == RS_MODE_TRANSIENT)
-    return rs_case_error(r->d, n, "friction.temperature_table",
+    return rs_case_error(r->d, n, key,
                          "is not yet in transients: the temperature modes do not enter the "
                          "contact equations; use simulation.mode: steady");
-  if (rs_friction_has_memory(&c->friction))
-    return rs_case_error(r->d, n, "friction.temperature_table",
-                         "is not available with friction memory (friction.memory_distance > 0)");
   return RS_OK;
+}
+
+static int resolve_temperature_tables(const resolver *r, const rs_case *c)
+{
+  int status = resolve_temperature_table(r, c, "friction.temperature_table");
+  if (status == RS_OK && c->mu_table.n && rs_friction_has_memory(&c->friction))
+    return rs_case_error(r->d, given(r, "friction.temperature_table"), "friction.temperature_table",
+                         "is not available with friction memory (friction.memory_distance > 0)");
+  if (status == RS_OK) status = resolve_temperature_table(r, c, "plasticity.tau_c0_table");
+  if (status == RS_OK && c->tau_c0_table.n && !c->has_plasticity)
+    return rs_case_error(r->d, given(r, "plasticity.tau_c0_table"), "plasticity.tau_c0_table",
+                         "needs plasticity (a plasticity: block with its hardening)");
+  return status;
 }
 
 static int resolve(const rs_case_doc *d, rs_case_input *in, const yaml_node_t **where,
@@ -651,7 +662,8 @@ static int resolve(const rs_case_doc *d, rs_case_input *in, const yaml_node_t **
                          "rolling.shift_velocity", "rolling.lateral_creepage", "rolling.spin"};
   for (int i = 0; i < 6; i++)
     if ((status = check_history(&r, names[i], hs[i], c)) != RS_OK) return status;
-  if ((status = resolve_friction(&r, in)) != RS_OK || (status = resolve_mu_table(&r, c)) != RS_OK ||
+  if ((status = resolve_friction(&r, in)) != RS_OK ||
+      (status = resolve_temperature_tables(&r, c)) != RS_OK ||
       (status = resolve_force(&r, c)) != RS_OK || (status = resolve_grid(&r, c)) != RS_OK)
     return status;
   if (c->mode == RS_MODE_STEADY && !(rs_history_min(&c->velocity, 0.0, c->end_time) > 0))
@@ -660,16 +672,21 @@ static int resolve(const rs_case_doc *d, rs_case_input *in, const yaml_node_t **
                          "mode is for rolling (V > 0)");
   /* transient runs estimate their errors only when asked (companion runs: docs/case-file.md) */
   if (c->mode == RS_MODE_TRANSIENT && !given(&r, "output.error_estimate")) c->error_estimate = 0;
-  /* the companion grids of the error estimate solve the case without the mu(T) coupling */
-  if (c->mu_table.n && given(&r, "grid.accuracy"))
+  /* the companion grids of the error estimate solve the case without the temperature coupling */
+  const char *table = c->mu_table.n       ? "friction.temperature_table"
+                      : c->tau_c0_table.n ? "plasticity.tau_c0_table"
+                                          : NULL;
+  if (table && given(&r, "grid.accuracy"))
     return rs_case_error(d, given(&r, "grid.accuracy"), "grid.accuracy",
-                         "is not available with friction.temperature_table (the error estimate "
-                         "does not include the temperature coupling)");
-  if (c->mu_table.n && c->error_estimate && given(&r, "output.error_estimate"))
+                         "is not available with %s (the error estimate does not include the "
+                         "temperature coupling)",
+                         table);
+  if (table && c->error_estimate && given(&r, "output.error_estimate"))
     return rs_case_error(d, given(&r, "output.error_estimate"), "output.error_estimate",
-                         "is not available with friction.temperature_table (the estimate does "
-                         "not include the temperature coupling): leave it out or give false");
-  if (c->mu_table.n) c->error_estimate = 0;
+                         "is not available with %s (the estimate does not include the "
+                         "temperature coupling): leave it out or give false",
+                         table);
+  if (table) c->error_estimate = 0;
   if ((status = resolve_accuracy(&r, c)) != RS_OK) return status;
   if (c->output_file && !*c->output_file)
     return rs_case_error(d, given(&r, "output.file"), "output.file", "empty file name");
@@ -709,7 +726,8 @@ static int input_copy(rs_case_input *dst, const rs_case_input *src)
   const rs_case *s = &src->c;
   c->title = c->output_file = NULL;
   c->normal_load = c->velocity = c->creepage = c->tangential_force = c->tangential_force_y =
-      c->lateral_creepage = c->spin = c->shift_velocity = c->mu_table = (rs_history){0};
+      c->lateral_creepage = c->spin = c->shift_velocity = c->mu_table = c->tau_c0_table =
+          (rs_history){0};
   c->rig.steps = NULL;
   int ok = (!s->title || (c->title = strdup(s->title))) &&
            (!s->output_file || (c->output_file = strdup(s->output_file)));
@@ -721,7 +739,8 @@ static int input_copy(rs_case_input *dst, const rs_case_input *src)
        rs_history_copy(&c->lateral_creepage, &s->lateral_creepage) == RS_OK &&
        rs_history_copy(&c->spin, &s->spin) == RS_OK &&
        rs_history_copy(&c->shift_velocity, &s->shift_velocity) == RS_OK &&
-       rs_history_copy(&c->mu_table, &s->mu_table) == RS_OK;
+       rs_history_copy(&c->mu_table, &s->mu_table) == RS_OK &&
+       rs_history_copy(&c->tau_c0_table, &s->tau_c0_table) == RS_OK;
   if (ok && s->rig.nsteps > 0) {
     c->rig.steps = malloc(s->rig.nsteps * sizeof *c->rig.steps);
     ok = c->rig.steps != NULL;
@@ -913,6 +932,7 @@ void rs_case_free(rs_case *c)
   free(c->rig.steps);
   rs_history_free(&c->shift_velocity);
   rs_history_free(&c->mu_table);
+  rs_history_free(&c->tau_c0_table);
   source_free(c->source);
   memset(c, 0, sizeof *c);
 }

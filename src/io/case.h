@@ -98,6 +98,9 @@ typedef struct rs_case {
   double tau_c0;      /* N/mm^2 */
   double k_tau;       /* N/mm^3 (k_rel converted: k_tau = G*k_rel/(1-k_rel)) */
   double tau_c_min;   /* N/mm^2, default 0.1*tau_c0 */
+  /* plasticity.tau_c0_table: tau_c0 against the contact temperature, piecewise linear (t: degC,
+   * strictly increasing; v: N/mm^2); n = 0: none (docs/model.md §18) */
+  rs_history tau_c0_table;
 
   /* rolling: */
   rs_history velocity;           /* V, mm/s */

@@ -21,6 +21,7 @@ static const char *const bool_names[] = {"false", "true", NULL};
 static const char *const law_names[] = {"coulomb",  "linear", "exponential",
                                         "rational", "polach", NULL};
 static const char *const mu_table_columns[] = {"temperature", "mu", NULL};
+static const char *const tau_table_columns[] = {"temperature", "tau_c0", NULL};
 const char *const rs_case_field_names[] = {"px",    "pn",   "slip",   "upl",
                                            "ustar", "tauc", "regime", NULL};
 
@@ -96,6 +97,8 @@ const rs_case_key rs_case_keys[] = {
      RS_KEY_HI_OPEN | RS_KEY_DERIVED | RS_KEY_NULLABLE, NULL},
     {"plasticity.tau_c_min", RS_KEY_NUMBER, F(c.tau_c_min), "N/mm^2", 0, BIG,
      RS_KEY_LO_OPEN | RS_KEY_HI_ABSURD | RS_KEY_NULLABLE, NULL},
+    {"plasticity.tau_c0_table", RS_KEY_TTABLE, F(c.tau_c0_table), "N/mm^2", 0, BIG,
+     RS_KEY_LO_OPEN | RS_KEY_HI_ABSURD | RS_KEY_NULLABLE, tau_table_columns},
 
     {"rolling", RS_KEY_SECTION, 0, "", 0, 0, 0, NULL},
     {"rolling.velocity", RS_KEY_HISTORY, F(c.velocity), "mm/s", 0, 1e9, RS_KEY_HI_ABSURD, NULL},

@@ -99,6 +99,12 @@ int rs_sweep_load(rs_sweep *s, const rs_case *c, rs_msg *msg)
         status = rs_case_error(&d, k, "sweep", "%s is not a numeric case key", key);
         break;
       }
+      if (c->tau_c0_table.n && !strcmp(key, "plasticity.tau_c0")) {
+        status = rs_case_error(&d, k, "sweep",
+                               "plasticity.tau_c0 is not swept with plasticity.tau_c0_table (the "
+                               "table gives tau_c0 at each temperature): sweep without the table");
+        break;
+      }
       for (int j = 0; j < s->naxes; j++)
         if (s->axes[j].key_index == idx)
           status = rs_case_error(&d, k, "sweep", "%s is swept twice", key);

@@ -62,6 +62,11 @@ static int read_param(const rs_case_doc *d, const yaml_node_t *root, const yaml_
                          "the case does not use %s (not given in the case; a fitted parameter "
                          "must be one of its keys)",
                          key);
+  const yaml_node_t *table = find_dotted(d, root, "plasticity.tau_c0_table");
+  if (!strcmp(key, "plasticity.tau_c0") && table && !rs_case_is_null(table))
+    return rs_case_error(d, knode, ctx,
+                         "plasticity.tau_c0 is not fitted with plasticity.tau_c0_table (the table "
+                         "gives tau_c0 at each temperature)");
   static const char *const allowed[] = {"start", "bounds", NULL};
   if (v->type != YAML_MAPPING_NODE)
     return rs_case_error(d, v, ctx, "expected {start: NUMBER, bounds: [LOW, HIGH]}");

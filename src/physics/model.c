@@ -421,7 +421,8 @@ void rs_model_cell_law(const rs_model *m, const rs_work *w, const double *y, int
     in.g *= m->mu_factor[I];
     in.pn *= m->mu_factor[I];
   }
-  rs_contact_law(&m->par.plasticity, &in, jac, out);
+  rs_plasticity pl; /* tau_c0(T): the cell's yield limit */
+  rs_contact_law(rs_model_cell_plasticity(m, I, &pl), &in, jac, out);
 }
 
 int rs_model_residual(const rs_model *m, rs_work *w, const rs_inputs *in, const double *y,
@@ -525,7 +526,11 @@ int rs_model_evaluate(const rs_model *m, rs_work *w, const rs_inputs *in, const 
   const double k_tau = m->par.plasticity.k_tau, k_rel = k_tau / (m->par.shear_modulus + k_tau);
   double g_max = 0.0;
   for (int i = 0; i < n && hardening; i++) g_max = fmax(g_max, m->bound[i]);
-  const double margin = g_max > 0.0 ? fmax(m->par.plasticity.tau_c0 / g_max, TAU_C_FLOOR) : 1.0;
+  double tau_c0 = m->par.plasticity.tau_c0, lowest = INFINITY; /* tau_c0(T): the lowest cell's */
+  for (int i = 0; i < n && hardening && m->yield_factor; i++)
+    if (m->bound[i] > 0.0) lowest = fmin(lowest, tau_c0 * m->yield_factor[i]);
+  if (lowest < INFINITY) tau_c0 = lowest;
+  const double margin = g_max > 0.0 ? fmax(tau_c0 / g_max, TAU_C_FLOOR) : 1.0;
   w->r = hardening ? fmin(FRICTION_WEIGHT, FRICTION_WEIGHT_PER_K_REL * k_rel * margin) * r0 : r0;
   /* The yield projections of steady evaluations (cj = 0) weigh the flow with a fraction of
    * r. Any r > 0 gives the same zeros (a projection is exact for every r); r sets how

@@ -83,6 +83,11 @@ typedef struct rs_model {
   /* Per-cell factor on the friction bound (docs/model.md §18, mu(T)): g = f_I mu(...) p_n;
    * NULL: none (factor 1). Owned by the caller, read at every evaluation. */
   const double *mu_factor;
+  /* Per-cell factor on the yield limit (docs/model.md §18, tau_c0(T)): cell I yields at
+   * max(f_I tau_c_min, f_I tau_c0 + k_tau u*), the floor keeping its ratio to tau_c0; NULL:
+   * none (factor 1). Owned by the caller, read at every evaluation
+   * (rs_model_cell_plasticity). */
+  const double *yield_factor;
 } rs_model;
 
 /* Grid, elastic operator and the normal solution from plain parameters. */
@@ -329,10 +334,23 @@ int rs_model_check_steady_with(const rs_model *m, const rs_work *ws, rs_work *w,
 /* Next kink or jump of an input history after t (INFINITY if none). */
 double rs_model_next_breakpoint(const rs_model *m, double t);
 
-/* Yield limit of a cell with accumulated plastic deformation ustar. */
-static inline double rs_model_yield_limit(const rs_model *m, double ustar)
+/* The plasticity of cell I: the model's, or with a yield factor its copy in buf with tau_c0
+ * and tau_c_min scaled by the cell's factor. */
+static inline const rs_plasticity *rs_model_cell_plasticity(const rs_model *m, int I,
+                                                            rs_plasticity *buf)
 {
-  return rs_yield_limit(&m->par.plasticity, ustar);
+  if (!m->yield_factor) return &m->par.plasticity;
+  *buf = m->par.plasticity;
+  buf->tau_c0 *= m->yield_factor[I];
+  buf->tau_c_min *= m->yield_factor[I];
+  return buf;
+}
+
+/* Yield limit of cell I with accumulated plastic deformation ustar. */
+static inline double rs_model_yield_limit(const rs_model *m, int I, double ustar)
+{
+  rs_plasticity buf;
+  return rs_yield_limit(rs_model_cell_plasticity(m, I, &buf), ustar);
 }
 
 #endif

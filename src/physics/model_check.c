@@ -65,7 +65,7 @@ void rs_model_diagnostics_of(const rs_model *m, const rs_work *w, const rs_input
       if (slip) slip[c * n + i] = V > 0.0 ? w->vslip[c * n + i] / V : w->vslip[c * n + i];
     }
     if (nc > 1) d->Mz += (g->x[ix] * y[rs_at_p(L, 1, i)] - g->y[iy] * y[rs_at_p(L, 0, i)]) * dA;
-    if (tauc) tauc[i] = rs_model_yield_limit(m, y[rs_at_ustar(L, i)]);
+    if (tauc) tauc[i] = rs_model_yield_limit(m, i, y[rs_at_ustar(L, i)]);
     if (regime) regime[i] = (signed char)reg;
   }
 }
@@ -124,7 +124,7 @@ static int check_cells(const rs_model *m, const rs_work *w, const double *y, dou
     }
     /* each cell's own bound: mu(|v_s|) p_n with velocity-dependent friction */
     const double pa = sqrt(pn2), va = sqrt(vs2), fa = sqrt(fl2), g = w->law[i].g;
-    const double tauc = rs_model_yield_limit(m, y[rs_at_ustar(L, i)]);
+    const double tauc = rs_model_yield_limit(m, i, y[rs_at_ustar(L, i)]);
     const double px = p[0], cos_tol = nc > 1 ? 1e-6 : 0.0;
     if (!(w->pn[i] > 0.0)) {
       if (pa > tol)
@@ -172,7 +172,7 @@ static int check_cells(const rs_model *m, const rs_work *w, const double *y, dou
       double up_flow = 0.0;
       for (int c = 0; c < nc && up >= 0; c++) up_flow += w->dupl[c * n + up] * w->dupl[c * n + up];
       const double us_up = up >= 0 ? y[rs_at_ustar(L, up)] : w->inflow[iy * (nc + 1) + nc];
-      const double tauc_up = rs_model_yield_limit(m, us_up);
+      const double tauc_up = rs_model_yield_limit(m, i, us_up);
       if (!(r * sqrt(up_flow) > tol) && g < tauc_up - tol)
         return refuse(msg, m, i,
                       "plastic flow where the material entering the cell slides before it "

@@ -16,6 +16,14 @@ static double traction_norm(const rs_layout *L, const double *y, int I)
   return L->ncomp == 1 ? fabs(y[rs_at_p(L, 0, I)]) : sqrt(s);
 }
 
+/* rs_contact_state with cell I's yield limit. */
+static rs_state cell_state(const rs_model *m, int I, int in_contact, double p_norm, double g,
+                           double ustar)
+{
+  rs_plasticity pl;
+  return rs_contact_state(rs_model_cell_plasticity(m, I, &pl), in_contact, p_norm, g, ustar);
+}
+
 /* Conjugate gradients for (A + c3 I) x = b on the cells marked in `mask` (x, b zero
  * elsewhere; ncomp blocks of n): A is the elastic operator, symmetric positive definite,
  * products by FFT. Stops at |r| <= 1e-13 |b|. Scratch: 3 vectors of ncomp n. */
@@ -199,8 +207,8 @@ static void bound_rates(const rs_model *m, const rs_work *w, const double *y,
   const rs_layout *L = &m->lay;
   const double *us = y + rs_at_ustar(L, 0);
   for (int i = 0; i < L->n; i++) {
-    if (mask[i] || rs_contact_state(&m->par.plasticity, w->pn[i] > 0.0, traction_norm(L, y, i),
-                                    rs_model_bound(m, w, y, i), us[i]) != RS_STATE_AT_BOUND)
+    if (mask[i] || cell_state(m, i, w->pn[i] > 0.0, traction_norm(L, y, i),
+                              rs_model_bound(m, w, y, i), us[i]) != RS_STATE_AT_BOUND)
       continue;
     double gdot = yp[rs_at_mu(L, i)] * w->pn[i];
     if (in->load_rate != 0.0)
@@ -241,8 +249,8 @@ int rs_model_consistent_rates(const rs_model *m, rs_work *w, const rs_inputs *in
     if (status != RS_OK) goto done;
     for (int i = 0; i < n; i++) {
       const double pnorm = traction_norm(L, y, i);
-      if (rs_contact_state(&m->par.plasticity, w->pn[i] > 0.0, pnorm, rs_model_bound(m, w, y, i),
-                           us[i]) != RS_STATE_AT_BOUND)
+      if (cell_state(m, i, w->pn[i] > 0.0, pnorm, rs_model_bound(m, w, y, i), us[i]) !=
+          RS_STATE_AT_BOUND)
         continue;
       const double mu_i = L->memory ? y[rs_at_mu(L, i)] : mu;
       const double gdot = mu_i * (pn_up[i] - w->pn[i]) / h * in->load_rate;
@@ -255,8 +263,8 @@ int rs_model_consistent_rates(const rs_model *m, rs_work *w, const rs_inputs *in
   }
   int h = 0;
   for (int i = 0; i < n; i++)
-    if (rs_contact_state(&m->par.plasticity, w->pn[i] > 0.0, traction_norm(L, y, i),
-                         rs_model_bound(m, w, y, i), us[i]) == RS_STATE_INSIDE) {
+    if (cell_state(m, i, w->pn[i] > 0.0, traction_norm(L, y, i), rs_model_bound(m, w, y, i),
+                   us[i]) == RS_STATE_INSIDE) {
       adh[h++] = i;
       mask[i] = 1;
     }
@@ -284,9 +292,8 @@ int rs_model_consistent_rates(const rs_model *m, rs_work *w, const rs_inputs *in
   /* Transport of u_pl and u*: Du/Dt = 0, except plastic flow where |p| is at a yield
    * limit below the bound (flow takes up the slip velocity left over). */
   for (int i = 0; i < n; i++) {
-    const int at_yield =
-        rs_contact_state(&m->par.plasticity, w->pn[i] > 0.0, traction_norm(L, y, i),
-                         rs_model_bound(m, w, y, i), us[i]) == RS_STATE_AT_YIELD;
+    const int at_yield = cell_state(m, i, w->pn[i] > 0.0, traction_norm(L, y, i),
+                                    rs_model_bound(m, w, y, i), us[i]) == RS_STATE_AT_YIELD;
     const int up = rs_grid_upstream(&m->grid, i);
     const double *in_row = w->inflow + rs_grid_row(&m->grid, i) * (nc + 1);
     double flow_norm2 = 0.0, flow1 = 0.0;
@@ -390,8 +397,8 @@ int rs_model_sliding_state(const rs_model *m, rs_work *w, const rs_inputs *in, d
 {
   const rs_layout *L = &m->lay;
   const rs_grid *g = &m->grid;
-  const rs_plasticity *pl = &m->par.plasticity;
-  if (L->ncomp != 2 || !pl->on || L->memory || L->nextra || m->par.force_control ||
+  const rs_plasticity *pl0 = &m->par.plasticity;
+  if (L->ncomp != 2 || !pl0->on || L->memory || L->nextra || m->par.force_control ||
       rs_friction_varies(&m->par.friction) || m->memory || !(in->velocity > 0.0))
     return RS_ERR_SOLVER;
   rs_msg msg = {{0}};
@@ -415,6 +422,8 @@ int rs_model_sliding_state(const rs_model *m, rs_work *w, const rs_inputs *in, d
     for (int ix = nx - 1; ix >= 0; ix--) {
       const int I = iy * nx + ix;
       if (w->pn[I] > 0.0) {
+        rs_plasticity buf;
+        const rs_plasticity *pl = rs_model_cell_plasticity(m, I, &buf);
         const double wx = in->creepage - in->spin * g->y[iy] + in->shift_velocity / V;
         const double wy = in->lateral_creepage + in->spin * g->x[ix];
         const double wn = hypot(wx, wy), b = rs_model_bound(m, w, y, I),

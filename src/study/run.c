@@ -552,7 +552,7 @@ int rs_run(const rs_case *c, const rs_run_opts *o, rs_run_result *res, rs_msg *m
     rs_steady *st = NULL;
     status = rs_steady_create(&st, &s.m, s.ctx, msg);
     if (status == RS_OK) status = rs_steady_solve(st, 0.0, s.y, &res->stats, msg);
-    if (status == RS_OK) /* mu(T): the coupled steady state */
+    if (status == RS_OK) /* mu(T), tau_c0(T): the coupled steady state */
       status = rs_temperature_couple(&s.temp, &s.m, &s.w, st, s.y, &res->stats, msg);
     rs_steady_free(st);
   }

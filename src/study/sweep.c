@@ -47,7 +47,7 @@ typedef struct steady_chain {
   int have_diag;                   /* diag is of the solution in hand */
   rs_errest est;                   /* the error estimate's companion grids of m */
   int est_tried;                   /* est built, or m found too coarse for it */
-  rs_temperature_run temp;         /* mu(T): the coupling's temperatures (temp.mu_table) */
+  rs_temperature_run temp;         /* mu(T), tau_c0(T): the coupling's temperatures (temp.T_used) */
 } steady_chain;
 
 static void chain_drop(steady_chain *ch)
@@ -229,7 +229,7 @@ static int steady_point(const rs_case *c, steady_chain *ch, double **y, int *ny,
         rs_work_create(&ch->w, &ch->m) != RS_OK)
       status = rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory");
     if (status == RS_OK) status = rs_steady_create(&ch->st, &ch->m, ch->ctx, msg);
-    if (status == RS_OK && c->mu_table.n)
+    if (status == RS_OK && rs_temperature_coupled(c))
       status = rs_temperature_run_create(&ch->temp, c, &ch->m, msg);
   }
   if (status == RS_OK && (!warm || *ny != ch->m.lay.neq)) {
@@ -254,7 +254,7 @@ static int steady_point(const rs_case *c, steady_chain *ch, double **y, int *ny,
       ch->nsolved = reuse ? 1 : 0; /* a chain starts only along a rolling input */
     }
   }
-  if (status == RS_OK && ch->temp.mu_table) { /* mu(T): the coupled steady state */
+  if (status == RS_OK && ch->temp.T_used) { /* mu(T), tau_c0(T): the coupled steady state */
     status = rs_temperature_couple(&ch->temp, &ch->m, &ch->w, ch->st, *y, &stats, msg);
     if (status == RS_OK) status = regimes_of(ch, *y, ch->reg_last);
     if (status == RS_OK) memcpy(ch->ylast, *y, (size_t)ch->m.lay.neq * sizeof **y);

@@ -20,13 +20,16 @@ typedef struct rs_temperature_run {
   /* 1: a transient's modes are DAE state (docs/model.md §18, "Heat memory"), stored after
    * the model's neq unknowns of y; 0: each state's temperature is the steady march's */
   int modes;
-  /* mu(T) (friction.temperature_table; NULL without): the temperature each cell's coefficient
-   * is read at, the last iterate of the fixed point, and the bound's factor
-   * mu_table(T)/mu_law(0) that the model reads (rs_model.mu_factor) [n] */
-  double *T_used, *mu_factor;
-  const rs_history *mu_table;
-  double mu_rest; /* mu_law(0) */
-  long couplings; /* fixed-point iterations of the coupled steady states, summed */
+  /* The couplings (docs/model.md §18): T_used, the temperature each cell's properties are read
+   * at, the last iterate of the fixed point [n] (NULL without a table); with mu(T)
+   * (friction.temperature_table) the bound's factor mu_table(T)/mu_law(0) that the model reads
+   * (rs_model.mu_factor) [n], with tau_c0(T) (plasticity.tau_c0_table) the yield limit's
+   * factor tau_c0_table(T)/tau_c0 (rs_model.yield_factor) [n]; each NULL without its table. */
+  double *T_used, *mu_factor, *yield_factor;
+  const rs_history *mu_table, *tau_table;
+  double mu_rest;  /* mu_law(0) */
+  double tau_rest; /* plasticity.tau_c0 */
+  long couplings;  /* fixed-point iterations of the coupled steady states, summed */
 } rs_temperature_run;
 
 /* Nothing to do (on = 0) when the case has no temperature: block. */
@@ -50,12 +53,17 @@ int rs_temperature_run_steady_modes(rs_temperature_run *t, const rs_model *m, rs
 int rs_temperature_run_rates(rs_temperature_run *t, const rs_model *m, rs_work *w,
                              const rs_inputs *in, const double *y, double *yp, rs_msg *msg);
 
-/* The steady state coupled with mu(T) (docs/model.md §18): from the last temperatures (the
- * contact temperature of cold surfaces at the first call), the steady solve with the factors
- * of T_used warm-started from y, then the march of its sources, until the largest change of the
- * contact temperature is below RS_COUPLING_TOL of the rise, under-relaxed when the change grows.
- * Sets m->mu_factor. RS_ERR_SOLVER when it does not converge in RS_COUPLING_MAX iterations.
- * Nothing to do without a table. */
+/* The case couples the contact to its temperature: friction.temperature_table or
+ * plasticity.tau_c0_table. */
+int rs_temperature_coupled(const rs_case *c);
+
+/* The steady state coupled with mu(T) and tau_c0(T) (docs/model.md §18): from the last
+ * temperatures (the contact temperature of cold surfaces at the first call), the steady solve
+ * with the factors of T_used warm-started from y, then the march of its sources, until the
+ * largest change of the contact temperature is below RS_COUPLING_TOL of the rise, each update
+ * Anderson-accelerated over the last iterates. Sets m->mu_factor and m->yield_factor (those of its
+ * tables). RS_ERR_SOLVER when it does not converge in RS_COUPLING_MAX iterations. Nothing to do
+ * without a table. */
 #define RS_COUPLING_TOL 1e-9
 #define RS_COUPLING_MAX 200
 int rs_temperature_couple(rs_temperature_run *t, rs_model *m, rs_work *w, rs_steady *st, double *y,
