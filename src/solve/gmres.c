@@ -296,11 +296,6 @@ static int solve(SUNLinearSolver S, SUNMatrix A, N_Vector xv, N_Vector bv, doubl
   double *x = N_VGetArrayPointer(xv), **V = c->V;
   const double *b = N_VGetArrayPointer(bv);
   c->numiters = 0;
-  if (c->zeroguess && c->kry->coarse_mode == 5) {
-    memset(x, 0, (size_t)n * sizeof *x);
-    rs_coarse_apply(&c->kry->coarse, c->kry->m, b, x);
-    c->zeroguess = 0;
-  }
   /* V[0] = s2 (b - A x), its norm beta (V[0] normalised at the first iteration) */
   if (c->zeroguess) {
     memcpy(V[0], b, (size_t)n * sizeof *b);
@@ -311,11 +306,6 @@ static int solve(SUNLinearSolver S, SUNMatrix A, N_Vector xv, N_Vector bv, doubl
   double beta2 = 0.0;
   scale_and_dots(n, c->s2, V[0], V, 0, c->dots, &beta2);
   double beta = sqrt(beta2);
-  if (c->kry->coarse_mode_set == 0)
-    c->kry->coarse_mode_set = c->kry->coarse_mode ? c->kry->coarse_mode : -1;
-  if (getenv("RS_COARSE_ETA") && c->kry->coarse_mode_set > 0)
-    c->kry->coarse_mode =
-        delta < atof(getenv("RS_COARSE_ETA")) * beta ? c->kry->coarse_mode_set : 0;
   const double beta0 = beta;
   c->resnorm = beta;
   if (beta <= delta) {

@@ -11,7 +11,6 @@ int rs_krylov_create(rs_krylov *k, const rs_model *m, int band, int band_y)
 {
   memset(k, 0, sizeof *k);
   k->m = m;
-  if (getenv("RS_BAND") && m->el.dim == 3 && band > 2) band = atoi(getenv("RS_BAND"));
   k->band = band;
   k->band_y = band_y;
   k->ylink = m->el.dim == 3 && m->lay.ncomp == 2 && band_y == 0 && m->lay.nextra == 0 &&
@@ -31,20 +30,6 @@ int rs_krylov_create(rs_krylov *k, const rs_model *m, int band, int band_y)
       rs_work_create_kinematics(&k->wlin, m) != RS_OK) {
     rs_krylov_free(k);
     return RS_ERR_INTERNAL;
-  }
-  const char *env = getenv("RS_COARSE");
-  const int size = env ? atoi(env) : 0;
-  const char *envm = getenv("RS_COARSE_MODE");
-  if (k->ylink && size > 0 && (m->grid.nx < 4 * size || m->grid.ny < 4 * size)) {
-    /* too few blocks */
-  } else if (k->ylink && (size > 0 || getenv("RS_SYMGS"))) {
-    k->coarse_mode = size > 0 ? (envm ? atoi(envm) : 1) : 0;
-    k->cr = malloc((size_t)neq * sizeof *k->cr);
-    k->ct = malloc((size_t)neq * sizeof *k->ct);
-    if (!k->cr || !k->ct || (size > 0 && rs_coarse_create(&k->coarse, m, size) != RS_OK)) {
-      rs_krylov_free(k);
-      return RS_ERR_INTERNAL;
-    }
   }
   return RS_OK;
 }
@@ -83,9 +68,6 @@ void rs_krylov_free(rs_krylov *k)
 {
   parts_free(k);
   rs_ylink_free(&k->yl);
-  rs_coarse_free(&k->coarse);
-  free(k->cr);
-  free(k->ct);
   rs_work_free(&k->w);
   rs_work_free(&k->wlin);
   free(k->near.rowptr);
@@ -361,34 +343,11 @@ int rs_krylov_setup(rs_krylov *k, const rs_inputs *in, const double *y, const do
   k->ev_valid = 0;
   if (!evaluated) k->w_at_ev = 0;
   int status = evaluated ? RS_OK : rs_model_linearise(k->m, &k->w, in, y, yp, cj);
-  const long reuses = k->reuses;
   if (status == RS_OK) status = setup_linearised(k, in, cj);
   /* the line Gauss-Seidel's couplings of this linearisation, gathered once for the solves
    * (each read the cells' local laws and the kernel's entries before) */
   if (status == RS_OK && k->ylink && k->nparts > 1)
     status = rs_model_near_ylink_prepare(k->m, &k->w, in, cj, k->band, &k->yl);
-  if (status == RS_OK && (k->coarse_mode || k->coarse_mode_set > 0) &&
-      (k->reuses == reuses || !getenv("RS_COARSE_LAG")))
-    status = rs_coarse_setup(&k->coarse, k->m, &k->w, in, cj);
-  if (status == RS_OK && k->coarse_mode && getenv("RS_COARSE_EXACT")) {
-    rs_coarse *c = &k->coarse;
-    const rs_layout *L = &k->m->lay;
-    const int nb = c->nb, N = 2 * nb, n = L->n;
-    for (int d = 0; d < 2; d++)
-      for (int J = 0; J < nb; J++) {
-        memset(k->cr, 0, (size_t)L->neq * sizeof *k->cr);
-        for (int i = 0; i < n; i++)
-          if (c->block[i] == J) k->cr[rs_at_p(L, d, i)] = 1.0;
-        rs_krylov_times(k, k->cr, k->ct);
-        double *col = c->a + (size_t)(d * nb + J) * N;
-        memset(col, 0, (size_t)N * sizeof *col);
-        for (int comp = 0; comp < 2; comp++)
-          for (int i = 0; i < n; i++) col[comp * nb + c->block[i]] += k->ct[rs_at_p(L, comp, i)];
-      }
-    int info = 0;
-    dgetrf_(&N, &N, c->a, &N, c->ipiv, &info);
-    c->ready = info == 0;
-  }
   return status;
 }
 
@@ -562,46 +521,7 @@ static int solve_part(rs_klu_part *p, double *v)
   return RS_OK;
 }
 
-static int lines_psolve(rs_krylov *k, double *v);
-
 int rs_krylov_psolve(rs_krylov *k, double *v)
-{
-  const int neq = k->m->lay.neq;
-  const size_t bytes = (size_t)neq * sizeof *v;
-  int status = RS_OK;
-  switch (k->coarse_mode) {
-  case 1: /* additive */
-    memcpy(k->cr, v, bytes);
-    status = lines_psolve(k, v);
-    rs_coarse_apply(&k->coarse, k->m, k->cr, v);
-    return status;
-  case 2: /* lines, then the coarse correction of their residual */
-    memcpy(k->cr, v, bytes);
-    status = lines_psolve(k, v);
-    if (status == RS_OK) status = rs_krylov_times(k, v, k->ct);
-    k->products--;
-    for (int i = 0; i < neq; i++) k->cr[i] -= k->ct[i];
-    rs_coarse_apply(&k->coarse, k->m, k->cr, v);
-    return status;
-  case 3: /* the coarse correction, then the lines on its residual */
-    memset(k->cr, 0, bytes);
-    rs_coarse_apply(&k->coarse, k->m, v, k->cr);
-    status = rs_krylov_times(k, k->cr, k->ct);
-    k->products--;
-    for (int i = 0; i < neq; i++) v[i] -= k->ct[i];
-    if (status == RS_OK) status = lines_psolve(k, v);
-    for (int i = 0; i < neq; i++) v[i] += k->cr[i];
-    return status;
-  case 4: /* the lines, their block means replaced by the coarse solution */
-    memcpy(k->cr, v, bytes);
-    status = lines_psolve(k, v);
-    rs_coarse_replace(&k->coarse, k->m, k->cr, v);
-    return status;
-  default: return lines_psolve(k, v);
-  }
-}
-
-static int lines_psolve(rs_krylov *k, double *v)
 {
   if (k->nparts == 1) return solve_part(&k->part[0], v);
   if (k->nparts < 2) return RS_ERR_SOLVER;
@@ -610,22 +530,13 @@ static int lines_psolve(rs_krylov *k, double *v)
 #pragma omp parallel num_threads(T) reduction(+ : failed)
   {
     const int tid = rs_thread_num(), nth = rs_thread_count();
-    const int sym = getenv("RS_SYMGS") != NULL;
-    if (sym) memcpy(k->cr, v, (size_t)k->m->lay.neq * sizeof *v);
-    for (int cc = 0; cc < (sym ? 3 : 2); cc++) {
-      const int c = cc & 1;
-      if (cc == 2) {
-        for (int q = 0; q < k->nparts; q += 2)
-          for (int64_t i = 0; i < k->part[q].n; i++)
-            v[k->part[q].idx[i]] = k->cr[k->part[q].idx[i]];
-        rs_model_near_ylink_apply(k->m, &k->yl, 0, 0, 0, ny, v, v);
-      }
+    for (int c = 0; c < 2; c++) {
       if (c > 0) { /* the odd lines' right-hand side: their couplings to the even lines */
 #pragma omp barrier
         for (int h = tid; h < T; h += nth) {
           int iy0, iy1;
           half_lines(ny, T, h, &iy0, &iy1);
-          if (!getenv("RS_NOYLINK")) rs_model_near_ylink_apply(k->m, &k->yl, h, 1, iy0, iy1, v, v);
+          rs_model_near_ylink_apply(k->m, &k->yl, h, 1, iy0, iy1, v, v);
         }
       }
       for (int h = tid; h < T; h += nth) {

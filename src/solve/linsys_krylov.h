@@ -17,7 +17,6 @@
 #include <stdint.h>
 
 #include "physics/model.h"
-#include "solve/linsys_coarse.h"
 #include "solve/linsys_lanes.h"
 
 /* A part of the near field that KLU factors on its own: the whole matrix, or (3D) the
@@ -74,10 +73,6 @@ typedef struct rs_krylov {
   rs_inputs in_ev;
   int ev_valid;
   int w_at_ev; /* w holds the evaluation at that point (until a set-up elsewhere) */
-  /* the coarse-grid correction (linsys_coarse.h) */
-  rs_coarse coarse;
-  int coarse_mode, coarse_mode_set;
-  double *cr, *ct; /* its right-hand side and residual [neq] */
 } rs_krylov;
 
 /* 3D near field: the cell's own line along x, 4 cells each way. The steady rolling
