@@ -8,6 +8,11 @@ rs_unit_test(test_transient_to_steady)
 # The transient's modified Newton: Jacobian evaluations and Newton iterations per step on the
 # main job's case, its final force against the steady solution.
 rs_unit_test(test_transient_reuse)
+# Issue 47: the main job itself at the default tolerance (auto): the rule's rtol, steps per
+# cell passage, Jacobians per step, and its final force against the steady solver's.
+add_test(NAME transient_counts_2d
+         COMMAND ${SYSTEM_PYTHON3} ${RS_TESTS}/check_transient_counts_2d.py ${RS_BIN}
+                 ${RS_CASES}/default.yaml ${CMAKE_CURRENT_BINARY_DIR}/transient_counts_2d)
 rs_unit_test(test_hou_single_cell)
 rs_unit_test(test_plastic_limits)
 rs_unit_test(test_plastic_transient_to_steady)

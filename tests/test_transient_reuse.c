@@ -1,5 +1,5 @@
 /* The transient's modified Newton (docs/model.md §9): the main job's case (cases/default.yaml:
- * Carter 2D from rest, 100 cells on +-1.05a, 40 mm rolled, rtol 1e-6, atol 1e-6 N/mm^2)
+ * Carter 2D from rest, 100 cells on +-1.05a, 40 mm rolled), here at rtol 1e-6, atol 1e-6 N/mm^2
  * integrated to the end, then its counts and its final force.
  *   - Jacobian evaluations per IDA step at most 0.5: a factorisation is kept while every
  *     cell stays in its regime and c_j within a factor 4, so fresh ones follow the slip

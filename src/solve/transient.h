@@ -77,9 +77,9 @@ typedef struct rs_transient_opts {
 int rs_transient_neq(const rs_model *m, const rs_thermal *thermal);
 
 /* solver.rtol: auto (docs/model.md §9, "Tolerances"): the relative tolerance that keeps the
- * time integration's error below the grid's own discretisation error. 2D: 1e-6; 3D:
- * 0.06 dx/a (dx the cell length along x, a the Hertz semi-axis along x), at most 3e-3 (the
- * 44 x 44 grid over 1.1 a each way) and at least 1e-6. */
+ * time integration's error below the grid's own discretisation error: 0.06 dx/a (dx the
+ * cell length along x, a the Hertz semi-axis or half-width along x), at most 3e-3 (the
+ * 44 x 44 grid over 1.1 a each way) and at least 1e-6; 1e-6 in 2D with friction memory. */
 double rs_transient_auto_rtol(const rs_model *m);
 
 /* y0, yp0: a consistent initial state (see rs_model_consistent_rates). */
