@@ -67,8 +67,8 @@ typedef struct rs_transient_opts {
   const rs_inputs *frozen;
   /* NULL, or the surface temperature carried as DAE state (docs/model.md §18, "Heat
    * memory"): y and y' then hold rs_thermal_nstate(thermal) mode values after the model's
-   * neq unknowns (rs_transient_neq). The contact rows do not depend on them: each step's
-   * contact system is solved as without them, then the modes' rows exactly
+   * neq unknowns (rs_transient_neq). Without coupling the contact rows do not depend on them:
+   * each step's contact system is solved as without them, then the modes' rows exactly
    * (rs_thermal_dae_solve). Used from one solver at a time. */
   rs_thermal *thermal;
   /* With thermal: NULL, or the contact coupled to its temperature (docs/model.md §18,
