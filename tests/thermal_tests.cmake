@@ -65,3 +65,10 @@ add_test(NAME temperature_tau_table_fit_tau_c0 COMMAND ${SYSTEM_PYTHON3} ${RS_TE
   -- ${RS_BIN} fit ${RS_CASES}/fit_creep_curve.yaml --set "temperature={bulk: 20}"
   --set "plasticity.tau_c0_table={temperature: [20, 400], tau_c0: [200, 100]}"
   -o ${CMAKE_CURRENT_BINARY_DIR}/tau_table_fit_tau_c0.nc --quiet)
+# mu(T) and tau_c0(T) in transients: steady = transient limit in 2D (with both tables) and 3D,
+# energy per record, a constant table as no table bit for bit, Newton iterations per step against
+# the uncoupled run (docs/model.md §18 "Couplings in transients", docs/verification.md 31).
+add_test(NAME temperature_coupled_transient
+  COMMAND ${SYSTEM_PYTHON3} ${RS_TESTS}/check_coupled_transient.py ${RS_BIN}
+          ${RS_CASES}/hot_creep_curve.yaml ${RS_CASES}/ertz_temperature.yaml
+          ${CMAKE_CURRENT_BINARY_DIR}/coupled_transient)

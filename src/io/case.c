@@ -616,8 +616,8 @@ static int resolve_friction(const resolver *r, rs_case_input *in)
   return RS_OK;
 }
 
-/* friction.temperature_table and plasticity.tau_c0_table (docs/model.md §18): the steady
- * coupling only, with a temperature. */
+/* friction.temperature_table and plasticity.tau_c0_table (docs/model.md §18): with a
+ * temperature. */
 static int resolve_temperature_table(const resolver *r, const rs_case *c, const char *key)
 {
   const yaml_node_t *n = given(r, key);
@@ -625,10 +625,6 @@ static int resolve_temperature_table(const resolver *r, const rs_case *c, const 
   if (!c->temperature.on)
     return rs_case_error(r->d, n, key,
                          "needs a temperature: block (the contact temperature it is read at)");
-  if (c->mode == RS_MODE_TRANSIENT)
-    return rs_case_error(r->d, n, key,
-                         "is not yet in transients: the temperature modes do not enter the "
-                         "contact equations; use simulation.mode: steady");
   return RS_OK;
 }
 

@@ -351,6 +351,28 @@ void rs_thermal_dae_solve(rs_thermal *th, double V, const double *q, const signe
   dae_pass(th, DAE_SOLVE, V, q, contact, state, NULL, cor, cj, pred, ratepred);
 }
 
+void rs_thermal_state_temperature(rs_thermal *th, double V, const double *state, double *T)
+{
+  const int nx = th->nx, n = th->nx * th->ny, K = th->ker.nmodes;
+  const double s = 1.0 / sqrt(V);
+  for (int iy = 0; iy < th->ny; iy++)
+    for (int ix = nx - 1; ix >= 0; ix--) {
+      const int i = iy * nx + ix;
+      const double *up[2] = {NULL, NULL};
+      int stride = n;
+      entering(th, state, iy, ix, up, &stride);
+      double hist = 0.0, in0 = 0.0;
+      if (up[0]) {
+        in0 = up[0][K * stride];
+        hist = th->ker.weight0 * in0;
+        for (int k = 0; k < K; k++)
+          hist += th->ker.weight[k] * up[0][k * stride] * th->decay_half[k];
+      }
+      const double q1 = (state[(size_t)K * n + i] - in0) / th->dx;
+      T[i] = th->par.bulk[0] + s * (hist + th->self_half * q1) / th->beta[0];
+    }
+}
+
 void rs_thermal_sources(const rs_thermal *th, const rs_model *m, const rs_work *w, const double *y,
                         double *fric, double *plast, double *q, signed char *contact)
 {

@@ -154,6 +154,13 @@ void rs_thermal_dae_solve(rs_thermal *th, double V, const double *q, const signe
                           double cj, const double *pred, const double *ratepred, double *state,
                           double *cor);
 
+/* Body 1's surface temperature at each cell centre read from the DAE state alone (degC, T [n]):
+ * the modes entering the cell decayed over half a cell, plus the cell's own flux q_1 taken from
+ * its modes of rate 0 (leaving minus entering, over dx) through the half-cell step response. At
+ * a steady state (the march) that is the march's T1; in a transient it follows the heat through
+ * the modes' relaxation, not instantaneously (docs/model.md §18, "Couplings"). V > 0. */
+void rs_thermal_state_temperature(rs_thermal *th, double V, const double *state, double *T);
+
 /* The heat sources of a contact evaluation (w evaluated at y: rs_model_residual or the
  * diagnostics): the power densities fric, plast (N/(mm s)) of rs_model_power_densities,
  * q = 1e-3 (fric + beta_pl plast) W/mm^2 and contact = p_n > 0, per cell. */

@@ -35,6 +35,7 @@ typedef struct nls_content {
   unsigned char *branch_held;
   double cj_held;
   int held;
+  int warm; /* the contact solve starts from the correction given (host.couple's passes) */
 } nls_content;
 
 #define CONTENT(nls) ((nls_content *)(nls)->content)
@@ -191,7 +192,7 @@ enum { DIRECT_OK = 0, DIRECT_FAILED = 1, DIRECT_STOP = -1 };
 static int direct_solve(nls_content *c, N_Vector ycor, double tol, double cj)
 {
   const double ftol = 0.01 * tol;
-  N_VConst(0.0, ycor);
+  if (!c->warm) N_VConst(0.0, ycor);
   int flag = sys(c, ycor, c->fval);
   if (flag != 0) return flag < 0 ? DIRECT_STOP : DIRECT_FAILED;
   double fnorm = scaled_max_norm(c->fval, c->fscale);
@@ -223,6 +224,9 @@ static int direct_solve(nls_content *c, N_Vector ycor, double tol, double cj)
 
 static int contact_solve(nls_content *c, N_Vector ycor, N_Vector w, sunrealtype tol, void *mem);
 
+/* Contact solves per step with host.couple before the step is declared failed. */
+#define COUPLE_PASSES 30
+
 /* With a tail: the contact rows on views of the first neq entries, then the tail's rows at
  * the converged point (the last residual evaluation was there; if Newton's last evaluation
  * was elsewhere, one more at the point). */
@@ -239,22 +243,51 @@ static int nls_solve(SUNNonlinearSolver nls, N_Vector y0, N_Vector ycor, N_Vecto
   const double *wv = N_VGetArrayPointer(w);
   double *wc = N_VGetArrayPointer(c->w_c);
   for (int i = 0; i < c->m->lay.neq; i++) wc[i] = c->host.weight_scale * wv[i];
-  *c->host.tail_rows = 0;
-  int flag = contact_solve(c, c->ycor_c, c->w_c, tol, mem);
-  *c->host.tail_rows = 1;
-  if (flag != SUN_NLS_SUCCESS) return flag;
-  const size_t bytes = (size_t)c->m->lay.neq * sizeof(double);
-  if (memcmp(N_VGetArrayPointer(c->ycor_full), N_VGetArrayPointer(ycor), bytes) != 0) {
-    memcpy(N_VGetArrayPointer(c->ycor_full), N_VGetArrayPointer(ycor), bytes);
-    if (c->sysfn(c->ycor_full, c->f_full, mem) != 0) return SUN_NLS_CONV_RECVR;
+  long iters = 0;
+  if (c->host.couple) { /* the coupling's data from the predicted tail */
+    sunrealtype tcur, cj;
+    N_Vector ypred, yppred, yn, ypn, res;
+    void *udata;
+    double change;
+    IDAGetNonlinearSystemData(mem, &tcur, &ypred, &yppred, &yn, &ypn, &res, &cj, &udata);
+    c->host.inputs_at(c->host.ctx, tcur);
+    if (c->host.couple(c->host.ctx, N_VGetArrayPointer(ypred), N_VGetArrayPointer(ycor), wc,
+                       &change) != RS_OK)
+      return -1;
   }
-  sunrealtype tcur, cj;
-  N_Vector ypred, yppred, yn, ypn, res;
-  void *udata;
-  IDAGetNonlinearSystemData(mem, &tcur, &ypred, &yppred, &yn, &ypn, &res, &cj, &udata);
-  flag = c->host.tail(c->host.ctx, cj, N_VGetArrayPointer(ypred), N_VGetArrayPointer(yppred),
-                      N_VGetArrayPointer(ycor));
-  return flag == RS_OK ? SUN_NLS_SUCCESS : -1;
+  for (int pass = 0;; pass++) {
+    c->warm = pass > 0;
+    *c->host.tail_rows = 0;
+    int flag = contact_solve(c, c->ycor_c, c->w_c, tol, mem);
+    *c->host.tail_rows = 1;
+    c->warm = 0;
+    iters += c->last_iters;
+    c->last_iters = iters;
+    if (flag != SUN_NLS_SUCCESS) return flag;
+    const size_t bytes = (size_t)c->m->lay.neq * sizeof(double);
+    if (memcmp(N_VGetArrayPointer(c->ycor_full), N_VGetArrayPointer(ycor), bytes) != 0) {
+      memcpy(N_VGetArrayPointer(c->ycor_full), N_VGetArrayPointer(ycor), bytes);
+      if (c->sysfn(c->ycor_full, c->f_full, mem) != 0) return SUN_NLS_CONV_RECVR;
+    }
+    sunrealtype tcur, cj;
+    N_Vector ypred, yppred, yn, ypn, res;
+    void *udata;
+    IDAGetNonlinearSystemData(mem, &tcur, &ypred, &yppred, &yn, &ypn, &res, &cj, &udata);
+    flag = c->host.tail(c->host.ctx, cj, N_VGetArrayPointer(ypred), N_VGetArrayPointer(yppred),
+                        N_VGetArrayPointer(ycor));
+    if (flag != RS_OK) return -1;
+    if (!c->host.couple) return SUN_NLS_SUCCESS;
+    /* the contact's own Newton test (direct_solve: 1/100 of IDA's tolerance) */
+    double change = 0.0;
+    if (c->host.couple(c->host.ctx, N_VGetArrayPointer(ypred), N_VGetArrayPointer(ycor), wc,
+                       &change) != RS_OK)
+      return -1;
+    if (change <= (c->kry ? 1.0 : 0.01) * tol) return SUN_NLS_SUCCESS;
+    if (pass + 1 >= COUPLE_PASSES) { /* IDA reduces the step and tries again */
+      c->last_fails = 1;
+      return SUN_NLS_CONV_RECVR;
+    }
+  }
 }
 
 /* The contact rows (the whole system without a tail). */
@@ -311,7 +344,7 @@ static int contact_solve(nls_content *c, N_Vector ycor, N_Vector w, sunrealtype 
   c->tol_cur = tol;
   KINSetFuncNormTol(c->kmem, tol);
   KINSetScaledStepTol(c->kmem, tol);
-  N_VConst(0.0, ycor);
+  if (!c->warm) N_VConst(0.0, ycor);
   const int flag = KINSol(c->kmem, ycor, KIN_NONE, c->uscale, c->fscale);
   long iters = 0;
   KINGetNumNonlinSolvIters(c->kmem, &iters);

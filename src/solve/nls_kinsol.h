@@ -35,6 +35,13 @@ typedef struct rs_nls_host {
   /* with tail: the contact's Newton test takes IDA's weights times this (the integrator scales
    * them to keep the tail from diluting its error norm) */
   double weight_scale;
+  /* with tail: NULL, or the contact rows depend on the tail through data the host holds (the
+   * temperature's factors, transient.h): after each tail solve couple() updates that data from
+   * the step's point (ypred + ycor, full length) and sets *change to the largest change it
+   * makes to a contact row, scaled by the contact's weights wc; while that is above the contact's
+   * Newton test the contact rows are solved again from the current correction, then the tail. */
+  int (*couple)(void *ctx, const double *ypred, const double *ycor, const double *wc,
+                double *change);
 } rs_nls_host;
 
 /* The linear algebra: ls (direct: KLU or the Schur complement), or Newton-Krylov with

@@ -46,7 +46,9 @@ struct rs_transient {
   double *fric, *plast, *q, *theta; /* theta: the modes of a step's solve [their count] */
   signed char *contact;
   N_Vector tmpl_c;
-  int tail_rows;       /* 0: the residual leaves the modes' rows out (nls_kinsol.h) */
+  int tail_rows; /* 0: the residual leaves the modes' rows out (nls_kinsol.h) */
+  const rs_transient_coupling *coupling; /* NULL: the contact does not read the temperature */
+  double *T1;                            /* with coupling: scratch [n] */
   double weight_scale; /* sqrt(neq_full/neq): IDA's error weights times it (error_weights) */
 };
 
@@ -153,6 +155,43 @@ static int solve_tail(void *data, double cj, const double *ypred, const double *
   return RS_OK;
 }
 
+/* mu(T), tau_c0(T): the factors of the temperatures of the modes at the step's point
+ * ypred + ycor, and the largest change they make to a contact cell's bound or yield limit, in
+ * the traction's weight wc (rs_transient_coupling). Without rolling (no material path, no
+ * temperature) the factors are held. */
+static int couple_step(void *data, const double *ypred, const double *ycor, const double *wc,
+                       double *change)
+{
+  rs_transient *tr = data;
+  const rs_transient_coupling *cp = tr->coupling;
+  const rs_layout *L = &tr->m->lay;
+  const double *bound = tr->m->bound; /* the scale of a cell's bound: that at t = 0 */
+  const int neq = L->neq, nm = tr->neq_full - neq;
+  *change = 0.0;
+  if (!(tr->in.velocity > 0.0)) return RS_OK;
+  for (int k = 0; k < nm; k++) tr->theta[k] = ypred[neq + k] + ycor[neq + k];
+  rs_thermal_state_temperature(tr->thermal, tr->in.velocity, tr->theta, tr->T1);
+  for (int i = 0; i < L->n; i++) {
+    double d = 0.0;
+    if (cp->mu_factor) {
+      const double f = rs_history_eval(cp->mu_table, tr->T1[i]) / cp->mu_rest;
+      d += fabs(f - cp->mu_factor[i]) * bound[i];
+      cp->mu_factor[i] = f;
+    }
+    if (cp->yield_factor) {
+      const double f = rs_history_eval(cp->tau_table, tr->T1[i]) / cp->tau_rest;
+      d += fabs(f - cp->yield_factor[i]) * cp->tau_rest;
+      cp->yield_factor[i] = f;
+    }
+    cp->T_used[i] = tr->T1[i];
+    if (!tr->contact[i]) continue;
+    double weight = wc[rs_at_p(L, 0, i)];
+    if (L->ncomp == 2) weight = fmax(weight, wc[rs_at_p(L, 1, i)]);
+    *change = fmax(*change, d * weight);
+  }
+  return RS_OK;
+}
+
 void rs_transient_free(rs_transient *tr)
 {
   if (!tr) return;
@@ -170,6 +209,7 @@ void rs_transient_free(rs_transient *tr)
   free(tr->q);
   free(tr->theta);
   free(tr->contact);
+  free(tr->T1);
   rs_work_free(&tr->work);
   if (tr->own_ctx) SUNContext_Free(&tr->own_ctx);
   free(tr);
@@ -213,7 +253,12 @@ int rs_transient_create(rs_transient **out, const rs_model *m, SUNContext ctx, d
     tr->q = malloc(n * sizeof *tr->q);
     tr->contact = malloc(n);
     tr->theta = malloc((size_t)(nfull - neq) * sizeof *tr->theta);
-    if (!tr->fric || !tr->plast || !tr->q || !tr->theta || !tr->contact || !tr->tmpl_c) {
+    tr->coupling = o->coupling;
+    if (tr->coupling) {
+      tr->T1 = malloc(n * sizeof *tr->T1);
+    }
+    if (!tr->fric || !tr->plast || !tr->q || !tr->theta || !tr->contact || !tr->tmpl_c ||
+        (tr->coupling && !tr->T1)) {
       rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory (transient solver, temperature modes)");
       goto fail;
     }
@@ -306,7 +351,8 @@ int rs_transient_create(rs_transient **out, const rs_model *m, SUNContext ctx, d
                             .tail = tr->thermal ? solve_tail : NULL,
                             .neq_full = nfull,
                             .tail_rows = &tr->tail_rows,
-                            .weight_scale = 1.0 / tr->weight_scale};
+                            .weight_scale = 1.0 / tr->weight_scale,
+                            .couple = tr->coupling ? couple_step : NULL};
   /* Newton-Krylov: the largest forcing term follows the tolerance, 30 rtol within [1e-3, 0.1]
    * (the term itself follows the Newton test, nls_kinsol.c). A loose tolerance's Newton test is
    * loose too, and a tight linear solve there only costs GMRES iterations; at tight tolerances

@@ -67,11 +67,29 @@ typedef struct rs_transient_opts {
   const rs_inputs *frozen;
   /* NULL, or the surface temperature carried as DAE state (docs/model.md §18, "Heat
    * memory"): y and y' then hold rs_thermal_nstate(thermal) mode values after the model's
-   * neq unknowns (rs_transient_neq). The contact rows do not depend on them: each step's
-   * contact system is solved as without them, then the modes' rows exactly
+   * neq unknowns (rs_transient_neq). Without coupling the contact rows do not depend on them:
+   * each step's contact system is solved as without them, then the modes' rows exactly
    * (rs_thermal_dae_solve). Used from one solver at a time. */
   rs_thermal *thermal;
+  /* With thermal: NULL, or the contact coupled to its temperature (docs/model.md §18,
+   * "Couplings"): each step's contact and modes solved together (rs_transient_coupling). */
+  const struct rs_transient_coupling *coupling;
 } rs_transient_opts;
+
+/* mu(T) and tau_c0(T) in a transient (docs/model.md §18, "Couplings"): the factors the model
+ * reads (rs_model.mu_factor, rs_model.yield_factor, each NULL without its table) are
+ * table(T)/rest at each cell's temperature T read from the modes (rs_thermal_state_temperature),
+ * so that the contact rows depend on the DAE state, not on the heat of the point itself (that
+ * would be a friction law falling with the slip velocity: ill-posed without memory). Each step:
+ * the factors of the predicted modes, the contact rows solved with them held, the modes' rows
+ * exactly at that point, the factors of the new modes, until a pass changes no contact row
+ * beyond the contact's Newton test (block Gauss-Seidel on (contact | modes) within the step). */
+typedef struct rs_transient_coupling {
+  const rs_history *mu_table, *tau_table; /* NULL: no such table */
+  double mu_rest, tau_rest;               /* mu_law(0) and plasticity.tau_c0 */
+  double *mu_factor, *yield_factor;       /* [n], those the model points at */
+  double *T_used;                         /* [n]: the temperatures of the factors */
+} rs_transient_coupling;
 
 /* Unknowns of the integrated system: the model's neq, plus the temperature modes. */
 int rs_transient_neq(const rs_model *m, const rs_thermal *thermal);

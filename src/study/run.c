@@ -224,6 +224,15 @@ static int run_transient(run_state *s, const rs_run_opts *o, rs_run_result *res,
                              .t_stop = fmin(rs_model_next_breakpoint(&s->m, t0), c->end_time),
                              .interrupt = o->interrupt_flag,
                              .thermal = s->temp.modes ? &s->temp.th : NULL};
+  /* mu(T), tau_c0(T): each step's contact and temperature solved together (transient.h) */
+  const rs_transient_coupling coupling = {.mu_table = s->temp.mu_table,
+                                          .tau_table = s->temp.tau_table,
+                                          .mu_rest = s->temp.mu_rest,
+                                          .tau_rest = s->temp.tau_rest,
+                                          .mu_factor = s->temp.mu_factor,
+                                          .yield_factor = s->temp.yield_factor,
+                                          .T_used = s->temp.T_used};
+  if (s->temp.modes && s->temp.T_used) topts.coupling = &coupling;
   if (rig) {
     topts.step_hook = rs_rig_run_step;
     topts.hook_ctx = rig;
@@ -408,6 +417,10 @@ int rs_run(const rs_case *c, const rs_run_opts *o, rs_run_result *res, rs_msg *m
   }
   /* A transient carries the temperature modes as DAE state after the model's unknowns. */
   s.temp.modes = s.temp.on && c->mode == RS_MODE_TRANSIENT;
+  if (s.temp.modes) { /* mu(T), tau_c0(T): the factors of the temperatures (those of T_used) */
+    s.m.mu_factor = s.temp.mu_factor;
+    s.m.yield_factor = s.temp.yield_factor;
+  }
   const int n = s.m.grid.n, neq = rs_transient_neq(&s.m, s.temp.modes ? &s.temp.th : NULL);
   res->mu = s.m.par.friction.mu;
   res->dx = s.m.grid.dx;
@@ -564,6 +577,8 @@ int rs_run(const rs_case *c, const rs_run_opts *o, rs_run_result *res, rs_msg *m
   if (status == RS_OK && c->mode == RS_MODE_TRANSIENT) {
     rs_inputs in;
     rs_model_inputs_at(&s.m, t0, &in);
+    if (o->restart_path || c->initial_state != RS_START_STEADY) /* mu(T), tau_c0(T) */
+      rs_temperature_run_state_factors(&s.temp, &s.m, &in, s.y);
     status = rs_model_consistent_rates(&s.m, &s.w, &in, s.y, s.yp, msg);
     /* the modes: steady ones from a steady start, else those read by a restart or rest (0),
      * with their rates */

@@ -125,6 +125,14 @@ void rs_temperature_run_eval(rs_temperature_run *t, const rs_model *m, const rs_
   d->heat_input_2 = r.heat_input[1];
 }
 
+void rs_temperature_run_state_factors(rs_temperature_run *t, const rs_model *m, const rs_inputs *in,
+                                      const double *y)
+{
+  if (!t->modes || !t->T_used || !(in->velocity > 0.0)) return;
+  rs_thermal_state_temperature(&t->th, in->velocity, y + m->lay.neq, t->T_used);
+  for (int i = 0; i < m->grid.n; i++) set_factors(t, (size_t)i);
+}
+
 /* The sources of the state (y, yp): the model evaluated there. */
 static int sources_at(rs_temperature_run *t, const rs_model *m, rs_work *w, const rs_inputs *in,
                       const double *y, const double *yp, rs_msg *msg)

@@ -53,6 +53,12 @@ int rs_temperature_run_steady_modes(rs_temperature_run *t, const rs_model *m, rs
 int rs_temperature_run_rates(rs_temperature_run *t, const rs_model *m, rs_work *w,
                              const rs_inputs *in, const double *y, double *yp, rs_msg *msg);
 
+/* With modes and a table: T_used and the factors from the temperatures of the modes in y (a
+ * transient's start from rest or from a restart file: the coupling of transient.h), rolling at
+ * in. Nothing to do otherwise. */
+void rs_temperature_run_state_factors(rs_temperature_run *t, const rs_model *m, const rs_inputs *in,
+                                      const double *y);
+
 /* The case couples the contact to its temperature: friction.temperature_table or
  * plasticity.tau_c0_table. */
 int rs_temperature_coupled(const rs_case *c);
