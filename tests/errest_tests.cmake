@@ -29,3 +29,9 @@ add_test(NAME errest_cli_off
     --out ${RS_ERREST_OUT}/off.nc
     -- ${RS_BIN} run ${RS_CASES}/carter2d.yaml --set output.error_estimate=false
        -o ${RS_ERREST_OUT}/off.nc)
+
+# The forces extrapolated to zero cell size, with grid.align_edges: Carter's closed form,
+# unreliable grids without a value, sweep points as single runs (tests/check_extrapolation.py).
+add_test(NAME errest_extrapolated
+  COMMAND ${SYSTEM_PYTHON3} ${RS_TESTS}/check_extrapolation.py ${RS_BIN}
+          ${RS_CASES}/carter2d.yaml ${RS_ERREST_OUT}/extrapolated)

@@ -77,6 +77,15 @@ static void synthetic(void)
   rel = rs_errest_combine(10.2, 10.2, 10.8, 2.0, 2.0, 1e-12, &err);
   ts_check_true("crossing: flagged unreliable", rel == 0);
   ts_check_true("crossing: bound >= the true error 0.2", err >= 0.2);
+  /* the extrapolated value: exact for a first-order error, none where unreliable */
+  double ext;
+  rel = rs_errest_combine_extrapolate(10.3, 10.6, 11.2, 2.0, 2.0, 1e-12, &err, &ext);
+  ts_check("first order: extrapolated to F0 = 10", ext, 10.0, 1e-12);
+  rel = rs_errest_combine_extrapolate(10 + 3.0 / 100, 10 + 3.0 / 55, 10 + 3.0 / 27, 100.0 / 55,
+                                      55.0 / 27, 1e-12, &err, &ext);
+  ts_check("first order, unequal ratios: extrapolated to 10", ext, 10.0, 1e-12);
+  rel = rs_errest_combine_extrapolate(10.2, 10.2, 10.8, 2.0, 2.0, 1e-12, &err, &ext);
+  ts_check_true("crossing: no extrapolated value", rel == 0 && isnan(ext));
   /* converged to the solver's tolerance */
   rel = rs_errest_combine(1.0, 1.0 + 1e-13, 1.0 - 1e-13, 2.0, 2.0, 1e-10, &err);
   ts_check_true("converged: reliable, at the noise level", rel == 1 && err == 1e-10);

@@ -266,6 +266,12 @@ static void print_error_estimate(const rs_case *c, const rs_run_result *res)
          d->error_state == RS_ERROR_RELIABLE
              ? "observed order within 10 % of 1 (asymptotic range)"
              : "UNRELIABLE: observed order not within 10 % of 1, a bound with safety factor 3");
+  if (d->error_state == RS_ERROR_RELIABLE && isfinite(d->Fx_extrapolated)) {
+    printf("  extrapolated to zero cell size: F_x = %.6g %s (F_x/F_n = %.6g)", d->Fx_extrapolated,
+           three ? "N" : "N/mm", d->Fn != 0.0 ? d->Fx_extrapolated / d->Fn : 0.0);
+    if (three) printf(", F_y = %.6g N, M_z = %.6g N mm", d->Fy_extrapolated, d->Mz_extrapolated);
+    printf("\n");
+  }
 }
 
 /* The summary of one run on stdout. */

@@ -390,6 +390,31 @@ static int resolve_grid(const resolver *r, rs_case *c)
   const yaml_node_t *range = given(r, "grid.x_range"), *extent = given(r, "grid.extent");
   const yaml_node_t *yrange = given(r, "grid.y_range");
   c->grid_from_range = range != NULL;
+  const yaml_node_t *align = given(r, "grid.align_edges");
+  if (align && c->align_edges) {
+    if (c->dimension == 3)
+      return rs_case_error(r->d, align, "grid.align_edges",
+                           "is for 2D contact: in 3D the ellipse's edge crosses the cells at "
+                           "every angle");
+    if (range)
+      return rs_case_error(r->d, align, "grid.align_edges",
+                           "sets the grid's extent itself: give grid.extent, not grid.x_range");
+    if (c->cells % 4 != 0)
+      return rs_case_error(r->d, align, "grid.align_edges",
+                           "needs grid.cells divisible by 4 (the error estimate's grids of 1/2 "
+                           "and 1/4 the cells must be aligned too), not %d",
+                           c->cells);
+    /* a/dx = cells/(2 extent), made the nearest multiple of 4 that keeps the extent above 1
+     * (the Hertz contact inside the grid) */
+    long k = 4L * lround(c->cells / (8.0 * c->extent));
+    if (2 * k >= c->cells) k -= 4;
+    if (k < 4)
+      return rs_case_error(r->d, align, "grid.align_edges",
+                           "%d cells over +-%g a are too few to put the contact edges on cell "
+                           "faces (at least 4 cells per Hertz half-width a)",
+                           c->cells, c->extent);
+    c->extent = c->cells / (2.0 * (double)k);
+  }
   if (yrange && !range)
     return rs_case_error(r->d, yrange, "grid.y_range",
                          "give grid.x_range and grid.y_range together (mm), or grid.extent");

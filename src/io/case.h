@@ -74,6 +74,7 @@ typedef struct rs_case {
   double extent;       /* half-length of the potential contact area, in Hertz a */
   double extent_y;     /* 3D: half-width, in Hertz b */
   int grid_from_range; /* 1: grid.x_range (3D: and y_range) given (instead of grid.extent) */
+  int align_edges;     /* grid.align_edges (2D): extent set so that +-a fall on cell faces */
   double accuracy;     /* grid.accuracy: refine until the force error < accuracy mu F_n (0: off) */
   double y_range[2];   /* mm, 3D */
   double x_range[2];   /* mm, outer edges of the potential contact area */

@@ -52,6 +52,7 @@ const rs_case_key rs_case_keys[] = {
      RS_KEY_HI_ABSURD | RS_KEY_NULLABLE, NULL},
     {"grid.y_range", RS_KEY_RANGE, F(c.y_range), "mm", -1e9, 1e9,
      RS_KEY_HI_ABSURD | RS_KEY_NULLABLE, NULL},
+    {"grid.align_edges", RS_KEY_CHOICE, F(c.align_edges), "", 0, 0, 0, bool_names},
     {"grid.accuracy", RS_KEY_NUMBER, F(c.accuracy), "", 0, 1,
      RS_KEY_LO_OPEN | RS_KEY_HI_OPEN | RS_KEY_NULLABLE, NULL},
 

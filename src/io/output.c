@@ -136,24 +136,33 @@ static int def_rig_var(int ncid, const char *name, int dim, const char *units,
   return NC_NOERR;
 }
 
-int rs_output_define_error_vars(int ncid, int ndims, const int *dims, int three_d, int ids[5])
+const char *const rs_error_var_names[RS_N_ERROR_VARS] = {
+    "error_reliable", "Fx_error",        "traction_coefficient_error",        "Fy_error",
+    "Mz_error",       "Fx_extrapolated", "traction_coefficient_extrapolated", "Fy_extrapolated",
+    "Mz_extrapolated"};
+
+int rs_output_define_error_vars(int ncid, int ndims, const int *dims, int three_d,
+                                int ids[RS_N_ERROR_VARS])
 {
-  static const char *const names[5] = {"error_reliable", "Fx_error", "traction_coefficient_error",
-                                       "Fy_error", "Mz_error"};
-  static const char *const long_names[5] = {
+  static const char *const long_names[RS_N_ERROR_VARS] = {
       "1: the error estimate's observed order lies in the asymptotic band; 0: it does not (the "
       "conservative fallback); -1: no estimate",
       "estimated discretisation error of Fx (magnitude)",
       "estimated discretisation error of Fx/Fn (magnitude)",
       "estimated discretisation error of Fy (magnitude)",
-      "estimated discretisation error of Mz (magnitude)"};
-  const char *units[5] = {"1", three_d ? "N" : "N/mm", "1", "N", "N mm"};
+      "estimated discretisation error of Mz (magnitude)",
+      "Fx extrapolated to zero cell size (where error_reliable is 1)",
+      "Fx/Fn extrapolated to zero cell size (where error_reliable is 1)",
+      "Fy extrapolated to zero cell size (where error_reliable is 1)",
+      "Mz extrapolated to zero cell size (where error_reliable is 1)"};
+  const char *force = three_d ? "N" : "N/mm";
+  const char *units[RS_N_ERROR_VARS] = {"1", force, "1", "N", "N mm", force, "1", "N", "N mm"};
   const double fill = NAN;
   int err = 0;
-  for (int k = 0; k < 5 && !err; k++) {
+  for (int k = 0; k < RS_N_ERROR_VARS && !err; k++) {
     ids[k] = -1;
-    if (k >= 3 && !three_d) continue;
-    err = nc_def_var(ncid, names[k], k ? NC_DOUBLE : NC_INT, ndims, dims, &ids[k]);
+    if ((k == 3 || k == 4 || k == 7 || k == 8) && !three_d) continue;
+    err = nc_def_var(ncid, rs_error_var_names[k], k ? NC_DOUBLE : NC_INT, ndims, dims, &ids[k]);
     if (!err) err = rs_output_put_text(ncid, ids[k], "units", units[k]);
     if (!err) err = rs_output_put_text(ncid, ids[k], "long_name", long_names[k]);
     if (!err && k) err = nc_put_att_double(ncid, ids[k], "_FillValue", NC_DOUBLE, 1, &fill);
@@ -769,10 +778,18 @@ int rs_output_write(rs_output *out, const rs_record *rec, rs_msg *msg)
     if (err) goto fail;
   }
   if (out->has_errors) {
-    const double v[5] = {0.0, rec->Fx_error, rec->Fn != 0.0 ? rec->Fx_error / fabs(rec->Fn) : NAN,
-                         rec->Fy_error, rec->Mz_error};
+    const double fn = rec->Fn != 0.0 ? fabs(rec->Fn) : NAN;
+    const double v[RS_N_ERROR_VARS] = {0.0,
+                                       rec->Fx_error,
+                                       rec->Fx_error / fn,
+                                       rec->Fy_error,
+                                       rec->Mz_error,
+                                       rec->Fx_extrapolated,
+                                       rec->Fn != 0.0 ? rec->Fx_extrapolated / rec->Fn : NAN,
+                                       rec->Fy_extrapolated,
+                                       rec->Mz_extrapolated};
     if ((err = nc_put_var1_int(ncid, out->error_id[0], start, &rec->error_reliable))) goto fail;
-    for (int k = 1; k < 5; k++)
+    for (int k = 1; k < RS_N_ERROR_VARS; k++)
       if (out->error_id[k] >= 0 && (err = nc_put_var1_double(ncid, out->error_id[k], start, &v[k])))
         goto fail;
   }

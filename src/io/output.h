@@ -81,8 +81,10 @@ typedef struct rs_record {
   const double *T1, *T2;
   double T_max, heat_input_1, heat_input_2;
   /* Error estimates (files with error_estimate): magnitudes, NaN where none was made;
-   * error_reliable 1 (observed order in the band), 0 (fallback) or -1 (no estimate). */
+   * error_reliable 1 (observed order in the band), 0 (fallback) or -1 (no estimate); the
+   * forces extrapolated to zero cell size where error_reliable is 1 (NaN elsewhere). */
   double Fx_error, Fy_error, Mz_error;
+  double Fx_extrapolated, Fy_extrapolated, Mz_extrapolated;
   int error_reliable;
   /* files with temperature_modes: the modes, mode slowest, then y, then x */
   const double *temperature_modes;
@@ -182,8 +184,10 @@ typedef struct rs_sweep_point {
   int rank;         /* the process that computed it (files with ranks > 0) */
   const double *mu; /* mu(|v_s|) (velocity-dependent friction) */
   double T_max, heat_input_1, heat_input_2; /* files with temperature: degC, W (2D: W/mm) */
-  /* error estimates (magnitudes, NaN: none) and error_reliable (1, 0, -1: no estimate) */
+  /* error estimates (magnitudes, NaN: none) and error_reliable (1, 0, -1: no estimate); the
+   * forces extrapolated to zero cell size (NaN unless error_reliable is 1) */
   double Fx_error, Fy_error, Mz_error;
+  double Fx_extrapolated, Fy_extrapolated, Mz_extrapolated;
   int error_reliable;
 } rs_sweep_point;
 

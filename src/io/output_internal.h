@@ -43,11 +43,15 @@ extern const rs_scalar_var rs_scalar_vars_3d[RS_N_SCALARS_3D];
 #define RS_N_TEMPERATURE_FIELDS 2
 extern const rs_scalar_var rs_temperature_vars[RS_N_TEMPERATURE_VARS];
 
-/* Defines the error estimate's variables error_reliable, Fx_error,
- * traction_coefficient_error and, in 3D, Fy_error, Mz_error over dims [ndims] (docs/file-format.md)
- * with their units, long names and fill values; ids[5] gets their ids, -1 for those not made.
- * A netCDF status. */
-int rs_output_define_error_vars(int ncid, int ndims, const int *dims, int three_d, int ids[5]);
+/* The error estimate's variables: error_reliable, Fx_error, traction_coefficient_error,
+ * Fy_error, Mz_error, then the extrapolated Fx, traction coefficient, Fy, Mz (Fy and Mz in 3D
+ * only). */
+#define RS_N_ERROR_VARS 9
+extern const char *const rs_error_var_names[RS_N_ERROR_VARS];
+/* Defines them over dims [ndims] (docs/file-format.md) with their units, long names and fill
+ * values; ids gets their ids, -1 for those not made. A netCDF status. */
+int rs_output_define_error_vars(int ncid, int ndims, const int *dims, int three_d,
+                                int ids[RS_N_ERROR_VARS]);
 
 /* Name of field f's variable: component comp (0, or 1 for the y component of the 3D
  * vector fields px, slip, upl); NULL when the field has no such component. */
@@ -68,10 +72,10 @@ struct rs_output {
   int scalar_id[RS_N_SCALARS];
   int scalar3_id[RS_N_SCALARS_3D];
   int temp_id[RS_N_TEMPERATURE_VARS]; /* T1, T2, T_max, heat_input_1, heat_input_2; -1: none */
-  int has_errors;  /* the error estimate's variables are in the file (steady runs) */
-  int error_id[5]; /* error_reliable, Fx_error, traction_coefficient_error, Fy_error, Mz_error */
-  int modes_id;    /* temperature_modes, -1: none */
-  size_t nmodes;   /* its temperature_mode dimension */
+  int has_errors;                /* the error estimate's variables are in the file (steady runs) */
+  int error_id[RS_N_ERROR_VARS]; /* rs_error_var_names */
+  int modes_id;                  /* temperature_modes, -1: none */
+  size_t nmodes;                 /* its temperature_mode dimension */
   int has_rig;
   int rig_meta_id[6];
   int step_mu_id, step_slip_id, rev_mu_id, rev_slip_id; /* twin-disc summaries */

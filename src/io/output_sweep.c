@@ -89,7 +89,7 @@ typedef struct batch {
   double *d;           /* [cap][N_POINT_DOUBLES] the scalars (counts in i) */
   int *i;              /* [cap][N_SWEEP_VARS] */
   int *rank;           /* [cap] */
-  double *err;         /* [cap][4] Fx_error, traction_coefficient_error, Fy_error, Mz_error */
+  double *err;         /* [cap][RS_N_ERROR_VARS - 1] rs_error_var_names after error_reliable */
   int *reliable;       /* [cap] error_reliable */
   double *rows;        /* [RS_N_FIELDS][cap][nx] the stored fields' rows */
   signed char *regime; /* [cap][nx] */
@@ -106,9 +106,9 @@ struct rs_sweep_output {
   int varid3[N_SWEEP_VARS_3D]; /* -1 in 2D */
   int varidt[N_SWEEP_VARS_T];  /* -1 without temperature */
   size_t nx;
-  int field_id[RS_N_FIELDS]; /* -1: not stored */
-  int rank_id;               /* -1: not stored (serial sweeps) */
-  int err_id[5]; /* error_reliable, Fx_error, traction_coefficient_error, Fy_error, Mz_error */
+  int field_id[RS_N_FIELDS];   /* -1: not stored */
+  int rank_id;                 /* -1: not stored (serial sweeps) */
+  int err_id[RS_N_ERROR_VARS]; /* rs_error_var_names */
   batch b;
   char backup[1040];
 };
@@ -186,8 +186,6 @@ static int define_fields(rs_sweep_output *o, const rs_sweep_output_spec *spec, c
 }
 
 /* The error estimate's per-point variables (docs/file-format.md). */
-static const char *const error_names[5] = {"error_reliable", "Fx_error",
-                                           "traction_coefficient_error", "Fy_error", "Mz_error"};
 static int define_errors(rs_sweep_output *o, const rs_sweep_output_spec *spec, const int *dims)
 {
   return rs_output_define_error_vars(o->ncid, spec->naxes, dims, spec->dimension == 3, o->err_id);
@@ -221,7 +219,7 @@ static int batch_alloc(batch *b, size_t nx)
   b->d = malloc(cap * N_POINT_DOUBLES * sizeof *b->d);
   b->i = malloc(cap * N_SWEEP_VARS * sizeof *b->i);
   b->rank = malloc(cap * sizeof *b->rank);
-  b->err = malloc(cap * 4 * sizeof *b->err);
+  b->err = malloc(cap * (RS_N_ERROR_VARS - 1) * sizeof *b->err);
   b->reliable = malloc(cap * sizeof *b->reliable);
   b->rows = malloc(RS_N_FIELDS * cap * row * sizeof *b->rows);
   b->regime = malloc(cap * row);
@@ -246,7 +244,7 @@ static rs_sweep_output *output_new(const rs_sweep_output_spec *spec)
   o->naxes = spec->naxes;
   o->nx = spec->fields ? spec->nx : 0;
   for (int f = 0; f < RS_N_FIELDS; f++) o->field_id[f] = -1;
-  for (int k = 0; k < 5; k++) o->err_id[k] = -1;
+  for (int k = 0; k < RS_N_ERROR_VARS; k++) o->err_id[k] = -1;
   if (batch_alloc(&o->b, o->nx) != RS_OK) {
     free_output(o);
     return NULL;
@@ -523,8 +521,8 @@ int rs_sweep_output_resume(rs_sweep_output **outp, const rs_sweep_output_spec *s
       o->field_id[f] = -1;
   /* a file of an MPI sweep keeps its rank variable (0 where a serial resume computed) */
   if (err || nc_inq_varid(o->ncid, "rank", &o->rank_id)) o->rank_id = -1;
-  for (int k = 0; k < 5; k++)
-    if (err || !spec->error_estimate || nc_inq_varid(o->ncid, error_names[k], &o->err_id[k]))
+  for (int k = 0; k < RS_N_ERROR_VARS; k++)
+    if (err || !spec->error_estimate || nc_inq_varid(o->ncid, rs_error_var_names[k], &o->err_id[k]))
       o->err_id[k] = -1;
   char *old = err ? NULL : rs_output_get_text(o->ncid, NC_GLOBAL, "history");
   if (!err && !old) err = NC_ENOMEM;
@@ -619,9 +617,12 @@ static void batch_add(rs_sweep_output *o, size_t index, const rs_sweep_point *pt
   memcpy(b->d + k * N_POINT_DOUBLES, dv, sizeof dv);
   memcpy(b->i + k * N_SWEEP_VARS, iv, sizeof iv);
   b->rank[k] = pt->rank;
-  const double ev[4] = {pt->Fx_error, pt->Fn != 0.0 ? pt->Fx_error / fabs(pt->Fn) : NAN,
-                        pt->Fy_error, pt->Mz_error};
-  memcpy(b->err + k * 4, ev, sizeof ev);
+  const double ev[RS_N_ERROR_VARS - 1] = {
+      pt->Fx_error,        pt->Fn != 0.0 ? pt->Fx_error / fabs(pt->Fn) : NAN,
+      pt->Fy_error,        pt->Mz_error,
+      pt->Fx_extrapolated, pt->Fn != 0.0 ? pt->Fx_extrapolated / pt->Fn : NAN,
+      pt->Fy_extrapolated, pt->Mz_extrapolated};
+  memcpy(b->err + k * (RS_N_ERROR_VARS - 1), ev, sizeof ev);
   b->reliable[k] = pt->error_reliable;
   /* in the order of rs_field_vars (the regime's slot unused) */
   const double *rows[RS_N_FIELDS] = {pt->px,    pt->pn,   pt->slip, pt->upl,
@@ -677,7 +678,7 @@ static int put_run(rs_sweep_output *o, const size_t *order, size_t len, const si
     return nc_put_vara_int(o->ncid, varid, st, count, out);
   }
   for (size_t m = 0; m < len; m++)
-    b->scratch[m] = field == -4 ? b->err[order[m] * 4 + (size_t)v]
+    b->scratch[m] = field == -4 ? b->err[order[m] * (RS_N_ERROR_VARS - 1) + (size_t)v]
                                 : b->d[order[m] * N_POINT_DOUBLES + (size_t)v];
   return nc_put_vara_double(o->ncid, varid, st, count, b->scratch);
 }
@@ -722,7 +723,7 @@ static int batch_write(rs_sweep_output *o)
       if (o->field_id[f] >= 0) err = put_run(o, order, len, start, o->field_id[f], f, 0, 0);
     if (!err && o->rank_id >= 0) err = put_run(o, order, len, start, o->rank_id, -2, 0, 1);
     if (!err && o->err_id[0] >= 0) err = put_run(o, order, len, start, o->err_id[0], -3, 0, 1);
-    for (int k = 1; k < 5 && !err; k++)
+    for (int k = 1; k < RS_N_ERROR_VARS && !err; k++)
       if (o->err_id[k] >= 0) err = put_run(o, order, len, start, o->err_id[k], -4, k - 1, 0);
     r += len;
   }

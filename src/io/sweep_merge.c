@@ -262,12 +262,17 @@ int rs_sweep_merge(const char *out_path, const char *const *paths, int nparts, c
       if (nc_inq_varid(id, names_t[v], &vid) == NC_NOERR)
         err = nc_get_var1_double(id, vid, start, dst_t[v]);
     }
-    /* the error estimates (steady sweeps; Fy_error and Mz_error in 3D) */
-    static const char *const names_err[3] = {"Fx_error", "Fy_error", "Mz_error"};
-    double *dst_err[3] = {&pt.Fx_error, &pt.Fy_error, &pt.Mz_error};
+    /* the error estimates and extrapolated forces (steady sweeps; F_y and M_z in 3D; parts
+     * written before the extrapolated variables existed have none) */
+    static const char *const names_err[6] = {"Fx_error",        "Fy_error",
+                                             "Mz_error",        "Fx_extrapolated",
+                                             "Fy_extrapolated", "Mz_extrapolated"};
+    double *dst_err[6] = {&pt.Fx_error,        &pt.Fy_error,        &pt.Mz_error,
+                          &pt.Fx_extrapolated, &pt.Fy_extrapolated, &pt.Mz_extrapolated};
     pt.Fx_error = pt.Fy_error = pt.Mz_error = NAN;
+    pt.Fx_extrapolated = pt.Fy_extrapolated = pt.Mz_extrapolated = NAN;
     pt.error_reliable = -1;
-    for (int v = 0; v < 3 && with_errors && !err; v++) {
+    for (int v = 0; v < 6 && with_errors && !err; v++) {
       int vid;
       if (nc_inq_varid(id, names_err[v], &vid) == NC_NOERR)
         err = nc_get_var1_double(id, vid, start, dst_err[v]);

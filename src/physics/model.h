@@ -295,6 +295,9 @@ typedef struct rs_diag {
   /* Discretisation error estimates of Fx, Fy, Mz (magnitudes), set by the driver
    * (study/errest.h) and only when error_state is not RS_ERROR_NONE (zero here). */
   double Fx_error, Fy_error, Mz_error;
+  /* Fx, Fy, Mz extrapolated to zero cell size from the same three grids, where the estimate
+   * is reliable (NaN elsewhere and without an estimate; docs/model.md §19). */
+  double Fx_extrapolated, Fy_extrapolated, Mz_extrapolated;
   int error_state;
 } rs_diag;
 /* error_state: no estimate; the observed order in the asymptotic band; the fallback. */

@@ -12,9 +12,18 @@
 int rs_errest_combine(double f1, double f2, double f3, double r21, double r32, double noise,
                       double *err)
 {
+  double extrap;
+  return rs_errest_combine_extrapolate(f1, f2, f3, r21, r32, noise, err, &extrap);
+}
+
+int rs_errest_combine_extrapolate(double f1, double f2, double f3, double r21, double r32,
+                                  double noise, double *err, double *extrap)
+{
   const double e21 = f2 - f1, e32 = f3 - f2;
+  *extrap = NAN;
   if (fabs(e21) <= noise && fabs(e32) <= noise) { /* converged to the solver's tolerance */
     *err = fmax(noise, fmax(fabs(e21), fabs(e32)));
+    *extrap = f1;
     return 1;
   }
   /* Outside the asymptotic range the finer pair's difference can be small by chance (the
@@ -43,6 +52,7 @@ int rs_errest_combine(double f1, double f2, double f3, double r21, double r32, d
    * factor of the fallback with the order taken in [0.5, 1], never above the formal one. */
   if (isfinite(p) && fabs(p - 1.0) <= RS_ERREST_P_TOL) {
     *err = RS_ERREST_SAFETY * fabs(e21) / (pow(r21, p) - 1.0);
+    *extrap = f1 - e21 / (pow(r21, p) - 1.0); /* Richardson with the observed order */
     return 1;
   }
   const double pu = isfinite(p) ? fmin(fmax(p, RS_ERREST_P_MIN), 1.0) : RS_ERREST_P_MIN;
@@ -165,6 +175,7 @@ int rs_errest_point(rs_errest *e, const rs_model *m, const double *y, rs_diag *d
 {
   d->error_state = RS_ERROR_NONE;
   d->Fx_error = d->Fy_error = d->Mz_error = NAN;
+  d->Fx_extrapolated = d->Fy_extrapolated = d->Mz_extrapolated = NAN;
   if (!e->on) return RS_OK;
   double f[3][3] = {{d->Fx, d->Fy, d->Mz}};
   const rs_model *from = m;
@@ -206,14 +217,18 @@ void rs_errest_diag(const rs_model *m, double r21, double r32, const rs_diag *d2
   const double scale[3] = {force_scale, force_scale, force_scale * m->hertz_a};
   const double f[3][3] = {
       {d->Fx, d->Fy, d->Mz}, {d2->Fx, d2->Fy, d2->Mz}, {d3->Fx, d3->Fy, d3->Mz}};
-  double err[3] = {NAN, NAN, NAN};
+  double err[3] = {NAN, NAN, NAN}, ext[3] = {NAN, NAN, NAN};
   int reliable = 1;
   for (int q = 0; q < (three ? 3 : 1); q++)
-    reliable &=
-        rs_errest_combine(f[0][q], f[1][q], f[2][q], r21, r32, RS_ERREST_NOISE * scale[q], &err[q]);
+    reliable &= rs_errest_combine_extrapolate(f[0][q], f[1][q], f[2][q], r21, r32,
+                                              RS_ERREST_NOISE * scale[q], &err[q], &ext[q]);
   d->Fx_error = err[0];
   d->Fy_error = err[1];
   d->Mz_error = err[2];
+  /* The extrapolated values only where every quantity's grids are asymptotic (error_reliable) */
+  d->Fx_extrapolated = reliable ? ext[0] : NAN;
+  d->Fy_extrapolated = reliable ? ext[1] : NAN;
+  d->Mz_extrapolated = reliable ? ext[2] : NAN;
   d->error_state = reliable ? RS_ERROR_RELIABLE : RS_ERROR_UNRELIABLE;
 }
 
@@ -292,6 +307,7 @@ int rs_errest_refine(rs_model *m, SUNContext ctx, double accuracy, double **y, r
     *d = dg;
     d->error_state = RS_ERROR_NONE;
     d->Fx_error = d->Fy_error = d->Mz_error = NAN;
+    d->Fx_extrapolated = d->Fy_extrapolated = d->Mz_extrapolated = NAN;
     if (solved >= 3 &&
         cells_across(m, level < 2 ? n0 >> (2 - level) : n0 << (level - 2)) >= RS_ERREST_MIN_CELLS) {
       const double r21 = three ? sqrt((double)cells[2] / cells[1]) : (double)cells[2] / cells[1];

@@ -32,6 +32,10 @@
  * band, or every difference is below noise) or 0 (the fallback). */
 int rs_errest_combine(double f1, double f2, double f3, double r21, double r32, double noise,
                       double *err);
+/* The same, and in *extrap the extrapolated F (Richardson with the observed order: second
+ * order where the grids are asymptotic), or NaN when the estimate is not reliable. */
+int rs_errest_combine_extrapolate(double f1, double f2, double f3, double r21, double r32,
+                                  double noise, double *err, double *extrap);
 
 /* The estimate of d's F_x (3D: F_y, M_z) from the same point's results d2, d3 on grids of
  * cell size ratios r21, r32 (the scales from m's friction and d->Fn): d's error fields. */

@@ -26,8 +26,9 @@
 enum { TAG_REQUEST = 1, TAG_POINT = 2, TAG_LINE = 3 };
 /* A point message: line, j, status, 11 scalars, newton, has_fields, then 7 nx values. */
 /* m[16..21]: F_y, M_z, eta, phi, Hertz a, b (3D; 0 in 2D); m[22..24]: T_max, heat inputs;
- * m[25..28]: the errors of F_x, F_y, M_z and error_reliable */
-enum { PT_HEAD = 29 };
+ * m[25..28]: the errors of F_x, F_y, M_z and error_reliable; m[29..31]: F_x, F_y, M_z
+ * extrapolated */
+enum { PT_HEAD = 32 };
 
 typedef struct dist_run {
   const rs_sweep *s;
@@ -88,6 +89,9 @@ static void pack(dist_run *r, size_t line, size_t j, int status, const rs_diag *
   m[26] = est ? d->Fy_error : NAN;
   m[27] = est ? d->Mz_error : NAN;
   m[28] = !est ? -1 : d->error_state == RS_ERROR_RELIABLE ? 1 : 0;
+  m[29] = est ? d->Fx_extrapolated : NAN;
+  m[30] = est ? d->Fy_extrapolated : NAN;
+  m[31] = est ? d->Mz_extrapolated : NAN;
   if (ok && r->with_fields) {
     const double *rows[6] = {r->buf.px,  r->buf.pn,    r->buf.slip,
                              r->buf.upl, r->buf.ustar, r->buf.tauc};
@@ -130,6 +134,9 @@ static int write_point(dist_run *r, const double *m, int rank)
     pt.Fy_error = m[26];
     pt.Mz_error = m[27];
     pt.error_reliable = (int)m[28];
+    pt.Fx_extrapolated = m[29];
+    pt.Fy_extrapolated = m[30];
+    pt.Mz_extrapolated = m[31];
     pt.converged = 1;
     if (pt.error_reliable >= 0) {
       r->res->points_estimated++;
@@ -159,6 +166,7 @@ static int write_point(dist_run *r, const double *m, int rank)
     pt.T_max = pt.heat_input_1 = pt.heat_input_2 = NAN;
     pt.n_exterior = pt.n_adhesion = pt.n_slip = pt.n_plastic = -1;
     pt.Fx_error = pt.Fy_error = pt.Mz_error = NAN;
+    pt.Fx_extrapolated = pt.Fy_extrapolated = pt.Mz_extrapolated = NAN;
     pt.error_reliable = -1;
     r->res->points_failed++;
   }
