@@ -334,8 +334,14 @@ int rs_transient_create(rs_transient **out, const rs_model *m, SUNContext ctx, d
   RS_SUN_CHECK(IDAInit(tr->ida, dae_residual, t0, tr->y, tr->yp), msg, what);
   RS_SUN_CHECK(IDASetUserData(tr->ida, tr), msg, what);
   tr->rtol = o->rtol;
-  tr->p_floor = TRACTION_WEIGHT_FLOOR * rs_friction_mu(&m->par.friction, 0.0) * m->hertz_p0;
-  RS_SUN_CHECK(IDAWFtolerances(tr->ida, error_weights), msg, what);
+  /* The steady solver's pseudo-transient (frozen inputs) only selects the steady state that
+   * Newton then solves: it keeps the plain weights, and 2D without temperature modes IDA's. */
+  tr->p_floor =
+      o->frozen ? 0.0 : TRACTION_WEIGHT_FLOOR * rs_friction_mu(&m->par.friction, 0.0) * m->hertz_p0;
+  if (o->frozen && L->ncomp == 1 && !tr->thermal)
+    RS_SUN_CHECK(IDASVtolerances(tr->ida, o->rtol, tr->atol), msg, what);
+  else
+    RS_SUN_CHECK(IDAWFtolerances(tr->ida, error_weights), msg, what);
   RS_SUN_CHECK(IDASetNonlinearSolver(tr->ida, tr->nls), msg, what);
   RS_SUN_CHECK(IDASetMaxOrd(tr->ida, o->max_order), msg, what);
   RS_SUN_CHECK(IDASetMaxNumSteps(tr->ida, o->max_steps > 0 ? o->max_steps : 1000000), msg, what);
