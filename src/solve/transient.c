@@ -19,6 +19,10 @@
  * (rs_transient_create). */
 #define FAST_MODE_CELLS 10.0
 
+/* A traction's error weight takes the larger of its own size and this fraction of the run's
+ * largest friction bound mu p0 (error_weights; docs/model.md §9). */
+#define TRACTION_WEIGHT_FLOOR 0.3
+
 struct rs_transient {
   const rs_model *m;
   SUNContext own_ctx; /* created here when the caller gave none */
@@ -50,6 +54,7 @@ struct rs_transient {
   const rs_transient_coupling *coupling; /* NULL: the contact does not read the temperature */
   double *T1;                            /* with coupling: scratch [n] */
   double weight_scale; /* sqrt(neq_full/neq): IDA's error weights times it (error_weights) */
+  double p_floor;      /* N/mm^2: the smallest traction size of the error weights */
 };
 
 int rs_transient_neq(const rs_model *m, const rs_thermal *thermal)
@@ -68,12 +73,15 @@ static void ida_counters(const rs_transient *tr, rs_stats *st)
   IDAGetNumResEvals(tr->ida, &st->res_evals);
 }
 
-/* IDA's error weights, 1/(rtol |y| + atol) (2D with the temperature modes; without them 2D
- * leaves the weights to IDA). 3D: 1/(rtol |v| + atol) for both components of a cell's traction
- * (and plastic displacement), |v| the vector's length, instead of each component's own size.
- * A component that is zero by symmetry (p_y of a slipping cell on the centre line) would be
- * held to atol, while its direction follows the slip direction and so the Newton solve's
- * inexactness: the error test then fails at every step size (docs/model.md §9). */
+/* IDA's error weights, 1/(rtol |y| + atol), except for the tractions: 1/(rtol max(|p|,
+ * p_floor) + atol), p_floor = TRACTION_WEIGHT_FLOOR mu p0. What users read of a traction is
+ * its share of the forces, an absolute error over the cell's area; held to rtol |p| alone, the
+ * small tractions of the adhesion cells at the leading edge set the step (2D: in nearly every
+ * step) while adding least to the forces (docs/model.md §9). 3D: both components of a cell's
+ * traction (and plastic displacement) take the vector's length |v| instead of each
+ * component's own size. A component that is zero by symmetry (p_y of a slipping cell on the
+ * centre line) would be held to atol, while its direction follows the slip direction and so
+ * the Newton solve's inexactness: the error test then fails at every step size. */
 static int error_weights(N_Vector yv, N_Vector ewt, void *data)
 {
   const rs_transient *tr = data;
@@ -81,11 +89,16 @@ static int error_weights(N_Vector yv, N_Vector ewt, void *data)
   const double *y = N_VGetArrayPointer(yv), *at = N_VGetArrayPointer(tr->atol);
   double *w = N_VGetArrayPointer(ewt);
   for (int k = 0; k < tr->neq_full; k++) w[k] = tr->rtol * fabs(y[k]) + at[k];
+  for (int I = 0; I < L->n && L->ncomp == 1; I++) {
+    const int k = rs_at_p(L, 0, I);
+    w[k] = tr->rtol * fmax(fabs(y[k]), tr->p_floor) + at[k];
+  }
   for (int I = 0; I < L->n && L->ncomp == 2; I++) {
     const int vec[2][2] = {{rs_at_p(L, 0, I), rs_at_p(L, 1, I)},
                            {rs_at_upl(L, 0, I), rs_at_upl(L, 1, I)}};
     for (int q = 0; q < 2; q++) {
-      const double len = sqrt(y[vec[q][0]] * y[vec[q][0]] + y[vec[q][1]] * y[vec[q][1]]);
+      double len = sqrt(y[vec[q][0]] * y[vec[q][0]] + y[vec[q][1]] * y[vec[q][1]]);
+      if (q == 0) len = fmax(len, tr->p_floor);
       w[vec[q][0]] = tr->rtol * len + at[vec[q][0]];
       w[vec[q][1]] = tr->rtol * len + at[vec[q][1]];
     }
@@ -367,10 +380,14 @@ int rs_transient_create(rs_transient **out, const rs_model *m, SUNContext ctx, d
   RS_SUN_CHECK(IDAInit(tr->ida, dae_residual, t0, tr->y, tr->yp), msg, what);
   RS_SUN_CHECK(IDASetUserData(tr->ida, tr), msg, what);
   tr->rtol = o->rtol;
-  if (L->ncomp == 2 || tr->thermal)
-    RS_SUN_CHECK(IDAWFtolerances(tr->ida, error_weights), msg, what);
-  else
+  /* The steady solver's pseudo-transient (frozen inputs) only selects the steady state that
+   * Newton then solves: it keeps the plain weights, and 2D without temperature modes IDA's. */
+  tr->p_floor =
+      o->frozen ? 0.0 : TRACTION_WEIGHT_FLOOR * rs_friction_mu(&m->par.friction, 0.0) * m->hertz_p0;
+  if (o->frozen && L->ncomp == 1 && !tr->thermal)
     RS_SUN_CHECK(IDASVtolerances(tr->ida, o->rtol, tr->atol), msg, what);
+  else
+    RS_SUN_CHECK(IDAWFtolerances(tr->ida, error_weights), msg, what);
   RS_SUN_CHECK(IDASetNonlinearSolver(tr->ida, tr->nls), msg, what);
   RS_SUN_CHECK(IDASetMaxOrd(tr->ida, o->max_order), msg, what);
   RS_SUN_CHECK(IDASetMaxNumSteps(tr->ida, o->max_steps > 0 ? o->max_steps : 1000000), msg, what);
