@@ -15,8 +15,10 @@ sine RUN.nc MEAN AMPLITUDE FREQUENCY
     force stays below the friction limit mu F_n; after the first period (30 contact
     lengths rolled, beyond the ~18 a start-up needs to come within 1e-4 of its end state)
     the force is periodic: the last period repeats the one before to 1e-4 of its
-    peak-to-peak amplitude, or to the run's relative time tolerance (solver_rtol) where that
-    is looser (each period is integrated on its own sequence of steps); and its strongest non-constant harmonic is the creepage's
+    peak-to-peak amplitude, or to 4 rtol max |F_x| (rtol the run's solver_rtol) where that is
+    looser: each period is integrated on its own sequence of steps, and each lies within about
+    2 rtol max |F_x| of the exact response (measured 2.4e-3 of max |F_x| at rtol 1.26e-3 against
+    an rtol 1e-9 run), so two periods differ by at most twice that; and its strongest non-constant harmonic is the creepage's
     frequency (the response is not linear in partial slip, so higher harmonics exist,
     but weaker).
 """
@@ -100,8 +102,9 @@ def sine(path, mean, amplitude, frequency):
     last, before = fx[-k - 1:], fx[-2 * k - 1:-k]
     span = float(np.ptp(fx[-2 * k - 1:]))
     rtol = float(d.getncattr("solver_rtol"))
+    tol = max(1e-4, 4.0 * rtol * float(np.max(np.abs(fx))) / span)
     check("last period vs the one before, max |difference| / peak-to-peak",
-          float(np.max(np.abs(last - before))) / span, 0.0, max(1e-4, rtol))
+          float(np.max(np.abs(last - before))) / span, 0.0, tol)
     seg = fx[-2 * k:]
     spectrum = np.abs(np.fft.rfft(seg - seg.mean()))
     peak = int(np.argmax(spectrum))
