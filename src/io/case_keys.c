@@ -186,6 +186,7 @@ const rs_case_key rs_case_keys[] = {
 
     {"sweep", RS_KEY_OPAQUE, 0, "", 0, 0, 0, NULL},
     {"fit", RS_KEY_OPAQUE, 0, "", 0, 0, 0, NULL},
+    {"profiles", RS_KEY_OPAQUE, 0, "", 0, 0, 0, NULL}, /* read by case_profiles.c */
 };
 const size_t rs_case_nkeys = sizeof rs_case_keys / sizeof rs_case_keys[0];
 
