@@ -279,7 +279,7 @@ int rs_profile_read(rs_profile *p, const char *path, const rs_profile_opts *o, r
   memset(p, 0, sizeof *p);
   const rs_profile_format fmt = rs_profile_format_of(path);
   FILE *f = fopen(path, "r");
-  if (!f) return rs_msg_set(msg, RS_ERR_INPUT, "%s:0: cannot open: %s", path, strerror(errno));
+  if (!f) return rs_msg_set(msg, RS_ERR_INPUT, "cannot open %s: %s", path, strerror(errno));
   raw_points r = {0};
   size_t last_line = 0;
   int monotone = 0;
