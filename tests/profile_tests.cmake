@@ -30,3 +30,13 @@ add_test(NAME profile_sweep_refused
     --absent ${RS_PROF_OUT}/refused_sweep.nc
     -- ${RS_BIN} sweep ${RS_PROF_CASE} -o ${RS_PROF_OUT}/refused_sweep.nc --quiet
        --set "sweep.rolling.creepage=[0.001, 0.002]")
+
+# rollsim_post profiles draws what rollsim reads: a second reader (Python) of the same files
+# against the ranges rollsim check prints (a Miniprof rail mirrored and inclined 1:40, a
+# SIMPACK wheel, both smoothed).
+add_test(NAME profile_plot
+  COMMAND ${SYSTEM_PYTHON3} ${PROJECT_SOURCE_DIR}/postproc/tests/check_profiles_plot.py ${RS_BIN}
+    ${PROJECT_SOURCE_DIR}/postproc/rollsim_post.py ${RS_TESTS}/profiles/mbench_ban_1in40.yaml
+    ${RS_PROF_OUT}/plot)
+set_tests_properties(profile_plot PROPERTIES
+  ENVIRONMENT "MPLCONFIGDIR=${RS_PROF_OUT}/mplconfig;MPLBACKEND=Agg")
