@@ -214,7 +214,7 @@ void rs_case_print_profiles(const rs_case *c, FILE *out)
       }
       rs_profile pl = {.n = p->n, .y = py, .z = pz};
       rs_profile_range(&pl, yr, zr);
-      char slope[32] = "vertical";
+      char slope[32] = "none";
       if (w->rail_inclination != 0.0)
         snprintf(slope, sizeof slope, "1:%.4g", 1.0 / tan(fabs(w->rail_inclination)));
       fprintf(out,
