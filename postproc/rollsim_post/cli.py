@@ -352,6 +352,16 @@ def cmd_fit(args):
     _finish(args, rec)
 
 
+def cmd_profiles(args):
+    figure_format(args.output)
+    from . import profiles
+    prof = profiles.read_case(args.case)
+    rec = Recorder()
+    _plots().plot_profiles(prof, args.title or prof["title"] or os.path.basename(args.case),
+                           args.output, rec)
+    _finish(args, rec)
+
+
 def cmd_export(args):
     with RunFile(args.file) as run:
         header, columns = extract.export_table(run, args.var)
@@ -502,6 +512,16 @@ def build_parser():
                "the fitted\nvalues with their standard errors in the legend.")
     s.add_argument("file", metavar="FILE")
     s.set_defaults(func=cmd_fit)
+
+    s = figure("profiles", "a case's rail and wheel profiles (profiles: block)",
+               "The rail and wheel profiles of a case file's profiles: block, read as rollsim "
+               "reads them\n(mirror, scale, smoothing): the rail inclined by rail_inclination, "
+               "the wheel lowered\nonto it (where both are functions of y) with the first point "
+               "of contact marked, the\ngauge height drawn. y toward the track centre, z "
+               "downward, mm. `rollsim check CASE`\nvalidates the files.",
+               title_help="figure title (default: the case's title)")
+    s.add_argument("case", metavar="CASE.yaml")
+    s.set_defaults(func=cmd_profiles)
 
     s = sub.add_parser("export", help="variables to CSV", epilog=EXPORT_EPILOG,
                        description="Write variables of a rollsim file to CSV.",

@@ -1,4 +1,6 @@
 """Figures drawn from what extract.py returns. Headless (Agg); format from the file extension."""
+import math
+
 import matplotlib
 
 matplotlib.use("Agg")
@@ -583,3 +585,40 @@ def plot_friction(prof, title, out, rec=None):
     fig.suptitle(title, fontsize=11)
     fig.savefig(out)
     plt.close(fig)
+
+
+def plot_profiles(prof, title, out, rec=None):
+    """Rail and wheel profiles (a case's profiles: block, rollsim_post.profiles): the rail
+    inclined by rail_inclination, the wheel lowered onto it where both are functions of y,
+    the point where they touch marked; y toward the track centre, z downward (drawn
+    downward)."""
+    from .profiles import place_rail, wheel_drop
+    rec = rec or Recorder()
+    fig, ax = plt.subplots(figsize=(8.0, 5.0), layout="constrained")
+    ax.set_title(title, fontsize=10)
+    rail = None
+    if prof["rail"] is not None:
+        rail = place_rail(*prof["rail"], prof["rail_inclination"])
+        theta = prof["rail_inclination"]
+        label = "rail" + (f" (inclined {theta:.4g} rad, 1:{1.0 / math.tan(abs(theta)):.4g})"
+                          if theta else "")
+        rec.line(ax, 0, rail[0], rail[1], "-", color="C0", series=label, quantity="z_mm")
+        top = float(np.min(rail[1]))
+        ax.axhline(top + prof["gauge_height"], color="C0", ls=":", lw=0.8,
+                   label=f"gauge height, {prof['gauge_height']:g} mm below the rail's top")
+    if prof["wheel"] is not None:
+        wy, wz = prof["wheel"]
+        drop, at = wheel_drop(rail, (wy, wz)) if rail is not None else (0.0, None)
+        label = "wheel" + (f" (moved {drop:+.3f} mm in z to touch the rail)" if at is not None else "")
+        rec.line(ax, 0, wy, wz + drop, "-", color="C3", series=label, quantity="z_mm")
+        if at is not None:
+            zc = float(np.interp(at, rail[0], rail[1]))
+            rec.line(ax, 0, [at], [zc], "o", color="k", ms=5,
+                     series="first point of contact (rigid)", quantity="z_mm")
+    ax.set_xlabel("y [mm], toward the track centre")
+    ax.set_ylabel("z [mm], downward")
+    ax.invert_yaxis()
+    ax.set_aspect("equal", adjustable="datalim")
+    ax.grid(alpha=0.25)
+    ax.legend(fontsize=8, loc="best")
+    save(fig, out)

@@ -175,6 +175,7 @@ static int cmd_check(const rs_case *c, const cli_args *a, const rs_sweep *sw)
 {
   rs_msg msg = {{0}};
   rs_case_print(c, stdout);
+  rs_case_print_profiles(c, stdout);
   int status = rs_run_print_derived(c, stdout, &msg);
   if (status != RS_OK) fprintf(stderr, "%s: %s\n", a->case_path, msg.text);
   if (status == RS_OK && sw->naxes > 0) rs_cli_print_sweep(stdout, sw, c->dimension);
@@ -465,6 +466,12 @@ static int run_command(int argc, char **argv, cli_args *ap)
   if (status == RS_OK && (status = rs_case_load(&c, a.case_path, a.sets, a.nsets, &msg)) != RS_OK)
     fprintf(stderr, "%s\n", msg.text);
   if (status != RS_OK) {
+    free(a.sets);
+    return exit_code(status);
+  }
+  if (strcmp(a.cmd, "check") && (status = rs_case_refuse_profiles(&c, &msg)) != RS_OK) {
+    if (a.mpi->rank == 0) fprintf(stderr, "%s\n", msg.text);
+    rs_case_free(&c);
     free(a.sets);
     return exit_code(status);
   }

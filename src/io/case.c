@@ -4,6 +4,7 @@
  *   end_time = rolled_distance/V when the rolled distance is given. */
 #define _POSIX_C_SOURCE 200809L
 #include "io/case_internal.h"
+#include "io/profile.h"
 #include "physics/elastic2d.h" /* RS_PI */
 #include "physics/normal.h"    /* rs_hertz2d */
 #include "physics/normal3d.h"  /* rs_hertz3d */
@@ -716,6 +717,7 @@ static int resolve(const rs_case_doc *d, rs_case_input *in, const yaml_node_t **
   if (!c->title && !(c->title = strdup("")))
     return rs_msg_set(d->msg, RS_ERR_INTERNAL, "out of memory");
   c->has_sweep = given(&r, "sweep") != NULL;
+  c->has_profiles = given(&r, "profiles") != NULL;
   return RS_OK;
 }
 
@@ -917,6 +919,11 @@ int rs_case_load(rs_case *c, const char *path, const char *const *sets, int nset
   for (int i = 0; status == RS_OK && i < nsets; i++) status = rs_case_doc_set(&d, sets[i]);
   if (status == RS_OK) status = rs_case_doc_emit(&d, &c->yaml_text);
   rs_case_doc_free(&d);
+  if (status == RS_OK && c->has_profiles) {
+    rs_case_doc pd = src->doc;
+    pd.msg = msg;
+    status = rs_case_profiles_read(&pd, &c->profiles);
+  }
   if (status != RS_OK) {
     rs_case_free(c);
     source_free(src);
@@ -954,6 +961,7 @@ void rs_case_free(rs_case *c)
   rs_history_free(&c->shift_velocity);
   rs_history_free(&c->mu_table);
   rs_history_free(&c->tau_c0_table);
+  rs_wheel_rail_free(c->profiles);
   source_free(c->source);
   memset(c, 0, sizeof *c);
 }

@@ -141,6 +141,11 @@ typedef struct rs_case {
   /* sweep: */
   int has_sweep; /* the case has a sweep: block (study/sweep.h) */
 
+  /* profiles: (io/profile.h) */
+  int has_profiles;               /* the case has a profiles: block */
+  struct rs_wheel_rail *profiles; /* the profiles read (rs_case_load only; NULL in derived
+                                     cases) */
+
   /* The case file as loaded (rs_case_load; owned, NULL in derived cases): what
    * rs_case_derive builds cases from, and where the sweep: and fit: blocks are read. */
   struct rs_case_source *source;
@@ -153,6 +158,12 @@ typedef struct rs_case {
  * and leaves *c freed/zeroed. */
 int rs_case_load(rs_case *c, const char *path, const char *const *sets, int nsets, rs_msg *msg);
 void rs_case_free(rs_case *c);
+
+/* RS_ERR_INPUT with "CASE:LINE: profiles: ..." when the case has a profiles: block, which
+ * only `rollsim check` uses so far (the wheel-rail contact search is not built yet). */
+int rs_case_refuse_profiles(const rs_case *c, rs_msg *msg);
+/* The summary of the profiles for `rollsim check` (nothing without a profiles: block). */
+void rs_case_print_profiles(const rs_case *c, FILE *out);
 
 /* Index of a dotted key in the key table (docs/case-file.md), or -1; its name. */
 int rs_case_key_index(const char *path);

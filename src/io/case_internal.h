@@ -177,6 +177,9 @@ rs_case_doc rs_case_source_doc(const rs_case *c, rs_msg *msg);
 int rs_case_history(const rs_case_doc *d, const yaml_node_t *n, const char *key, const char *unit,
                     rs_history *h);
 
+/* ---- case_profiles.c: the profiles: block (read by rs_case_load only) ---- */
+int rs_case_profiles_read(const rs_case_doc *d, struct rs_wheel_rail **out);
+
 /* ---- case_rig.c: the twin_disc: block ---- */
 int rs_case_protocol(const rs_case_doc *d, const yaml_node_t *n, const char *key,
                      rs_twin_disc *rig);

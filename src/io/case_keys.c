@@ -186,6 +186,7 @@ const rs_case_key rs_case_keys[] = {
 
     {"sweep", RS_KEY_OPAQUE, 0, "", 0, 0, 0, NULL},
     {"fit", RS_KEY_OPAQUE, 0, "", 0, 0, 0, NULL},
+    {"profiles", RS_KEY_OPAQUE, 0, "", 0, 0, 0, NULL}, /* read by case_profiles.c */
 };
 const size_t rs_case_nkeys = sizeof rs_case_keys / sizeof rs_case_keys[0];
 
@@ -511,8 +512,10 @@ static int parse_mapping(rs_case_doc *d, const char *section, const yaml_node_t 
     case RS_KEY_OPAQUE:
       if (rs_case_is_null(n)) continue;
       if (n->type != YAML_MAPPING_NODE)
-        return rs_case_error(d, n, spec->path,
-                             "expected a mapping of dotted keys to value lists, got %s",
+        return rs_case_error(d, n, spec->path, "expected a mapping of %s, got %s",
+                             strcmp(spec->path, "profiles")
+                                 ? "dotted keys to value lists"
+                                 : "profile keys (rail: FILE, wheel: FILE, ...)",
                              rs_case_describe(n, got, sizeof got));
       where[i] = n;
       break;

@@ -26,10 +26,11 @@ static int load_sweep(rs_case *c, rs_sweep *sw, const char *case_path, const cha
 {
   int status = rs_case_load(c, case_path, sets, nsets, m);
   if (status != RS_OK) return status;
-  if (!c->has_sweep)
+  status = rs_case_refuse_profiles(c, m);
+  if (status == RS_OK && !c->has_sweep)
     status = rs_msg_set(m, RS_ERR_INPUT, "%s: the case has no sweep: block (use rollsim run)",
                         case_path);
-  else
+  else if (status == RS_OK)
     status = rs_sweep_load(sw, c, m);
   if (status != RS_OK) rs_case_free(c);
   return status;
@@ -42,6 +43,10 @@ int rs_api_run(const char *case_path, const char *const *sets, int nsets, const 
   rs_case c;
   int status = rs_case_load(&c, case_path, sets, nsets, &m);
   if (status != RS_OK) return finish(status, &m, msg, msg_len);
+  if ((status = rs_case_refuse_profiles(&c, &m)) != RS_OK) {
+    rs_case_free(&c);
+    return finish(status, &m, msg, msg_len);
+  }
   volatile sig_atomic_t stop = 0;
   const rs_run_opts o = {.output_path = out_path,
                          .history = "rollsim " RS_VERSION " (API: rs_api_run)",
@@ -106,6 +111,7 @@ int rs_api_check(const char *case_path, const char *const *sets, int nsets, char
     return finish(RS_ERR_INTERNAL, &m, msg, msg_len);
   }
   rs_case_print(&c, f);
+  rs_case_print_profiles(&c, f);
   status = rs_run_print_derived(&c, f, &m);
   fclose(f);
   rs_case_free(&c);

@@ -1,0 +1,42 @@
+# Wheel and rail profile files (src/io/profile.c) and the profiles: block of a case.
+# (Included by tests/CMakeLists.txt; the malformed profiles are tests/bad_inputs/profile_*.yaml.)
+set(RS_PROF_OUT ${CMAKE_CURRENT_BINARY_DIR}/profiles)
+file(MAKE_DIRECTORY ${RS_PROF_OUT})
+set(RS_PROF_CASE ${RS_CASES}/profiles/mbench_s1002_uic60.yaml)
+
+# The reader: one circle arc through three formats, mirror, scale, smoothing.
+add_executable(test_profile ${RS_TESTS}/test_profile.c)
+target_link_libraries(test_profile PRIVATE rollsim_lib)
+add_test(NAME profile_reader COMMAND test_profile ${RS_PROF_OUT})
+
+# rollsim check reads both benchmark profiles and prints their summary: the S1002 flange is
+# 28 mm high (its nominal height), the UIC60 file's 495 points, the S1002 file's 399.
+add_test(NAME profile_check
+  COMMAND ${SYSTEM_PYTHON3} ${RS_TESTS}/cli_expect.py
+    --stdout "profiles.rail: .*MBench_UIC60_v3.prr  # SIMPACK, 495 points"
+    --stdout "profiles.wheel: .*MBench_S1002_v3.prw  # SIMPACK, 399 points"
+    --stdout "wheel flange height: (27\\.99[0-9]|28\\.00[0-9]) mm"
+    -- ${RS_BIN} check ${RS_PROF_CASE})
+
+# run, sweep and fit refuse a case with profiles (exit 2, the case file's line, no output).
+add_test(NAME profile_run_refused
+  COMMAND ${SYSTEM_PYTHON3} ${RS_TESTS}/cli_expect.py --exit 2
+    --stderr "mbench_s1002_uic60.yaml:10: profiles: the wheel-rail contact search is not available yet"
+    --absent ${RS_PROF_OUT}/refused.nc
+    -- ${RS_BIN} run ${RS_PROF_CASE} -o ${RS_PROF_OUT}/refused.nc --quiet)
+add_test(NAME profile_sweep_refused
+  COMMAND ${SYSTEM_PYTHON3} ${RS_TESTS}/cli_expect.py --exit 2
+    --stderr "profiles: the wheel-rail contact search is not available yet"
+    --absent ${RS_PROF_OUT}/refused_sweep.nc
+    -- ${RS_BIN} sweep ${RS_PROF_CASE} -o ${RS_PROF_OUT}/refused_sweep.nc --quiet
+       --set "sweep.rolling.creepage=[0.001, 0.002]")
+
+# rollsim_post profiles draws what rollsim reads: a second reader (Python) of the same files
+# against the ranges rollsim check prints (a Miniprof rail mirrored and inclined 1:40, a
+# SIMPACK wheel, both smoothed).
+add_test(NAME profile_plot
+  COMMAND ${SYSTEM_PYTHON3} ${PROJECT_SOURCE_DIR}/postproc/tests/check_profiles_plot.py ${RS_BIN}
+    ${PROJECT_SOURCE_DIR}/postproc/rollsim_post.py ${RS_TESTS}/profiles/mbench_ban_1in40.yaml
+    ${RS_PROF_OUT}/plot)
+set_tests_properties(profile_plot PROPERTIES
+  ENVIRONMENT "MPLCONFIGDIR=${RS_PROF_OUT}/mplconfig;MPLBACKEND=Agg")
