@@ -833,6 +833,17 @@ rs_case_doc rs_case_source_doc(const rs_case *c, rs_msg *msg)
   return d;
 }
 
+int rs_case_refuse_profiles(const rs_case *c, rs_msg *msg)
+{
+  if (!c->has_profiles) return RS_OK;
+  if (!c->source) return rs_msg_set(msg, RS_ERR_INPUT, "profiles: not available yet");
+  rs_case_doc d = rs_case_source_doc(c, msg);
+  yaml_node_t *root = rs_case_doc_root(&d);
+  return rs_case_error(&d, root ? rs_case_lookup(&d, root, "profiles") : NULL, "profiles",
+                       "the wheel-rail contact search is not available yet: `rollsim check` "
+                       "reads and checks the profiles, nothing can be run with them");
+}
+
 /* The case of `src` with typed overrides: each value as a plain scalar node outside the
  * document (its text reads back to the same double), parsed as the key's value from the
  * file would be, its node (and that of a section it creates) named "--set KEY" in

@@ -146,16 +146,6 @@ int rs_case_profiles_read(const rs_case_doc *d, struct rs_wheel_rail **out)
   return RS_OK;
 }
 
-int rs_case_refuse_profiles(const rs_case *c, rs_msg *msg)
-{
-  if (!c->has_profiles) return RS_OK;
-  if (!c->source) return rs_msg_set(msg, RS_ERR_INPUT, "profiles: not available yet");
-  rs_case_doc d = rs_case_source_doc(c, msg);
-  return rs_case_error(&d, profiles_node(&d), "profiles",
-                       "the wheel-rail contact search is not available yet: `rollsim check` "
-                       "reads and checks the profiles, nothing can be run with them");
-}
-
 /* The rail as placed: rotated about its origin by the inclination, its top sloping down
  * toward the track centre (y toward the centre, z downward). */
 static void place_rail(const rs_profile *p, double theta, size_t i, double *y, double *z)
