@@ -17,6 +17,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <strings.h>
+#include <sys/stat.h>
 
 /* The points as read, with the line each came from. */
 typedef struct raw_points {
@@ -274,12 +275,29 @@ static int check_points(const raw_points *r, const char *path, rs_profile_format
   return RS_OK;
 }
 
+/* A profile is a small text file: anything else (a device, a pipe, a file of gigabytes) is
+ * refused before reading, as it would never end or fill the memory. */
+#define PROFILE_MAX_BYTES (64L << 20)
+
 int rs_profile_read(rs_profile *p, const char *path, const rs_profile_opts *o, rs_msg *msg)
 {
   memset(p, 0, sizeof *p);
   const rs_profile_format fmt = rs_profile_format_of(path);
   FILE *f = fopen(path, "r");
   if (!f) return rs_msg_set(msg, RS_ERR_INPUT, "cannot open %s: %s", path, strerror(errno));
+  struct stat st;
+  if (fstat(fileno(f), &st) != 0) {
+    const int err = errno;
+    fclose(f);
+    return rs_msg_set(msg, RS_ERR_INPUT, "cannot read %s: %s", path, strerror(err));
+  }
+  if (!S_ISREG(st.st_mode) || st.st_size > PROFILE_MAX_BYTES) {
+    fclose(f);
+    return rs_msg_set(msg, RS_ERR_INPUT, "%s: not a profile file (%s)", path,
+                      S_ISDIR(st.st_mode)    ? "a directory"
+                      : !S_ISREG(st.st_mode) ? "not a regular file"
+                                             : "larger than 64 MB");
+  }
   raw_points r = {0};
   size_t last_line = 0;
   int monotone = 0;
