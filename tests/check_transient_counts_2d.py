@@ -16,45 +16,28 @@ auto. Checked:
 Usage: check_transient_counts_2d.py ROLLSIM CASE WORKDIR
 """
 import os
-import re
-import subprocess
 import sys
 
 import netCDF4
 
-from solver_checks import Checks
+from solver_checks import Checks, run_counts
 
 check = Checks()
 CARTER = 0.64  # Carter's closed form for this case's creepage (docs/verification.md §2)
-
-
-def run(binary, case, out, extra):
-    p = subprocess.run([binary, "run", case, "-o", out] + extra, capture_output=True, text=True,
-                       timeout=300)
-    print(p.stdout, p.stderr)
-    if p.returncode != 0:
-        return None
-    nums = {}
-    for key, pattern in [("rtol", r"solver\.rtol auto = ([0-9.e+-]+)"),
-                         ("steps", r"IDA steps (\d+)"),
-                         ("jacobians", r"Jacobian evaluations (\d+)"),
-                         ("per_passage", r"([0-9.]+) steps per passage"),
-                         ("mu", r"F_x/\(mu F_n\) = ([0-9.e+-]+)")]:
-        m = re.search(pattern, p.stdout)
-        nums[key] = float(m.group(1)) if m else None
-    return nums
+KEYS = ("rtol", "steps", "jacobians", "per_passage", "mu")
 
 
 def main():
     binary, case, work = sys.argv[1:4]
     os.makedirs(work, exist_ok=True)
     out = os.path.join(work, "default.nc")
-    c = run(binary, case, out, ["--quiet"])
+    c = run_counts(binary, case, out, ["--quiet"], KEYS)
     check("the run completed and printed its counts", c is not None and
-          all(c[k] is not None for k in ("rtol", "steps", "jacobians", "per_passage", "mu")),
+          all(c[k] is not None for k in KEYS),
           f"{c}")
-    s = run(binary, case, os.path.join(work, "steady.nc"),
-            ["--quiet", "--set", "simulation.mode=steady", "--set", "output.error_estimate=false"])
+    s = run_counts(binary, case, os.path.join(work, "steady.nc"),
+                   ["--quiet", "--set", "simulation.mode=steady", "--set",
+                    "output.error_estimate=false"], ("mu",))
     if c is None or None in [c[k] for k in ("rtol", "steps", "jacobians", "per_passage")] \
             or s is None or s["mu"] is None:
         return 1

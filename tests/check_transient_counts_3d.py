@@ -24,13 +24,11 @@ and plastic (tau_c0 = 150 N/mm^2, k_rel = 0.3), solver.rtol not set (auto). Chec
 Usage: check_transient_counts_3d.py ROLLSIM WORKDIR
 """
 import os
-import re
-import subprocess
 import sys
 
 import netCDF4
 
-from solver_checks import Checks, write_case
+from solver_checks import Checks, run_counts, write_case
 
 CASE = """title: "3D start-up counts: Hertz ellipse a/b = 1.6, 22 x 22 cells"
 contact: {dimension: 3, normal_load: 10000.0, radius: [300.0, 150.0]}
@@ -43,22 +41,6 @@ output: {fields: []}
 check = Checks()
 
 
-def run(binary, path, out, extra):
-    p = subprocess.run([binary, "run", path, "-o", out] + extra, capture_output=True, text=True,
-                       timeout=300)
-    print(p.stdout, p.stderr)
-    if p.returncode != 0:
-        return None
-    nums = {}
-    for key, pattern in [("rtol", r"solver\.rtol auto = ([0-9.e+-]+)"),
-                         ("steps", r"IDA steps (\d+)"), ("newton", r"Newton iterations (\d+)"),
-                         ("factorisations", r"factorisations (\d+)"),
-                         ("per_passage", r"([0-9.]+) steps per passage")]:
-        m = re.search(pattern, p.stdout)
-        nums[key] = float(m.group(1)) if m else None
-    return nums
-
-
 def main():
     binary, work = sys.argv[1], sys.argv[2]
     path = write_case(work, "startup", CASE)
@@ -66,7 +48,8 @@ def main():
                         ("plastic", ["--set", "plasticity.tau_c0=150",
                                      "--set", "plasticity.k_rel=0.3"])]:
         out = os.path.join(work, name + ".nc")
-        c = run(binary, path, out, extra)
+        c = run_counts(binary, path, out, extra,
+                       ("rtol", "steps", "newton", "factorisations", "per_passage"))
         check(f"{name}: the run completed and printed its counts",
               c is not None and None not in c.values(), f"{c}")
         if c is None or None in c.values():

@@ -43,6 +43,33 @@ def sweep_counts(binary, path, out, extra, timeout=300):
     return int(m.group(1)), int(m.group(2)), int(m.group(3))
 
 
+# Summary lines of `rollsim run` as regular expressions, by name, for run_counts.
+SUMMARY = {
+    "rtol": r"solver\.rtol auto = ([0-9.e+-]+)",
+    "steps": r"IDA steps (\d+)",
+    "newton": r"Newton iterations (\d+)",
+    "jacobians": r"Jacobian evaluations (\d+)",
+    "factorisations": r"factorisations (\d+)",
+    "per_passage": r"([0-9.]+) steps per passage",
+    "mu": r"F_x/\(mu F_n\) = ([0-9.e+-]+)",
+}
+
+
+def run_counts(binary, path, out, extra, keys, timeout=300):
+    """`rollsim run PATH -o OUT EXTRA...`: the summary's numbers named by KEYS (SUMMARY), each
+    None where the summary has no such line; None when the run failed (printed)."""
+    p = subprocess.run([binary, "run", path, "-o", out] + extra, capture_output=True, text=True,
+                       timeout=timeout)
+    print(p.stdout, p.stderr)
+    if p.returncode != 0:
+        return None
+    nums = {}
+    for key in keys:
+        m = re.search(SUMMARY[key], p.stdout)
+        nums[key] = float(m.group(1)) if m else None
+    return nums
+
+
 def write_case(work, name, case):
     """Writes the case text CASE to WORK/NAME.yaml (WORK made if missing); its path."""
     os.makedirs(work, exist_ok=True)
