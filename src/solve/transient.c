@@ -251,8 +251,8 @@ int rs_transient_create(rs_transient **out, const rs_model *m, SUNContext ctx, d
   const int neq = L->neq;
   tr->thermal = o->thermal;
   tr->tail_rows = 1;
-  tr->weight_scale = sqrt((double)rs_transient_neq(m, o->thermal) / m->lay.neq);
   tr->neq_full = rs_transient_neq(m, o->thermal);
+  tr->weight_scale = sqrt((double)tr->neq_full / neq);
   const int nfull = tr->neq_full;
   N_Vector id = NULL; /* differential/algebraic components (force control) */
   tr->y = N_VNew_Serial(nfull, ctx);
@@ -320,12 +320,11 @@ int rs_transient_create(rs_transient **out, const rs_model *m, SUNContext ctx, d
   /* The fast temperature modes are left out of the error test too: their sources are the heat
    * of the contact, -p . v_s, whose slip velocity holds the BDF derivatives of the tractions,
    * exact only to about the Newton error over the step; a mode that forgets within a few cells
-   * follows those sources as they come, and its error estimate does not fall with the step
-   * (friction memory's start of full sliding failed the error test at steps of 3e-13 s). Modes
+   * follows those sources as they come, and its error estimate does not fall with the step. Modes
    * with a memory of FAST_MODE_CELLS cells or more (rate dx <= 1/FAST_MODE_CELLS, and the mode
    * of rate 0) average the sources over their path and stay in the test: they carry the heat
    * over the contact and set the steps where the contact alone would allow long ones (full
-   * sliding). docs/model.md §18; bench/RESULTS.md issue 43 for the choice. */
+   * sliding). docs/model.md §18. */
   if (L->nextra > 0 || tr->thermal) {
     id = N_VNew_Serial(nfull, ctx);
     RS_SUN_CHECK(id == NULL, msg, what);

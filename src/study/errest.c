@@ -60,6 +60,24 @@ int rs_errest_combine_extrapolate(double f1, double f2, double f3, double r21, d
   return 0;
 }
 
+void rs_errest_none(rs_diag *d)
+{
+  d->error_state = RS_ERROR_NONE;
+  d->Fx_error = d->Fy_error = d->Mz_error = NAN;
+  d->Fx_extrapolated = d->Fy_extrapolated = d->Mz_extrapolated = NAN;
+}
+
+void rs_errest_copy(rs_diag *d, const rs_diag *e)
+{
+  d->Fx_error = e->Fx_error;
+  d->Fy_error = e->Fy_error;
+  d->Mz_error = e->Mz_error;
+  d->Fx_extrapolated = e->Fx_extrapolated;
+  d->Fy_extrapolated = e->Fy_extrapolated;
+  d->Mz_extrapolated = e->Mz_extrapolated;
+  d->error_state = e->error_state;
+}
+
 /* Cells along x of the companions: halved twice (integer division). */
 static void companion_cells(int nx, int out[2])
 {
@@ -173,9 +191,7 @@ static int copy_rolling(rs_model *dst, const rs_model *src)
 
 int rs_errest_point(rs_errest *e, const rs_model *m, const double *y, rs_diag *d, rs_msg *msg)
 {
-  d->error_state = RS_ERROR_NONE;
-  d->Fx_error = d->Fy_error = d->Mz_error = NAN;
-  d->Fx_extrapolated = d->Fy_extrapolated = d->Mz_extrapolated = NAN;
+  rs_errest_none(d);
   if (!e->on) return RS_OK;
   double f[3][3] = {{d->Fx, d->Fy, d->Mz}};
   const rs_model *from = m;
@@ -305,9 +321,7 @@ int rs_errest_refine(rs_model *m, SUNContext ctx, double accuracy, double **y, r
     f[2][2] = dg.Mz;
     cells[2] = cur.grid.n;
     *d = dg;
-    d->error_state = RS_ERROR_NONE;
-    d->Fx_error = d->Fy_error = d->Mz_error = NAN;
-    d->Fx_extrapolated = d->Fy_extrapolated = d->Mz_extrapolated = NAN;
+    rs_errest_none(d);
     if (solved >= 3 &&
         cells_across(m, level < 2 ? n0 >> (2 - level) : n0 << (level - 2)) >= RS_ERREST_MIN_CELLS) {
       const double r21 = three ? sqrt((double)cells[2] / cells[1]) : (double)cells[2] / cells[1];

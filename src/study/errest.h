@@ -37,6 +37,11 @@ int rs_errest_combine(double f1, double f2, double f3, double r21, double r32, d
 int rs_errest_combine_extrapolate(double f1, double f2, double f3, double r21, double r32,
                                   double noise, double *err, double *extrap);
 
+/* d without an estimate: error_state RS_ERROR_NONE, the errors and extrapolated forces NaN. */
+void rs_errest_none(rs_diag *d);
+/* d's estimate (errors, extrapolated forces, error_state) set to e's. */
+void rs_errest_copy(rs_diag *d, const rs_diag *e);
+
 /* The estimate of d's F_x (3D: F_y, M_z) from the same point's results d2, d3 on grids of
  * cell size ratios r21, r32 (the scales from m's friction and d->Fn): d's error fields. */
 void rs_errest_diag(const rs_model *m, double r21, double r32, const rs_diag *d2, const rs_diag *d3,

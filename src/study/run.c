@@ -55,9 +55,7 @@ static void transient_estimate(run_state *s, double t, rs_diag *d)
 {
   const size_t i = s->written;
   const double tol = 1e-9 * s->c->output_interval;
-  d->error_state = RS_ERROR_NONE;
-  d->Fx_error = d->Fy_error = d->Mz_error = NAN;
-  d->Fx_extrapolated = d->Fy_extrapolated = d->Mz_extrapolated = NAN;
+  rs_errest_none(d);
   if (s->comp[0]->n > i && s->comp[1]->n > i && fabs(s->comp[0]->t[i] - t) <= tol &&
       fabs(s->comp[1]->t[i] - t) <= tol)
     rs_errest_diag(&s->m, s->r21, s->r32, &s->comp[0]->d[i], &s->comp[1]->d[i], d);
@@ -70,13 +68,7 @@ static int write_record(run_state *s, double t, rs_diag *d, rs_msg *msg)
   rs_model_inputs_at(&s->m, t, &in);
   int status = rs_model_diagnostics(&s->m, &s->w, &in, s->y, s->yp, d, s->slip, s->tauc, s->regime);
   if (status != RS_OK) return rs_msg_set(msg, status, "%s", s->w.msg.text);
-  d->Fx_error = s->est.Fx_error;
-  d->Fy_error = s->est.Fy_error;
-  d->Mz_error = s->est.Mz_error;
-  d->Fx_extrapolated = s->est.Fx_extrapolated;
-  d->Fy_extrapolated = s->est.Fy_extrapolated;
-  d->Mz_extrapolated = s->est.Mz_extrapolated;
-  d->error_state = s->est.error_state;
+  rs_errest_copy(d, &s->est);
   if (s->comp[0]) transient_estimate(s, t, d);
   if (s->collect) {
     rs_record_diags *r = s->collect;
@@ -390,12 +382,8 @@ int rs_run(const rs_case *c, const rs_run_opts *o, rs_run_result *res, rs_msg *m
   run_state s = {.c = c};
   if (SUNContext_Create(NULL, &s.ctx) != 0)
     return rs_msg_set(msg, RS_ERR_INTERNAL, "could not create the SUNDIALS context");
-  s.est = (rs_diag){.Fx_error = NAN,
-                    .Fy_error = NAN,
-                    .Mz_error = NAN,
-                    .Fx_extrapolated = NAN,
-                    .Fy_extrapolated = NAN,
-                    .Mz_extrapolated = NAN};
+  s.est = (rs_diag){0};
+  rs_errest_none(&s.est);
   int status = rs_model_from_case(&s.m, c, msg);
   if (status != RS_OK) {
     free_state(&s);
