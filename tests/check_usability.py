@@ -32,7 +32,9 @@ import shutil
 import signal
 import subprocess
 import sys
+import threading
 import time
+from queue import Empty, Queue
 
 import numpy as np
 
@@ -60,17 +62,31 @@ WARN = re.compile(r"at t = (\S+) s of (\S+) s, after (\d+) IDA steps in (\S+) s,
 def warn_cost(kind, cells, cmd):
     out = cmd[cmd.index("-o") + 1]
     p = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    # stderr is read by a thread so that a run which never warns is still interrupted at the
+    # deadline instead of being waited for to its end.
+    queue = Queue()
+    reader = threading.Thread(target=lambda: [queue.put(ln) for ln in p.stderr] + [queue.put(None)],
+                              daemon=True)
+    reader.start()
     lines, deadline = [], time.time() + 90
-    while time.time() < deadline:
-        line = p.stderr.readline()
-        if not line:
+    while True:
+        try:
+            line = queue.get(timeout=max(0.0, deadline - time.time()))
+        except Empty:
+            break
+        if line is None:
             break
         lines.append(line)
         if "rollsim: hint:" in line:
             break
     p.send_signal(signal.SIGINT)
-    rest_out, rest_err = p.communicate(timeout=120)
-    text = "".join(lines) + rest_err
+    p.wait(timeout=40)
+    reader.join(timeout=10)
+    while not queue.empty():
+        line = queue.get()
+        if line is not None:
+            lines.append(line)
+    text = "".join(lines)
     print(text)
     check("exit 4 after SIGINT (interrupted, records kept)", p.returncode == 4, f"(exit {p.returncode})")
     m = WARN.search(text)

@@ -71,14 +71,15 @@ foreach(c default carter2d carter_plast meierhofer creep_curves sine_creepage st
   us_expect(warn_none_${c} --quiet-stderr -- ${RS_BIN} check ${RS_CASES}/${c}.yaml)
 endforeach()
 # A long transient: ETA and a hint, consistent with the rule in src/study/warnings.h. Constant inputs
-# (the default case on 1600 cells, records every 1e-6 s; its projection is several times the
-# threshold, where 800 cells now run in about a minute): the hint is steady mode.
+# (the default case on 1600 cells at rtol 1e-6, records every 1e-6 s; its projection is several
+# times the threshold, so a faster machine still warns): the hint is steady mode.
 add_test(NAME us_warn_cost_constant COMMAND ${RS_US_CHECK} warn-cost constant 1600 --
-  ${RS_BIN} run ${RS_CASES}/default.yaml --set grid.cells=1600
+  ${RS_BIN} run ${RS_CASES}/default.yaml --set grid.cells=1600 --set solver.rtol=1e-6
   --set simulation.output_interval=1e-6 -o ${RS_US}/long_constant.nc --quiet)
-# A varying input (500 Hz creepage over 10 s): the whole run is busy, no steady hint.
+# A varying input (500 Hz creepage over 40 s, a projection several times the threshold): the whole
+# run is busy, no steady hint.
 add_test(NAME us_warn_cost_varying COMMAND ${RS_US_CHECK} warn-cost varying 100 --
-  ${RS_BIN} run ${RS_CASES}/sine_creepage.yaml --set simulation.end_time=10
+  ${RS_BIN} run ${RS_CASES}/sine_creepage.yaml --set simulation.end_time=40
   -o ${RS_US}/long_varying.nc --quiet)
 set_tests_properties(us_warn_cost_constant us_warn_cost_varying PROPERTIES TIMEOUT 150)
 # A short transient does not warn.
