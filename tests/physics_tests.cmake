@@ -54,6 +54,8 @@ rs_unit_test(test_normal_cg_2d_operator)
 # 3D elliptic contact in steady rolling: Kalker's linear theory, the 2D limit, symmetry,
 # plastic limits (see the file's header).
 rs_unit_test(test_3d_steady)
+# A 3D model on a gap given by the caller (the wheel-rail patches' path).
+rs_unit_test(test_model_gap)
 # 3D elliptic contact, transient from rest to steady (IDA with Newton-Krylov).
 rs_unit_test(test_3d_transient)
 # Velocity-dependent friction in 3D steady rolling: the Coulomb limit, full sliding with

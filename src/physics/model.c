@@ -57,7 +57,11 @@ static int build_grid(rs_model *m, int nx, double x_lo, double x_hi, int ny, dou
   m->bound = malloc((size_t)n * sizeof *m->bound);
   if (!m->gap || !m->pn || !m->bound)
     return rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory for a grid of %d cells", n);
-  if (m->par.dimension == 3) { /* h = x^2/(2 Rx) + y^2/(2 Ry) */
+  if (m->par.dimension == 3 && m->par.gap_at) {
+    for (int j = 0; j < m->grid.ny; j++)
+      for (int i = 0; i < m->grid.nx; i++)
+        m->gap[j * m->grid.nx + i] = m->par.gap_at(m->par.gap_ctx, m->grid.x[i], m->grid.y[j]);
+  } else if (m->par.dimension == 3) { /* h = x^2/(2 Rx) + y^2/(2 Ry) */
     for (int j = 0; j < m->grid.ny; j++)
       for (int i = 0; i < m->grid.nx; i++)
         m->gap[j * m->grid.nx + i] = m->grid.x[i] * m->grid.x[i] / (2.0 * m->par.radius) +

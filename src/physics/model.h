@@ -41,6 +41,13 @@ typedef struct rs_model_params {
   double extent, extent_y; /* half-lengths in Hertz semi-axes a, b at the largest load */
   double radius;           /* combined radius, mm: gap x^2/(2R) (3D: Rx) */
   double radius_y;         /* 3D: Ry, gap x^2/(2Rx) + y^2/(2Ry) */
+  /* 3D: the undeformed gap (mm) at a cell centre (x, y) (mm) from the caller, for a contact
+   * that is not Hertzian (wheel-rail profiles); radius and radius_y then only give the
+   * Hertz scales (a, b, p0) the solvers' weights use, so they should be the surfaces'
+   * curvature radii at the gap's minimum. gap_ctx must outlive the model. NULL: the
+   * quadratic gap above. */
+  double (*gap_at)(const void *gap_ctx, double x, double y);
+  const void *gap_ctx;
   rs_normal_solution normal_solution;
   double reference_length; /* mm, L of the 2D kernel */
   double shear_modulus, poisson_ratio;
