@@ -56,6 +56,8 @@ rs_unit_test(test_normal_cg_2d_operator)
 rs_unit_test(test_3d_steady)
 # A 3D model on a gap given by the caller (the wheel-rail patches' path).
 rs_unit_test(test_model_gap)
+# Creepages from the wheelset's rigid-body motion.
+rs_unit_test(test_wr_kinematics)
 # 3D elliptic contact, transient from rest to steady (IDA with Newton-Krylov).
 rs_unit_test(test_3d_transient)
 # Velocity-dependent friction in 3D steady rolling: the Coulomb limit, full sliding with
