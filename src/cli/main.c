@@ -315,10 +315,9 @@ static void print_summary(const rs_case *c, const cli_args *a, const rs_run_resu
   if (c->mode == RS_MODE_TRANSIENT && c->rtol > 0.0)
     printf("  solver.rtol %g\n", res->rtol);
   else if (c->mode == RS_MODE_TRANSIENT)
-    printf("  solver.rtol auto = %g (%s)\n", res->rtol,
-           !three && rs_friction_has_memory(&c->friction)
-               ? "2D with friction memory: 1e-6"
-               : "0.06 dx/a within [1e-6, 3e-3], the time error below the grid's");
+    printf("  solver.rtol auto = %g (0.06 dx/a within [1e-6, 3e-3], the time error below the "
+           "grid's)\n",
+           res->rtol);
   if (c->mode == RS_MODE_TRANSIENT)
     printf("  IDA steps %ld, Newton iterations %ld, failed solves %ld, error-test fails %ld\n"
            "  linear solves %ld, Jacobian evaluations %ld, factorisations %ld\n",

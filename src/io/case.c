@@ -1163,8 +1163,7 @@ void rs_case_print(const rs_case *c, FILE *out)
       continue;
     }
     if (!strcmp(k->path, "solver.rtol") && c->rtol == 0.0) {
-      fprintf(out, "%s: auto  # 1 (0.06 dx/a within [1e-6, 3e-3]; 2D with friction memory 1e-6)\n",
-              k->path);
+      fprintf(out, "%s: auto  # 1 (0.06 dx/a within [1e-6, 3e-3])\n", k->path);
       continue;
     }
     if (!strcmp(k->path, "grid.accuracy") && !(c->accuracy > 0.0)) {

@@ -395,12 +395,13 @@ int rs_transient_create(rs_transient **out, const rs_model *m, SUNContext ctx, d
   if (o->max_step > 0.0) RS_SUN_CHECK(IDASetMaxStep(tr->ida, o->max_step), msg, what);
   /* Friction memory: a memory distance too short for the contact lets the friction weaken
    * faster than the contact unloads; where the adhesion zone vanishes the quasi-static
-   * problem then loses its solution and the step collapses without bound. A floor of
-   * 1e-6 of a cell passage (of the time scale without rolling) makes that a failure. */
+   * problem then loses its solution and the step collapses without bound. A floor of a
+   * tenth of rtol of a cell passage (of the time scale without rolling), at least 1e-6,
+   * makes that a failure; a well-posed memory case's steps stay ten times above it. */
   if (L->memory) {
     const double V = rs_history_max_abs(&m->par.velocity, t0, fmax(m->par.end_time, t0));
     const double passage = V > 0.0 ? m->grid.dx / V : m->par.time_scale;
-    RS_SUN_CHECK(IDASetMinStep(tr->ida, 1e-6 * passage), msg, what);
+    RS_SUN_CHECK(IDASetMinStep(tr->ida, fmax(1e-6, 0.1 * o->rtol) * passage), msg, what);
   }
   if (id) {
     RS_SUN_CHECK(IDASetId(tr->ida, id), msg, what);
@@ -521,12 +522,10 @@ void rs_transient_get_stats(const rs_transient *tr, rs_stats *st)
 }
 
 /* solver.rtol auto: in proportion to the cell size, so that the time integration's error
- * stays a fraction of the grid's (first order in dx), within [1e-6, 3e-3]. 2D with friction
- * memory keeps 1e-6: a memory distance too short for the contact is detected by the step
- * collapsing to its floor, which at looser tolerances stalls above the floor instead. The
- * measurements behind the factor are in docs/model.md §9 (bench/startup_accuracy). */
+ * stays a fraction of the grid's (first order in dx), within [1e-6, 3e-3]. The measurements
+ * behind the factor are in docs/model.md §9 (bench/startup_accuracy). */
 double rs_transient_auto_rtol(const rs_model *m)
 {
-  if (!(m->hertz_a > 0.0) || (m->el.dim != 3 && m->lay.memory)) return 1e-6;
+  if (!(m->hertz_a > 0.0)) return 1e-6;
   return fmax(1e-6, fmin(3e-3, 0.06 * m->grid.dx / m->hertz_a));
 }
