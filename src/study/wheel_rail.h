@@ -1,0 +1,15 @@
+/* The wheel-rail contact of a case's profiles: block for `rollsim check` (docs/case-file.md
+ * "profiles:", docs/model.md "Wheel-rail contact from profiles"). */
+#ifndef ROLLSIM_WHEEL_RAIL_H
+#define ROLLSIM_WHEEL_RAIL_H
+
+#include <stdio.h>
+
+#include "io/case.h"
+#include "base/status.h"
+
+/* With profiles.vertical_load: the patches, the load sharing and each patch's normal
+ * solution, printed as `key: value  # comment` lines. Nothing without it. */
+int rs_wheel_rail_print(const rs_case *c, FILE *out, rs_msg *msg);
+
+#endif
