@@ -1,6 +1,6 @@
-/* Wheel-rail contact geometry from profiles (physics/wr_contact.h, docs/model.md
- * "Wheel-rail contact from profiles"): the vertical gap, its minima, the patches and each
- * patch's undeformed distance in its tangent plane. */
+/* Wheel-rail contact geometry from profiles (physics/wr_contact.h, docs/model.md §20): the
+ * vertical gap, its minima, the patches and each patch's undeformed distance in its tangent
+ * plane. */
 #include "physics/wr_contact.h"
 
 #include <math.h>

@@ -1,7 +1,7 @@
-/* Wheel-rail contact from profiles (docs/model.md "Wheel-rail contact from profiles"): the
- * vertical gap between a rail and a wheel profile, its minima grouped into contact patches,
- * each patch's tangent plane and undeformed distance h(x, s), and the normal problem on every
- * patch with one vertical wheel load shared between them.
+/* Wheel-rail contact from profiles (docs/model.md §20): the vertical gap between a rail and a
+ * wheel profile, its minima grouped into contact patches, each patch's tangent plane and
+ * undeformed distance h(x, s), and the normal problem on every patch with one vertical wheel
+ * load shared between them.
  *
  * Coordinates (mm): y lateral toward the track centre, z downward (the convention of the
  * Manchester benchmark's files), x along the track. The rail profile is given in track
@@ -98,7 +98,7 @@ typedef struct rs_wr_solution {
   double dz;         /* vertical approach of the wheel from first contact, mm */
   double vertical;   /* sum F_n cos(delta) over the patches, N */
   int npatch;        /* = geo->npatch */
-  int grid_rounds;   /* grids built (docs/model.md) */
+  int grid_rounds;   /* grid rounds (docs/model.md §20 "Grids") */
   int normal_solves; /* normal problems solved */
   rs_wr_patch_result patch[RS_WR_MAX_PATCHES];
 } rs_wr_solution;

@@ -1,7 +1,7 @@
 /* The normal problem on every wheel-rail patch under one vertical wheel load
- * (physics/wr_contact.h, docs/model.md "Wheel-rail contact from profiles"): the wheel
- * approaches the rail vertically by dz; patch i closes by d_i = (dz - gap_i) cos(delta_i)
- * along its normal; dz is found so that sum F_n,i cos(delta_i) = F_z. */
+ * (physics/wr_contact.h, docs/model.md §20): the wheel approaches the rail vertically by dz;
+ * patch i closes by d_i = (dz - gap_i) cos(delta_i) along its normal; dz is found so that
+ * sum F_n,i cos(delta_i) = F_z. */
 #include "physics/wr_contact.h"
 
 #include <math.h>

@@ -26,8 +26,7 @@ int rs_wheel_rail_print(const rs_case *c, FILE *out, rs_msg *msg)
   }
   const double deg = 180.0 / RS_PI;
   fprintf(out,
-          "# wheel-rail contact at lateral displacement %g mm under %g N (docs/model.md "
-          "\"Wheel-rail contact from profiles\")\n",
+          "# wheel-rail contact at lateral displacement %g mm under %g N (docs/model.md §20)\n",
           w->lateral_displacement, w->vertical_load);
   fprintf(out,
           "wheel_rail.wheel_shift: %.6f  # mm, y on the rail profile = y on the wheel's + this\n",

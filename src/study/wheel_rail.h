@@ -1,5 +1,5 @@
 /* The wheel-rail contact of a case's profiles: block for `rollsim check` (docs/case-file.md
- * "profiles:", docs/model.md "Wheel-rail contact from profiles"). */
+ * "profiles:", docs/model.md §20). */
 #ifndef ROLLSIM_WHEEL_RAIL_H
 #define ROLLSIM_WHEEL_RAIL_H
 
