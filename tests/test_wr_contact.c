@@ -4,11 +4,14 @@
  * (a) Circular arcs given as polylines: h(0, s) against the exact separation of two circles
  *     and h(x, s) against x^2 cos(delta)/(2r) + s^2/(2 R_eff), the contact angle and rolling
  *     radius against the line through the circles' centres; the per-patch normal solution
- *     against the Hertz ellipse on two grids.
+ *     against the Hertz ellipse on two grids, and against today's 3D normal problem with the
+ *     gap from the radii on the same grid.
  * (b) A flat-topped rail under a cylindrical wheel: a patch at least the flat's width, with
  *     pressure peaks at its lateral ends (not the Hertz shape, whose maximum is central).
  * (c) Mirror symmetry on the S1002/UIC60 profiles.
- * (d) Two patches (tread and flange) on S1002/UIC60 and the vertical force balance. */
+ * (d) Two crowns under one wheel: two patches, the vertical force balance and the load split
+ *     against two Hertz ellipses; on S1002/UIC60 at 8 mm one patch on the flange at the S1002
+ *     flank's 70 degrees. */
 #include "io/profile.h"
 #include "physics/wr_contact.h"
 #include "test_support.h"
@@ -16,6 +19,7 @@
 #include <stdlib.h>
 
 #include "physics/elastic2d.h" /* RS_PI */
+#include "physics/elastic3d.h"
 
 static const double G = 82000.0, NU = 0.28, FZ = 10000.0;
 
@@ -181,6 +185,33 @@ static void circles(double Rr, double Rw, double shift, double d, int check_hert
     ts_check(what, b / hz.b, 1.0, tol);
     snprintf(what, sizeof what, "circles, %d cells: p_max / Hertz p0", n);
     ts_check(what, q->p_max / hz.p0, 1.0, tol);
+    /* today's 3D normal problem on the same grid with the gap from the radii (A x^2 + B s^2):
+     * for one load the approach is monotone in the gap, so the two approaches differ by at
+     * most max |h_profiles - h_radii| (plus the solver's 1e-11) */
+    const size_t cells = (size_t)q->grid.nx * q->grid.ny;
+    double *hp = malloc(cells * sizeof *hp), *hr = malloc(cells * sizeof *hr);
+    double *pr = malloc(cells * sizeof *pr), dh = 0.0, approach = 0.0;
+    rs_elastic3d el;
+    rs_elastic3d_work work;
+    rs_wr_patch_gap(p, &q->grid, hp);
+    rs_normal3d_gap(&q->grid, cos(p->delta) / (2 * p->rolling_radius), 1.0 / (2 * Reff), hr);
+    for (size_t k = 0; k < cells; k++) dh = fmax(dh, fabs(hp[k] - hr[k]));
+    if (rs_elastic3d_create(&el, q->grid.nx, q->grid.ny, q->grid.dx, q->grid.dy, G, NU, &msg) ==
+        RS_OK) {
+      if (rs_elastic3d_work_create(&work, &el, &msg) == RS_OK) {
+        if (rs_normal3d_solve(&el, &work, hr, q->normal_force, NULL, pr, &approach, NULL, &msg) ==
+            RS_OK) {
+          snprintf(what, sizeof what,
+                   "circles, %d cells: approach from the profiles' h - from the radii' (mm)", n);
+          ts_check(what, q->approach - approach, 0.0, dh + 1e-11 * q->approach);
+        }
+        rs_elastic3d_work_free(&work);
+      }
+      rs_elastic3d_free(&el);
+    }
+    free(hp);
+    free(hr);
+    free(pr);
     rs_wr_solution_free(&sol);
   }
   rs_wr_geometry_free(&geo);

@@ -76,8 +76,8 @@ double rs_wr_patch_h0(const rs_wr_patch *p, double s);
  * grid's y along s): h(x, s) = h(0, s) + x^2 cos(delta) / (2 r). */
 void rs_wr_patch_gap(const rs_wr_patch *p, const rs_grid3d *grid, double *h);
 
-/* Where the track-coordinate point of the innermost crossing of the rail with the level
- * gauge_height below its top lies (the gauge point); 0 when the rail does not reach it. */
+/* The rail's gauge point: y of its innermost (largest y) crossing of the level gauge_height
+ * below its top. Returns 0 when the rail does not reach that level. */
 int rs_wr_gauge_point(const rs_wr_polyline *rail, double gauge_height, double *y);
 
 /* The normal problem of every patch under a vertical wheel load. */
