@@ -153,6 +153,30 @@ static void circles(double Rr, double Rw, double shift, double d, int check_hert
   const double quartic = pow(5.0, 4) / 8.0 * (1.0 / pow(Rr, 3) + 1.0 / pow(Rw, 3));
   ts_check("circles: h(x, s) against x^2 cos(delta)/(2r) + s^2/(2 Reff), |x|, |s| <= 5 (mm)", errh,
            0.0, (shift == 0.0 ? 1.05 : 2.0) * chord + 1.05 * quartic);
+  /* the same rail with a flank that turns back under its head, 16 and 26 mm inward (y no
+   * longer increasing, as a Miniprof rail's side): the surface searched through every segment
+   * (the highest point at each y), the same patch and h */
+  {
+    static arc_line flank;
+    flank = rail;
+    const double ye = rail.y[rail.n - 1], ze = rail.z[rail.n - 1];
+    const double add[3][2] = {{ye, ze + 1.0}, {ye - 16.0, ze + 2.0}, {ye - 26.0, ze + 2.5}};
+    for (int k = 0; k < 3; k++) {
+      flank.y[flank.n] = add[k][0];
+      flank.z[flank.n++] = add[k][1];
+    }
+    rs_wr_geometry gf;
+    const rs_wr_input inf = input(&flank, &wheel, shift);
+    if (geometry(&inf, &gf) == 0) {
+      ts_check("circles, rail with a flank turned back: contact point y (mm)", gf.patch[0].y, p->y,
+               1e-12);
+      ts_check("circles, rail with a flank turned back: contact angle (rad)", gf.patch[0].delta,
+               p->delta, 1e-12);
+      ts_check("circles, rail with a flank turned back: h(0, Rr/20) (mm)",
+               rs_wr_patch_h0(&gf.patch[0], 0.05 * Rr), rs_wr_patch_h0(p, 0.05 * Rr), 1e-12);
+      rs_wr_geometry_free(&gf);
+    }
+  }
   if (!check_hertz) {
     rs_wr_geometry_free(&geo);
     return;

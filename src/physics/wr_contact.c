@@ -7,12 +7,36 @@
 #include <stdlib.h>
 #include <string.h>
 
+/* 1 when the polyline's y strictly increases (tables and SIMPACK files). */
+static int increasing(const double *py, size_t n)
+{
+  for (size_t i = 0; i + 1 < n; i++)
+    if (!(py[i + 1] > py[i])) return 0;
+  return 1;
+}
+
 /* z of a polyline at y over all segments that span y: the lowest surface point (min z, the
  * rail: z downward, material below) or the highest one of the wheel (max z, material
- * above). seg: the segment that gives it (may be NULL). NAN when no segment spans y. */
-static double envelope(const double *py, const double *pz, size_t n, double shift, double y,
-                       int want_max, size_t *seg)
+ * above). seg: the segment that gives it (may be NULL). NAN when no segment spans y. An
+ * increasing polyline has one such segment, found by bisection; any other (a Miniprof
+ * flank) is searched through. */
+static double envelope(const double *py, const double *pz, size_t n, int inc, double shift,
+                       double y, int want_max, size_t *seg)
 {
+  if (inc) {
+    if (!(y >= py[0] + shift && y <= py[n - 1] + shift)) return NAN;
+    size_t lo = 0, hi = n - 1;
+    while (hi - lo > 1) {
+      const size_t mid = (lo + hi) / 2;
+      if (py[mid] + shift <= y)
+        lo = mid;
+      else
+        hi = mid;
+    }
+    if (seg) *seg = lo;
+    const double a = py[lo] + shift, b = py[lo + 1] + shift;
+    return pz[lo] + (pz[lo + 1] - pz[lo]) * (y - a) / (b - a);
+  }
   double best = NAN;
   for (size_t i = 0; i + 1 < n; i++) {
     const double a = py[i] + shift, b = py[i + 1] + shift;
@@ -264,9 +288,10 @@ int rs_wr_geometry_build(const rs_wr_input *in, rs_wr_geometry *geo, rs_msg *msg
     if (m == 0 || geo->y[k] > geo->y[m - 1]) geo->y[m++] = geo->y[k];
   n = m;
   double gmin = INFINITY;
+  const int rinc = increasing(r->y, r->n), winc = increasing(w->y, w->n);
   for (size_t k = 0; k < n; k++) {
-    geo->g[k] = envelope(r->y, r->z, r->n, 0.0, geo->y[k], 0, NULL) -
-                envelope(w->y, w->z, w->n, in->wheel_shift, geo->y[k], 1, NULL);
+    geo->g[k] = envelope(r->y, r->z, r->n, rinc, 0.0, geo->y[k], 0, NULL) -
+                envelope(w->y, w->z, w->n, winc, in->wheel_shift, geo->y[k], 1, NULL);
     gmin = fmin(gmin, geo->g[k]);
   }
   geo->n = n;
@@ -334,9 +359,9 @@ int rs_wr_geometry_build(const rs_wr_input *in, rs_wr_geometry *geo, rs_msg *msg
     }
     size_t rseg = 0, wseg = 0;
     p->y = y;
-    p->z_rail = envelope(r->y, r->z, r->n, 0.0, y, 0, &rseg);
+    p->z_rail = envelope(r->y, r->z, r->n, rinc, 0.0, y, 0, &rseg);
     p->y_wheel = y - in->wheel_shift;
-    p->z_wheel = envelope(w->y, w->z, w->n, in->wheel_shift, y, 1, &wseg);
+    p->z_wheel = envelope(w->y, w->z, w->n, winc, in->wheel_shift, y, 1, &wseg);
     p->gap = fmax(p->z_rail - p->z_wheel - geo->wheel_z, 0.0);
     p->delta = atan(local_slope(r->y, r->z, r->n, rseg, y));
     p->rolling_radius = in->nominal_radius + p->z_wheel - in->wheel_z0;
