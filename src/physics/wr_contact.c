@@ -195,6 +195,12 @@ static int patch_table(const rs_wr_input *in, double wheel_z, rs_wr_patch *p, si
   }
   p->ns = k;
   free(buf);
+  /* h from its minimum: the refined contact point may lie a chord's sag off the polylines'
+   * closest points; the patch then closes when (dz - gap) cos(delta) exceeds 0 */
+  double hmin = INFINITY;
+  for (size_t j = 0; j < k; j++) hmin = fmin(hmin, p->h[j]);
+  for (size_t j = 0; j < k; j++) p->h[j] -= hmin;
+  p->gap = fmax(p->gap + hmin / cos(p->delta), 0.0);
   if (k < 2 || !(lo < 0 && hi > 0))
     return rs_msg_set(msg, RS_ERR_INPUT,
                       "the contact point y = %.3f mm lies at an end of a profile", p->y);
