@@ -114,7 +114,7 @@ int rs_api_check(const char *case_path, const char *const *sets, int nsets, char
   rs_case_print(&c, f);
   rs_case_print_profiles(&c, f);
   status = rs_wheel_rail_print(&c, f, &m);
-  if (status == RS_OK) status = rs_run_print_derived(&c, f, &m);
+  if (status == RS_OK && !rs_wheel_rail_given(&c)) status = rs_run_print_derived(&c, f, &m);
   fclose(f);
   rs_case_free(&c);
   if (status == RS_ERR_SOLVER) status = RS_ERR_INPUT; /* as rollsim check */

@@ -8,6 +8,8 @@
 #include "physics/elastic2d.h" /* RS_PI */
 #include "physics/wr_contact.h"
 
+int rs_wheel_rail_given(const rs_case *c) { return c->profiles && c->profiles->vertical_load > 0; }
+
 int rs_wheel_rail_print(const rs_case *c, FILE *out, rs_msg *msg)
 {
   const rs_wheel_rail *w = c->profiles;
@@ -69,7 +71,10 @@ int rs_wheel_rail_print(const rs_case *c, FILE *out, rs_msg *msg)
             k + 1, r->grid.x0, r->grid.x0 + r->grid.nx * r->grid.dx, r->grid.y0,
             r->grid.y0 + r->grid.ny * r->grid.dy, r->grid.nx, r->grid.ny);
   }
-  fprintf(out, "# %d grid round(s), %d normal solves\n", sol.grid_rounds, sol.normal_solves);
+  fprintf(out,
+          "# %d grid round(s), %d normal solves; the contact: block's Hertz contact is not used "
+          "(nothing derived from it is printed)\n",
+          sol.grid_rounds, sol.normal_solves);
   rs_wr_solution_free(&sol);
   rs_wr_geometry_free(&geo);
   return RS_OK;
