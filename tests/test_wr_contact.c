@@ -183,7 +183,7 @@ static void circles(double Rr, double Rw, double shift, double d, int check_hert
   }
   /* the normal problem against the Hertz ellipse of A = cos(delta)/(2r), B = 1/(2 Reff) under
    * F_n = F_z / cos(delta); tolerances from the two grids (about 24 and 47 cells across the
-   * contact): the 40-cell errors are 0.02-0.12 %, the 80-cell ones 0.01-0.04 %. The polyline
+   * contact): the 40-cell errors are 0.02-0.19 %, the 80-cell ones 0.005-0.04 %. The polyline
    * must be finer than the cells: a cell's second difference of h sees the chords' kinks,
    * d^2/(8R) / ds^2 against the curvature 1/Reff (with d = 0.05 mm and 80 cells p_max moves
    * by 0.3 % from grid to grid; with d = 0.01 mm it converges, 1301.9 .. 1303.5 N/mm^2 on
