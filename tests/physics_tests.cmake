@@ -83,3 +83,6 @@ add_test(NAME energy_balance_order_3d_plastic
   COMMAND ${RS_ENERGY} ${PROJECT_SOURCE_DIR}/bench/cases/hertz3d.yaml
     ${CMAKE_CURRENT_BINARY_DIR}/energy/3dp 16x16 32x32 64x64
     -- --set plasticity.tau_c0=150 --set plasticity.k_rel=0.3)
+# Wheel-rail contact from profiles: circles against Hertz, a flat-topped rail, mirror
+# symmetry, two patches on S1002/UIC60 (see the file's header).
+rs_unit_test(test_wr_contact ${RS_CASES}/profiles)

@@ -21,12 +21,12 @@ add_test(NAME profile_check
 # run, sweep and fit refuse a case with profiles (exit 2, the case file's line, no output).
 add_test(NAME profile_run_refused
   COMMAND ${SYSTEM_PYTHON3} ${RS_TESTS}/cli_expect.py --exit 2
-    --stderr "mbench_s1002_uic60.yaml:10: profiles: the wheel-rail contact search is not available yet"
+    --stderr "mbench_s1002_uic60.yaml:10: profiles: the tangential problem on wheel-rail profiles is not built yet"
     --absent ${RS_PROF_OUT}/refused.nc
     -- ${RS_BIN} run ${RS_PROF_CASE} -o ${RS_PROF_OUT}/refused.nc --quiet)
 add_test(NAME profile_sweep_refused
   COMMAND ${SYSTEM_PYTHON3} ${RS_TESTS}/cli_expect.py --exit 2
-    --stderr "profiles: the wheel-rail contact search is not available yet"
+    --stderr "profiles: the tangential problem on wheel-rail profiles is not built yet"
     --absent ${RS_PROF_OUT}/refused_sweep.nc
     -- ${RS_BIN} sweep ${RS_PROF_CASE} -o ${RS_PROF_OUT}/refused_sweep.nc --quiet
        --set "sweep.rolling.creepage=[0.001, 0.002]")
@@ -40,3 +40,25 @@ add_test(NAME profile_plot
     ${RS_PROF_OUT}/plot)
 set_tests_properties(profile_plot PROPERTIES
   ENVIRONMENT "MPLCONFIGDIR=${RS_PROF_OUT}/mplconfig;MPLBACKEND=Agg")
+
+# The contact from the profiles (cases/profiles/wheel_rail_profiles.yaml: S1002 on UIC60, the
+# wheelset centred, 10 kN): one patch on the tread, the vertical force balance closed (the sum
+# of F_n cos(delta) is the vertical load), a contact angle between the rail's cant (1.43 deg)
+# and the flange's 70 deg. The physics is tested in test_wr_contact.
+set(RS_WR_CASE ${RS_CASES}/profiles/wheel_rail_profiles.yaml)
+add_test(NAME profile_contact_check
+  COMMAND ${SYSTEM_PYTHON3} ${RS_TESTS}/cli_expect.py
+    --stdout "wheel_rail.patches: 1  #"
+    --stdout "wheel_rail.vertical_force: 10000  #"
+    --stdout "wheel_rail.patch1.contact_angle: [2-9]\\.[0-9]+  # deg"
+    --stdout "wheel_rail.patch1.max_pressure: [0-9.]+  # N/mm"
+    -- ${RS_BIN} check ${RS_WR_CASE})
+add_test(NAME profile_contact_run_refused
+  COMMAND ${SYSTEM_PYTHON3} ${RS_TESTS}/cli_expect.py --exit 2
+    --stderr "wheel_rail_profiles.yaml:[0-9]+: profiles: the tangential problem on wheel-rail profiles is not built yet"
+    --absent ${RS_PROF_OUT}/refused_contact.nc
+    -- ${RS_BIN} run ${RS_WR_CASE} -o ${RS_PROF_OUT}/refused_contact.nc --quiet)
+add_test(NAME profile_contact_fit_refused
+  COMMAND ${SYSTEM_PYTHON3} ${RS_TESTS}/cli_expect.py --exit 2
+    --stderr "profiles: the tangential problem on wheel-rail profiles is not built yet"
+    -- ${RS_BIN} fit ${RS_WR_CASE} -o ${RS_PROF_OUT}/refused_fit.nc --quiet)

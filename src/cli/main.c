@@ -24,6 +24,7 @@
 #include "study/sweep.h"
 #include "cli/cli.h"
 #include "study/warnings.h"
+#include "study/wheel_rail.h"
 #include "study/mpi_session.h"
 #include "study/sweep_dist.h"
 
@@ -176,7 +177,8 @@ static int cmd_check(const rs_case *c, const cli_args *a, const rs_sweep *sw)
   rs_msg msg = {{0}};
   rs_case_print(c, stdout);
   rs_case_print_profiles(c, stdout);
-  int status = rs_run_print_derived(c, stdout, &msg);
+  int status = rs_wheel_rail_print(c, stdout, &msg);
+  if (status == RS_OK && !rs_wheel_rail_given(c)) status = rs_run_print_derived(c, stdout, &msg);
   if (status != RS_OK) fprintf(stderr, "%s: %s\n", a->case_path, msg.text);
   if (status == RS_OK && sw->naxes > 0) rs_cli_print_sweep(stdout, sw, c->dimension);
   return status == RS_ERR_SOLVER ? RS_ERR_INPUT : status;

@@ -1,7 +1,7 @@
 /* The profiles: block (docs/case-file.md "Wheel-rail profiles"): the rail and wheel
  * profile files (io/profile.h), their options and the track and wheelset geometry. Read
- * by rs_case_load; `rollsim check` prints a summary, the other commands refuse such a
- * case until the wheel-rail contact search exists. */
+ * by rs_case_load; `rollsim check` prints a summary (and study/wheel_rail.c the contact),
+ * the other commands refuse such a case until the tangential problem on profiles exists. */
 #define _POSIX_C_SOURCE 200809L
 #include "io/case_internal.h"
 #include "io/profile.h"
@@ -21,7 +21,14 @@ static const char *const profile_keys[] = {"rail",
                                            "gauge_height",
                                            "flange_back_distance",
                                            "nominal_rolling_radius",
+                                           "flange_back_position",
+                                           "lateral_displacement",
+                                           "vertical_load",
+                                           "patch_separation",
+                                           "grid_cells",
                                            NULL};
+
+static void place_rail(const rs_profile *p, double theta, size_t i, double *y, double *z);
 
 static const yaml_node_t *profiles_node(const rs_case_doc *d)
 {
@@ -76,6 +83,30 @@ static int inclination_key(const rs_case_doc *d, const yaml_node_t *map, double 
   return status;
 }
 
+/* grid_cells: two whole numbers [along x, along s] within [4, 400]. */
+static int cells_key(const rs_case_doc *d, const yaml_node_t *map, int cells[2])
+{
+  const char *key = "profiles.grid_cells";
+  const yaml_node_t *n = rs_case_lookup(d, map, "grid_cells");
+  if (!n || rs_case_is_null(n)) return RS_OK;
+  char got[96];
+  if (n->type != YAML_SEQUENCE_NODE ||
+      n->data.sequence.items.top - n->data.sequence.items.start != 2)
+    return rs_case_error(d, n, key, "expected two numbers of cells [along x, along s], got %s",
+                         rs_case_describe(n, got, sizeof got));
+  for (int k = 0; k < 2; k++) {
+    const yaml_node_t *e =
+        yaml_document_get_node((yaml_document_t *)&d->doc, n->data.sequence.items.start[k]);
+    double x;
+    int status = rs_case_number(d, e, key, &x);
+    if (status != RS_OK) return status;
+    if (!(x >= 4 && x <= 400 && x == floor(x)))
+      return rs_case_error(d, e, key, "%g cells: expected a whole number in [4, 400]", x);
+    cells[k] = (int)x;
+  }
+  return RS_OK;
+}
+
 /* One profile file: its path relative to the case file, read with the block's options. */
 static int profile_key(const rs_case_doc *d, const yaml_node_t *map, const char *name,
                        const rs_profile_opts *o, int *has, rs_profile *p, char **file)
@@ -99,6 +130,63 @@ static int profile_key(const rs_case_doc *d, const yaml_node_t *map, const char 
   return RS_OK;
 }
 
+int rs_wheel_rail_input(const rs_wheel_rail *w, rs_wr_input *in, rs_msg *msg)
+{
+  if (!w->has_rail || !w->has_wheel || !w->placed)
+    return rs_msg_set(msg, RS_ERR_INPUT, "the contact needs both profiles: rail: and wheel:");
+  const size_t n = w->rail.n;
+  const rs_wr_polyline rail = {n, w->placed, w->placed + n};
+  double yg;
+  if (!rs_wr_gauge_point(&rail, w->gauge_height, &yg))
+    return rs_msg_set(msg, RS_ERR_INPUT,
+                      "the rail does not reach %g mm below its top (gauge_height), "
+                      "where its gauge point is placed",
+                      w->gauge_height);
+  /* track y of a point of the rail profile: gauge/2 + yg - y_rail from the centre; of the
+   * wheel profile: fb/2 + fbpos - y_wheel - dy (dy > 0 moves the wheel outward, toward
+   * this rail's gauge face); both in the rail profile's coordinates: */
+  double z0 = 0.0;
+  rs_profile_z_at(&w->wheel, 0.0, &z0);
+  *in = (rs_wr_input){.rail = rail,
+                      .wheel = {w->wheel.n, w->wheel.y, w->wheel.z},
+                      .wheel_shift = 0.5 * w->track_gauge + yg - 0.5 * w->flange_back_distance -
+                                     w->flange_back_position - w->lateral_displacement,
+                      .nominal_radius = w->nominal_rolling_radius,
+                      .wheel_z0 = z0,
+                      .separation = w->patch_separation};
+  return RS_OK;
+}
+
+/* With vertical_load: both profiles, the rail inclined, and a contact the geometry finds at
+ * the lateral displacement (the wheel on the rail). */
+static int contact_check(const rs_case_doc *d, const yaml_node_t *map, rs_wheel_rail *w)
+{
+  const yaml_node_t *n = rs_case_lookup(d, map, "vertical_load");
+  if (!w->has_rail || !w->has_wheel)
+    return rs_case_error(d, n, "profiles.vertical_load",
+                         "the contact needs both profiles: give rail: FILE and wheel: FILE");
+  const size_t np = w->rail.n;
+  if (!(w->placed = malloc(2 * np * sizeof *w->placed)))
+    return rs_msg_set(d->msg, RS_ERR_INTERNAL, "out of memory");
+  for (size_t i = 0; i < np; i++)
+    place_rail(&w->rail, w->rail_inclination, i, &w->placed[i], &w->placed[np + i]);
+  rs_wr_input in;
+  rs_msg m = {{0}};
+  int status = rs_wheel_rail_input(w, &in, &m);
+  if (status == RS_OK) {
+    rs_wr_geometry geo;
+    status = rs_wr_geometry_build(&in, &geo, &m);
+    if (status == RS_OK) rs_wr_geometry_free(&geo);
+  }
+  if (status == RS_ERR_INPUT) {
+    const yaml_node_t *at = rs_case_lookup(d, map, "lateral_displacement");
+    return rs_case_error(d, at ? at : n, at ? "profiles.lateral_displacement" : "profiles",
+                         "%g mm: %s", w->lateral_displacement, m.text);
+  }
+  if (status != RS_OK) return rs_msg_set(d->msg, status, "%s", m.text);
+  return RS_OK;
+}
+
 int rs_case_profiles_read(const rs_case_doc *d, struct rs_wheel_rail **out)
 {
   *out = NULL;
@@ -113,6 +201,9 @@ int rs_case_profiles_read(const rs_case_doc *d, struct rs_wheel_rail **out)
   w->gauge_height = 14.0;
   w->flange_back_distance = 1360.0;
   w->nominal_rolling_radius = 460.0;
+  w->flange_back_position = 70.0; /* S1002 and the UIC wheels: tape circle to flange back */
+  w->patch_separation = 0.01;
+  w->grid_cells[0] = w->grid_cells[1] = 40;
   rs_profile_opts ro = {.scale = 1.0}, wo = {.scale = 1.0};
   double scale = 1.0, smoothing = 0.0;
   status = number_key(d, map, "scale", 1e-6, 1e6, "", &scale);
@@ -130,6 +221,17 @@ int rs_case_profiles_read(const rs_case_doc *d, struct rs_wheel_rail **out)
   if (status == RS_OK)
     status = number_key(d, map, "nominal_rolling_radius", 50.0, 2000.0, "mm",
                         &w->nominal_rolling_radius);
+  if (status == RS_OK)
+    status =
+        number_key(d, map, "flange_back_position", -200.0, 200.0, "mm", &w->flange_back_position);
+  if (status == RS_OK)
+    status =
+        number_key(d, map, "lateral_displacement", -50.0, 50.0, "mm", &w->lateral_displacement);
+  if (status == RS_OK)
+    status = number_key(d, map, "vertical_load", 1e-3, 1e7, "N", &w->vertical_load);
+  if (status == RS_OK)
+    status = number_key(d, map, "patch_separation", 0.0, 10.0, "mm", &w->patch_separation);
+  if (status == RS_OK) status = cells_key(d, map, w->grid_cells);
   ro.scale = wo.scale = scale;
   ro.smoothing = wo.smoothing = smoothing;
   if (status == RS_OK)
@@ -138,6 +240,7 @@ int rs_case_profiles_read(const rs_case_doc *d, struct rs_wheel_rail **out)
     status = profile_key(d, map, "wheel", &wo, &w->has_wheel, &w->wheel, &w->wheel_file);
   if (status == RS_OK && !w->has_rail && !w->has_wheel)
     status = rs_case_error(d, map, "profiles", "names no profile: give rail: FILE, wheel: FILE");
+  if (status == RS_OK && w->vertical_load > 0) status = contact_check(d, map, w);
   if (status != RS_OK) {
     rs_wheel_rail_free(w);
     return status;
@@ -244,6 +347,15 @@ void rs_case_print_profiles(const rs_case *c, FILE *out)
   fprintf(out, "profiles.gauge_height: %g  # mm\n", w->gauge_height);
   fprintf(out, "profiles.flange_back_distance: %g  # mm\n", w->flange_back_distance);
   fprintf(out, "profiles.nominal_rolling_radius: %g  # mm\n", w->nominal_rolling_radius);
-  fprintf(out, "# profiles read and checked; the wheel-rail contact search is not available "
-               "yet, so run, sweep and fit refuse this case\n");
+  fprintf(out, "profiles.flange_back_position: %g  # mm\n", w->flange_back_position);
+  fprintf(out, "profiles.lateral_displacement: %g  # mm, toward this rail\n",
+          w->lateral_displacement);
+  if (w->vertical_load > 0) fprintf(out, "profiles.vertical_load: %g  # N\n", w->vertical_load);
+  fprintf(out, "profiles.patch_separation: %g  # mm\n", w->patch_separation);
+  fprintf(out, "profiles.grid_cells: [%d, %d]\n", w->grid_cells[0], w->grid_cells[1]);
+  fprintf(out,
+          "# profiles read and checked; %s; the tangential problem on profiles is not built "
+          "yet, so run, sweep and fit refuse this case\n",
+          w->vertical_load > 0 ? "the normal problem per patch follows"
+                               : "give vertical_load for the contact patches");
 }

@@ -436,6 +436,7 @@ void rs_wheel_rail_free(rs_wheel_rail *w)
   rs_profile_free(&w->wheel);
   free(w->rail_file);
   free(w->wheel_file);
+  free(w->placed);
   free(w);
 }
 

@@ -8,6 +8,7 @@
 
 #include <stddef.h>
 
+#include "physics/wr_contact.h"
 #include "base/status.h"
 
 typedef enum rs_profile_format {
@@ -46,7 +47,18 @@ typedef struct rs_wheel_rail {
   double gauge_height;           /* mm, below the top of the rail, where the gauge is measured */
   double flange_back_distance;   /* mm, between the wheels' flange backs */
   double nominal_rolling_radius; /* mm, of the wheel at its profile's origin (y = 0) */
+  double flange_back_position;   /* mm, y of the wheel's flange back in its profile */
+  double lateral_displacement;   /* mm, of the wheelset toward this rail */
+  double vertical_load;          /* N, on the wheel; 0: not given (no contact computed) */
+  double patch_separation;       /* mm, the gap rise that separates two patches */
+  int grid_cells[2];             /* cells of every patch's grid along x and s */
+  double *placed;                /* [2 rail.n] the rail inclined: y then z (NULL: none) */
 } rs_wheel_rail;
+
+/* The wheel-rail contact input of the block (physics/wr_contact.h): the inclined rail, the
+ * wheel placed laterally by the track gauge, flange-back distance and position and the
+ * lateral displacement (docs/case-file.md). Needs both profiles; points into w. */
+int rs_wheel_rail_input(const rs_wheel_rail *w, rs_wr_input *in, rs_msg *msg);
 
 void rs_wheel_rail_free(rs_wheel_rail *w);
 

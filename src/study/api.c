@@ -13,6 +13,7 @@
 #include "study/run.h"
 #include "study/sweep.h"
 #include "study/sweep_dist.h"
+#include "study/wheel_rail.h"
 
 static int finish(int status, const rs_msg *m, char *msg, size_t len)
 {
@@ -112,7 +113,8 @@ int rs_api_check(const char *case_path, const char *const *sets, int nsets, char
   }
   rs_case_print(&c, f);
   rs_case_print_profiles(&c, f);
-  status = rs_run_print_derived(&c, f, &m);
+  status = rs_wheel_rail_print(&c, f, &m);
+  if (status == RS_OK && !rs_wheel_rail_given(&c)) status = rs_run_print_derived(&c, f, &m);
   fclose(f);
   rs_case_free(&c);
   if (status == RS_ERR_SOLVER) status = RS_ERR_INPUT; /* as rollsim check */

@@ -1,0 +1,81 @@
+/* The wheel-rail contact of a case's profiles: block (study/wheel_rail.h): the geometry and
+ * the normal problem per patch (physics/wr_contact.h) for the block's position and load. */
+#include "study/wheel_rail.h"
+
+#include <math.h>
+
+#include "io/profile.h"
+#include "physics/elastic2d.h" /* RS_PI */
+#include "physics/wr_contact.h"
+
+int rs_wheel_rail_given(const rs_case *c) { return c->profiles && c->profiles->vertical_load > 0; }
+
+int rs_wheel_rail_print(const rs_case *c, FILE *out, rs_msg *msg)
+{
+  const rs_wheel_rail *w = c->profiles;
+  if (!w || !(w->vertical_load > 0)) return RS_OK;
+  rs_wr_input in;
+  int status = rs_wheel_rail_input(w, &in, msg);
+  if (status != RS_OK) return status;
+  rs_wr_geometry geo;
+  if ((status = rs_wr_geometry_build(&in, &geo, msg)) != RS_OK) return status;
+  rs_wr_solution sol;
+  status = rs_wr_normal_solve(&geo, w->vertical_load, c->shear_modulus, c->poisson_ratio,
+                              w->grid_cells[0], w->grid_cells[1], &sol, msg);
+  if (status != RS_OK) {
+    rs_wr_geometry_free(&geo);
+    return status;
+  }
+  const double deg = 180.0 / RS_PI;
+  fprintf(out,
+          "# wheel-rail contact at lateral displacement %g mm under %g N (docs/model.md §20)\n",
+          w->lateral_displacement, w->vertical_load);
+  fprintf(out,
+          "wheel_rail.wheel_shift: %.6f  # mm, y on the rail profile = y on the wheel's + this\n",
+          in.wheel_shift);
+  fprintf(out, "wheel_rail.patches: %d  # of %d gap minima, grouped by patch_separation %g mm\n",
+          geo.npatch, geo.minima, w->patch_separation);
+  fprintf(out, "wheel_rail.vertical_approach: %.6g  # mm, of the wheel from first contact\n",
+          sol.dz);
+  fprintf(out, "wheel_rail.vertical_force: %.9g  # N, sum of F_n cos(contact angle)\n",
+          sol.vertical);
+  for (int k = 0; k < geo.npatch; k++) {
+    const rs_wr_patch *p = &geo.patch[k];
+    const rs_wr_patch_result *r = &sol.patch[k];
+    fprintf(out, "wheel_rail.patch%d.rail_point: [%.4f, %.4f]  # mm, y z on the rail (inclined)\n",
+            k + 1, p->y, p->z_rail);
+    fprintf(out, "wheel_rail.patch%d.wheel_point: [%.4f, %.4f]  # mm, y z on the wheel profile\n",
+            k + 1, p->y_wheel, p->z_wheel);
+    fprintf(out, "wheel_rail.patch%d.contact_angle: %.4f  # deg\n", k + 1, p->delta * deg);
+    fprintf(out, "wheel_rail.patch%d.rolling_radius: %.4f  # mm\n", k + 1, p->rolling_radius);
+    fprintf(out, "wheel_rail.patch%d.gap: %.6f  # mm, vertical, with the wheel at first contact\n",
+            k + 1, p->gap);
+    if (!r->loaded) {
+      fprintf(out, "wheel_rail.patch%d.normal_force: 0  # N, open: its gap exceeds the approach\n",
+              k + 1);
+      continue;
+    }
+    fprintf(out, "wheel_rail.patch%d.normal_force: %.6g  # N\n", k + 1, r->normal_force);
+    fprintf(out, "wheel_rail.patch%d.normal_approach: %.6g  # mm\n", k + 1, r->approach);
+    fprintf(out, "wheel_rail.patch%d.area: %.5g  # mm^2, cells in contact\n", k + 1, r->area);
+    fprintf(out, "wheel_rail.patch%d.extent_x: [%.4f, %.4f]  # mm, along the track\n", k + 1,
+            r->x_extent[0], r->x_extent[1]);
+    fprintf(out,
+            "wheel_rail.patch%d.extent_s: [%.4f, %.4f]  # mm, along the profile from the "
+            "contact point\n",
+            k + 1, r->s_extent[0], r->s_extent[1]);
+    fprintf(out, "wheel_rail.patch%d.max_pressure: %.6g  # N/mm^2\n", k + 1, r->p_max);
+    fprintf(out,
+            "wheel_rail.patch%d.grid: [[%.4f, %.4f], [%.4f, %.4f]]  # mm, x and s, %d x %d "
+            "cells\n",
+            k + 1, r->grid.x0, r->grid.x0 + r->grid.nx * r->grid.dx, r->grid.y0,
+            r->grid.y0 + r->grid.ny * r->grid.dy, r->grid.nx, r->grid.ny);
+  }
+  fprintf(out,
+          "# %d grid round(s), %d normal solves; the contact: block's Hertz contact is not used "
+          "(nothing derived from it is printed)\n",
+          sol.grid_rounds, sol.normal_solves);
+  rs_wr_solution_free(&sol);
+  rs_wr_geometry_free(&geo);
+  return RS_OK;
+}
