@@ -372,23 +372,27 @@ static void two_crowns(void)
 /* The shipped S1002 wheel and UIC60 rail placed at lateral displacement dy (positive toward
  * the rail) as docs/case-file.md places them: the rail's gauge point (14 mm below its top) at
  * 1435/2 from the track centre, the wheel's flange back (y = 70 in its profile) at 1360/2.
- * mirror: both profiles mirrored (y -> -y), so the wheel's shift changes sign. */
+ * The rail file has its gauge side at negative y, so it is read mirrored (rail_mirror: true)
+ * to face the wheel's flange. mirror: the whole arrangement mirrored (the rail as in its file,
+ * the wheel mirrored), so the wheel's shift changes sign. */
 static int mbench(const char *dir, double dy, int mirror, rs_profile *rail, rs_profile *wheel,
                   rs_wr_geometry *geo)
 {
   char path[1024];
   rs_msg msg = {{0}};
-  const rs_profile_opts plain = {.scale = 1.0}, o = {.mirror = mirror, .scale = 1.0};
+  const rs_profile_opts facing = {.mirror = 1, .scale = 1.0},
+                        ro = {.mirror = !mirror, .scale = 1.0},
+                        wo = {.mirror = mirror, .scale = 1.0};
   snprintf(path, sizeof path, "%s/MBench_UIC60_v3.prr", dir);
   rs_profile gauge = {0};
   double yg = 0.0;
-  if (rs_profile_read(&gauge, path, &plain, &msg) != RS_OK) goto fail;
+  if (rs_profile_read(&gauge, path, &facing, &msg) != RS_OK) goto fail;
   const rs_wr_polyline gl = {gauge.n, gauge.y, gauge.z};
   rs_wr_gauge_point(&gl, 14.0, &yg);
   rs_profile_free(&gauge);
-  if (rs_profile_read(rail, path, &o, &msg) != RS_OK) goto fail;
+  if (rs_profile_read(rail, path, &ro, &msg) != RS_OK) goto fail;
   snprintf(path, sizeof path, "%s/MBench_S1002_v3.prw", dir);
-  if (rs_profile_read(wheel, path, &o, &msg) != RS_OK) goto fail;
+  if (rs_profile_read(wheel, path, &wo, &msg) != RS_OK) goto fail;
   const double shift = 717.5 + yg - 680.0 - 70.0 - dy;
   rs_wr_input in = {.rail = {rail->n, rail->y, rail->z},
                     .wheel = {wheel->n, wheel->y, wheel->z},
