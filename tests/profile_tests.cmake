@@ -63,3 +63,13 @@ add_test(NAME profile_contact_fit_refused
   COMMAND ${SYSTEM_PYTHON3} ${RS_TESTS}/cli_expect.py --exit 2
     --stderr "profiles: the tangential problem on wheel-rail profiles is not built yet"
     -- ${RS_BIN} fit ${RS_WR_CASE} -o ${RS_PROF_OUT}/refused_fit.nc --quiet)
+
+# The creepages of the patch for a given wheelset motion (V, the wheel's angular velocity,
+# yaw) against the closed forms at the patch's printed rolling radius and contact angle: on the
+# tread (0.5 mm, the benchmark's 1.2 mrad) and on the flange (8 mm, 70 deg, -20 mrad).
+add_test(NAME profile_creepages_tread
+  COMMAND ${SYSTEM_PYTHON3} ${RS_TESTS}/check_wr_creepages.py ${RS_BIN} ${RS_WR_CASE}
+    2000 4.3474134 0.0012 0.5)
+add_test(NAME profile_creepages_flange
+  COMMAND ${SYSTEM_PYTHON3} ${RS_TESTS}/check_wr_creepages.py ${RS_BIN} ${RS_WR_CASE}
+    2000 4.3 -0.02 8)

@@ -26,6 +26,8 @@ static const char *const profile_keys[] = {"rail",
                                            "vertical_load",
                                            "patch_separation",
                                            "grid_cells",
+                                           "yaw",
+                                           "wheel_angular_velocity",
                                            NULL};
 
 static void place_rail(const rs_profile *p, double theta, size_t i, double *y, double *z);
@@ -232,6 +234,10 @@ int rs_case_profiles_read(const rs_case_doc *d, struct rs_wheel_rail **out)
   if (status == RS_OK)
     status = number_key(d, map, "patch_separation", 0.0, 10.0, "mm", &w->patch_separation);
   if (status == RS_OK) status = cells_key(d, map, w->grid_cells);
+  if (status == RS_OK) status = number_key(d, map, "yaw", -0.1, 0.1, "rad", &w->yaw);
+  if (status == RS_OK)
+    status = number_key(d, map, "wheel_angular_velocity", 1e-6, 1e5, "rad/s",
+                        &w->wheel_angular_velocity);
   ro.scale = wo.scale = scale;
   ro.smoothing = wo.smoothing = smoothing;
   if (status == RS_OK)

@@ -52,6 +52,9 @@ typedef struct rs_wheel_rail {
   double vertical_load;          /* N, on the wheel; 0: not given (no contact computed) */
   double patch_separation;       /* mm, the gap rise that separates two patches */
   int grid_cells[2];             /* cells of every patch's grid along x and s */
+  double yaw;                    /* rad, of the wheelset about the vertical */
+  double wheel_angular_velocity; /* rad/s, of the wheel about its axle; 0: pure rolling of the
+                                  * nominal rolling radius at rolling.velocity */
   double *placed;                /* [2 rail.n] the rail inclined: y then z (NULL: none) */
 } rs_wheel_rail;
 

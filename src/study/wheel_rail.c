@@ -6,7 +6,26 @@
 
 #include "io/profile.h"
 #include "physics/elastic2d.h" /* RS_PI */
+#include "physics/history.h"
 #include "physics/wr_contact.h"
+#include "physics/wr_kinematics.h"
+
+/* The creepages of a patch (docs/model.md §21) for the wheelset rolling along the track at V
+ * (mm/s), yawed by psi, its wheel turning at omega about the axle: the profiles' frame taken as
+ * a right wheel's, x along the track, y toward the track centre, z up; the contact point below
+ * the axle by the patch's rolling radius, its tangent plane turned by the contact angle. */
+static int patch_creepages(const rs_wr_patch *p, double V, double psi, double omega,
+                           rs_creepages *cr, rs_msg *msg)
+{
+  const rs_wheelset_motion w = {.velocity = {V, 0.0, 0.0},
+                                .omega = {-omega * sin(psi), omega * cos(psi), 0.0},
+                                .centre = {0.0, 0.0, 0.0}};
+  const double point[3] = {0.0, 0.0, -p->rolling_radius};
+  rs_contact_frame f;
+  /* the profiles' z grows downward: the rail's slope delta turns the tangent down toward +y */
+  rs_wr_frame_from_angle(point, -p->delta, &f);
+  return rs_wr_creepages(&w, &f, cr, msg);
+}
 
 int rs_wheel_rail_given(const rs_case *c) { return c->profiles && c->profiles->vertical_load > 0; }
 
@@ -26,7 +45,9 @@ int rs_wheel_rail_print(const rs_case *c, FILE *out, rs_msg *msg)
     rs_wr_geometry_free(&geo);
     return status;
   }
-  const double deg = 180.0 / RS_PI;
+  const double deg = 180.0 / RS_PI, V = rs_history_eval(&c->velocity, 0.0);
+  const double omega =
+      w->wheel_angular_velocity > 0.0 ? w->wheel_angular_velocity : V / w->nominal_rolling_radius;
   fprintf(out,
           "# wheel-rail contact at lateral displacement %g mm under %g N (docs/model.md §20)\n",
           w->lateral_displacement, w->vertical_load);
@@ -39,6 +60,11 @@ int rs_wheel_rail_print(const rs_case *c, FILE *out, rs_msg *msg)
           sol.dz);
   fprintf(out, "wheel_rail.vertical_force: %.9g  # N, sum of F_n cos(contact angle)\n",
           sol.vertical);
+  fprintf(out,
+          "wheel_rail.motion: [%.9g, %.9g, %.9g]  # V mm/s (rolling.velocity), yaw rad, the "
+          "wheel's angular velocity rad/s%s\n",
+          V, w->yaw, omega,
+          w->wheel_angular_velocity > 0.0 ? "" : " (pure rolling of the nominal radius)");
   for (int k = 0; k < geo.npatch; k++) {
     const rs_wr_patch *p = &geo.patch[k];
     const rs_wr_patch_result *r = &sol.patch[k];
@@ -65,6 +91,12 @@ int rs_wheel_rail_print(const rs_case *c, FILE *out, rs_msg *msg)
             "contact point\n",
             k + 1, r->s_extent[0], r->s_extent[1]);
     fprintf(out, "wheel_rail.patch%d.max_pressure: %.6g  # N/mm^2\n", k + 1, r->p_max);
+    rs_creepages cr;
+    if (V > 0.0 && patch_creepages(p, V, w->yaw, omega, &cr, msg) == RS_OK)
+      fprintf(out,
+              "wheel_rail.patch%d.creepages: [%.6g, %.6g, %.6g]  # xi, eta, phi (1/mm) of the "
+              "wheel against the rail (docs/model.md §21)\n",
+              k + 1, cr.xi, cr.eta, cr.phi);
     fprintf(out,
             "wheel_rail.patch%d.grid: [[%.4f, %.4f], [%.4f, %.4f]]  # mm, x and s, %d x %d "
             "cells\n",

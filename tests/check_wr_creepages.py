@@ -1,0 +1,45 @@
+#!/usr/bin/python3
+"""The creepages `rollsim check` prints for a wheel-rail patch (docs/model.md §21) against the
+closed forms of rigid-body kinematics for the wheelset rolling along the track at V, yawed by
+psi, its wheel turning at omega, at the patch's printed rolling radius r and contact angle
+delta (profiles' z downward, y toward the track centre):
+    xi = 1 - omega r cos(psi) / V,  eta = -omega r sin(psi) cos(delta) / V,
+    phi = omega cos(psi) sin(delta) / V.
+Tolerance: what the printed inputs' digits allow (r to 1e-4 mm, delta to 1e-4 deg, the
+creepages to 6 significant digits), doubled.
+
+Usage: check_wr_creepages.py ROLLSIM CASE V OMEGA PSI [LATERAL]
+"""
+import math
+import re
+import subprocess
+import sys
+
+rollsim, case, V, omega, psi = sys.argv[1], sys.argv[2], *map(float, sys.argv[3:6])
+lateral = sys.argv[6] if len(sys.argv) > 6 else "0"
+out = subprocess.run([rollsim, "check", case, "--set", f"rolling.velocity={V}", "--set",
+                      f"profiles.wheel_angular_velocity={omega}", "--set", f"profiles.yaw={psi}",
+                      "--set", f"profiles.lateral_displacement={lateral}"],
+                     capture_output=True, text=True, check=True).stdout
+
+
+def value(key):
+    m = re.search(rf"^wheel_rail\.patch1\.{key}: (.*?)  #", out, re.M)
+    if not m:
+        sys.exit(f"FAIL no {key} in the output:\n{out}")
+    return [float(x) for x in re.findall(r"[-+0-9.eE]+", m.group(1))]
+
+
+r, delta = value("rolling_radius")[0], math.radians(value("contact_angle")[0])
+xi, eta, phi = value("creepages")
+want = (1.0 - omega * r * math.cos(psi) / V, -omega * r * math.sin(psi) * math.cos(delta) / V,
+        omega * math.cos(psi) * math.sin(delta) / V)
+dr, dd = 5e-5, math.radians(5e-5)  # half the printed last digits of r and delta
+tols = (omega * dr / V, omega * abs(math.sin(psi)) * (dr + r * dd) / V, omega * dd / V)
+failures = 0
+for name, got, w, t in zip(("xi", "eta", "phi (1/mm)"), (xi, eta, phi), want, tols):
+    tol = 2.0 * (t + 5e-6 * abs(w))
+    ok = abs(got - w) <= tol
+    failures += not ok
+    print(f"{'ok  ' if ok else 'FAIL'} {name}: got {got:.6g}, want {w:.6g} (tol {tol:.2g})")
+sys.exit(1 if failures else 0)
