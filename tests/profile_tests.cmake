@@ -21,12 +21,12 @@ add_test(NAME profile_check
 # run, sweep and fit refuse a case with profiles (exit 2, the case file's line, no output).
 add_test(NAME profile_run_refused
   COMMAND ${SYSTEM_PYTHON3} ${RS_TESTS}/cli_expect.py --exit 2
-    --stderr "mbench_s1002_uic60.yaml:10: profiles: the tangential problem on wheel-rail profiles is not built yet"
+    --stderr "mbench_s1002_uic60.yaml:10: profiles: runs on wheel-rail profiles are not built yet"
     --absent ${RS_PROF_OUT}/refused.nc
     -- ${RS_BIN} run ${RS_PROF_CASE} -o ${RS_PROF_OUT}/refused.nc --quiet)
 add_test(NAME profile_sweep_refused
   COMMAND ${SYSTEM_PYTHON3} ${RS_TESTS}/cli_expect.py --exit 2
-    --stderr "profiles: the tangential problem on wheel-rail profiles is not built yet"
+    --stderr "profiles: runs on wheel-rail profiles are not built yet"
     --absent ${RS_PROF_OUT}/refused_sweep.nc
     -- ${RS_BIN} sweep ${RS_PROF_CASE} -o ${RS_PROF_OUT}/refused_sweep.nc --quiet
        --set "sweep.rolling.creepage=[0.001, 0.002]")
@@ -56,12 +56,12 @@ add_test(NAME profile_contact_check
     -- ${RS_BIN} check ${RS_WR_CASE})
 add_test(NAME profile_contact_run_refused
   COMMAND ${SYSTEM_PYTHON3} ${RS_TESTS}/cli_expect.py --exit 2
-    --stderr "wheel_rail_profiles.yaml:[0-9]+: profiles: the tangential problem on wheel-rail profiles is not built yet"
+    --stderr "wheel_rail_profiles.yaml:[0-9]+: profiles: runs on wheel-rail profiles are not built yet"
     --absent ${RS_PROF_OUT}/refused_contact.nc
     -- ${RS_BIN} run ${RS_WR_CASE} -o ${RS_PROF_OUT}/refused_contact.nc --quiet)
 add_test(NAME profile_contact_fit_refused
   COMMAND ${SYSTEM_PYTHON3} ${RS_TESTS}/cli_expect.py --exit 2
-    --stderr "profiles: the tangential problem on wheel-rail profiles is not built yet"
+    --stderr "profiles: runs on wheel-rail profiles are not built yet"
     -- ${RS_BIN} fit ${RS_WR_CASE} -o ${RS_PROF_OUT}/refused_fit.nc --quiet)
 
 # The creepages of the patch for a given wheelset motion (V, the wheel's angular velocity,
@@ -73,3 +73,8 @@ add_test(NAME profile_creepages_tread
 add_test(NAME profile_creepages_flange
   COMMAND ${SYSTEM_PYTHON3} ${RS_TESTS}/check_wr_creepages.py ${RS_BIN} ${RS_WR_CASE}
     2000 4.3 -0.02 8)
+
+# The steady tangential problem of a patch (two crowned circles given as tables) against the
+# 3D solver on the same grid with the gap from the radii and the same creepages.
+add_test(NAME profile_tangential_crowns
+  COMMAND ${SYSTEM_PYTHON3} ${RS_TESTS}/check_wr_tangential.py ${RS_BIN} ${RS_PROF_OUT}/crowns)

@@ -838,13 +838,13 @@ int rs_case_refuse_profiles(const rs_case *c, rs_msg *msg)
   if (!c->has_profiles) return RS_OK;
   if (!c->source)
     return rs_msg_set(msg, RS_ERR_INPUT,
-                      "profiles: the tangential problem on wheel-rail profiles is not built yet");
+                      "profiles: runs on wheel-rail profiles are not built yet");
   rs_case_doc d = rs_case_source_doc(c, msg);
   yaml_node_t *root = rs_case_doc_root(&d);
   return rs_case_error(&d, root ? rs_case_lookup(&d, root, "profiles") : NULL, "profiles",
-                       "the tangential problem on wheel-rail profiles is not built yet: `rollsim "
-                       "check` reads the profiles and, with vertical_load, solves the normal "
-                       "problem of every contact patch; nothing can be run with them");
+                       "runs on wheel-rail profiles are not built yet: `rollsim check` reads the "
+                       "profiles and, with vertical_load, solves the steady problem of every "
+                       "contact patch (normal and tangential) and prints its forces");
 }
 
 /* The case of `src` with typed overrides: each value as a plain scalar node outside the

@@ -1,7 +1,7 @@
 /* The profiles: block (docs/case-file.md "Wheel-rail profiles"): the rail and wheel
  * profile files (io/profile.h), their options and the track and wheelset geometry. Read
  * by rs_case_load; `rollsim check` prints a summary (and study/wheel_rail.c the contact),
- * the other commands refuse such a case until the tangential problem on profiles exists. */
+ * the other commands refuse such a case until runs on profiles exist. */
 #define _POSIX_C_SOURCE 200809L
 #include "io/case_internal.h"
 #include "io/profile.h"
@@ -359,9 +359,14 @@ void rs_case_print_profiles(const rs_case *c, FILE *out)
   if (w->vertical_load > 0) fprintf(out, "profiles.vertical_load: %g  # N\n", w->vertical_load);
   fprintf(out, "profiles.patch_separation: %g  # mm\n", w->patch_separation);
   fprintf(out, "profiles.grid_cells: [%d, %d]\n", w->grid_cells[0], w->grid_cells[1]);
+  fprintf(out, "profiles.yaw: %g  # rad\n", w->yaw);
+  if (w->wheel_angular_velocity > 0)
+    fprintf(out, "profiles.wheel_angular_velocity: %.9g  # rad/s\n", w->wheel_angular_velocity);
+  else
+    fprintf(out, "profiles.wheel_angular_velocity: null  # pure rolling of the nominal radius\n");
   fprintf(out,
-          "# profiles read and checked; %s; the tangential problem on profiles is not built "
-          "yet, so run, sweep and fit refuse this case\n",
-          w->vertical_load > 0 ? "the normal problem per patch follows"
+          "# profiles read and checked; %s; runs on profiles are not built yet, so run, sweep "
+          "and fit refuse this case\n",
+          w->vertical_load > 0 ? "the steady problem per patch follows"
                                : "give vertical_load for the contact patches");
 }

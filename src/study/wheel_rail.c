@@ -3,12 +3,15 @@
 #include "study/wheel_rail.h"
 
 #include <math.h>
+#include <stdlib.h>
 
 #include "io/profile.h"
 #include "physics/elastic2d.h" /* RS_PI */
 #include "physics/history.h"
 #include "physics/wr_contact.h"
 #include "physics/wr_kinematics.h"
+#include "solve/steady.h"
+#include "study/run.h"
 
 /* The creepages of a patch (docs/model.md §21) for the wheelset rolling along the track at V
  * (mm/s), yawed by psi, its wheel turning at omega about the axle: the profiles' frame taken as
@@ -25,6 +28,77 @@ static int patch_creepages(const rs_wr_patch *p, double V, double psi, double om
   /* the profiles' z grows downward: the rail's slope delta turns the tangent down toward +y */
   rs_wr_frame_from_angle(point, -p->delta, &f);
   return rs_wr_creepages(&w, &f, cr, msg);
+}
+
+/* The undeformed distance of a patch at (x, s) of its tangent plane (wr_contact.h). */
+static double patch_gap_at(const void *ctx, double x, double s)
+{
+  const rs_wr_patch *p = ctx;
+  return rs_wr_patch_h0(p, s) + x * x * cos(p->delta) / (2.0 * p->rolling_radius);
+}
+
+/* Curvature radius of h(0, s) over the loaded part of the patch, from its ends: the Hertz
+ * scale of the lateral direction (the solvers' weights). A flat or conformal patch (no
+ * positive curvature) gets 1000 times the longitudinal radius. */
+static double lateral_radius(const rs_wr_patch *p, const rs_wr_patch_result *r, double rx)
+{
+  const double lo = r->s_extent[0], hi = r->s_extent[1];
+  const double rise = rs_wr_patch_h0(p, lo) + rs_wr_patch_h0(p, hi) - 2.0 * rs_wr_patch_h0(p, 0.0);
+  const double ry = rise > 0.0 ? (lo * lo + hi * hi) / (2.0 * rise) : 1e3 * rx;
+  return fmin(fmax(ry, 1e-3 * rx), 1e3 * rx);
+}
+
+/* The steady tangential problem of a loaded patch on its grid, with the case's material,
+ * friction and plasticity, the patch's normal force and its creepages: the forces on the
+ * wheel in the patch's frame (F_x along the track, F_s along s, M_n about the normal through
+ * the contact point) and the normal force of the model's own normal solution. */
+static int patch_tangential(const rs_case *c, const rs_wr_patch *p, const rs_wr_patch_result *r,
+                            double V, const rs_creepages *cr, rs_diag *d, rs_msg *msg)
+{
+  rs_model_params par;
+  rs_model_params_from_case(c, &par);
+  par.dimension = 3;
+  par.cells = r->grid.nx;
+  par.cells_y = r->grid.ny;
+  par.grid_from_range = 1;
+  par.x_range[0] = r->grid.x0;
+  par.x_range[1] = r->grid.x0 + r->grid.nx * r->grid.dx;
+  par.y_range[0] = r->grid.y0;
+  par.y_range[1] = r->grid.y0 + r->grid.ny * r->grid.dy;
+  par.radius = p->rolling_radius / cos(p->delta);
+  par.radius_y = lateral_radius(p, r, par.radius);
+  par.gap_at = patch_gap_at;
+  par.gap_ctx = p;
+  par.force_control = 0;
+  par.load = (rs_history){.kind = RS_HISTORY_CONSTANT, .value = r->normal_force};
+  par.velocity = (rs_history){.kind = RS_HISTORY_CONSTANT, .value = V};
+  par.creepage = (rs_history){.kind = RS_HISTORY_CONSTANT, .value = cr->xi};
+  par.lateral_creepage = (rs_history){.kind = RS_HISTORY_CONSTANT, .value = cr->eta};
+  par.spin = (rs_history){.kind = RS_HISTORY_CONSTANT, .value = cr->phi};
+  rs_model m;
+  int status = rs_model_create(&m, &par, msg);
+  if (status != RS_OK) return status;
+  double *y = calloc((size_t)m.lay.neq, sizeof *y), *yp = calloc((size_t)m.lay.neq, sizeof *yp);
+  rs_steady *s = NULL;
+  rs_stats st = {0};
+  status = y && yp ? rs_steady_create(&s, &m, NULL, msg)
+                   : rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory for a patch's solution");
+  if (status == RS_OK) status = rs_steady_solve(s, 0.0, y, &st, msg);
+  rs_steady_free(s);
+  if (status == RS_OK) {
+    rs_work w;
+    rs_inputs in;
+    rs_model_inputs_at(&m, 0.0, &in);
+    status = rs_work_create(&w, &m);
+    if (status == RS_OK) {
+      status = rs_model_diagnostics(&m, &w, &in, y, yp, d, NULL, NULL, NULL);
+      rs_work_free(&w);
+    }
+  }
+  free(y);
+  free(yp);
+  rs_model_free(&m);
+  return status;
 }
 
 int rs_wheel_rail_given(const rs_case *c) { return c->profiles && c->profiles->vertical_load > 0; }
@@ -92,11 +166,18 @@ int rs_wheel_rail_print(const rs_case *c, FILE *out, rs_msg *msg)
             k + 1, r->s_extent[0], r->s_extent[1]);
     fprintf(out, "wheel_rail.patch%d.max_pressure: %.6g  # N/mm^2\n", k + 1, r->p_max);
     rs_creepages cr;
-    if (V > 0.0 && patch_creepages(p, V, w->yaw, omega, &cr, msg) == RS_OK)
-      fprintf(out,
-              "wheel_rail.patch%d.creepages: [%.6g, %.6g, %.6g]  # xi, eta, phi (1/mm) of the "
-              "wheel against the rail (docs/model.md §21)\n",
-              k + 1, cr.xi, cr.eta, cr.phi);
+    if (!(V > 0.0)) continue;
+    if ((status = patch_creepages(p, V, w->yaw, omega, &cr, msg)) != RS_OK) break;
+    fprintf(out,
+            "wheel_rail.patch%d.creepages: [%.6g, %.6g, %.6g]  # xi, eta, phi (1/mm) of the "
+            "wheel against the rail (docs/model.md §21)\n",
+            k + 1, cr.xi, cr.eta, cr.phi);
+    rs_diag d;
+    if ((status = patch_tangential(c, p, r, V, &cr, &d, msg)) != RS_OK) break;
+    fprintf(out,
+            "wheel_rail.patch%d.tangential: [%.6g, %.6g, %.6g]  # F_x N, F_s N, M_n N mm on the "
+            "wheel, steady rolling (F_n %.6g N on the patch's grid)\n",
+            k + 1, d.Fx, d.Fy, d.Mz, d.Fn);
     fprintf(out,
             "wheel_rail.patch%d.grid: [[%.4f, %.4f], [%.4f, %.4f]]  # mm, x and s, %d x %d "
             "cells\n",
@@ -109,5 +190,5 @@ int rs_wheel_rail_print(const rs_case *c, FILE *out, rs_msg *msg)
           sol.grid_rounds, sol.normal_solves);
   rs_wr_solution_free(&sol);
   rs_wr_geometry_free(&geo);
-  return RS_OK;
+  return status;
 }
