@@ -305,7 +305,7 @@ static void test_print(void)
       "\nmaterial.shear_modulus: 82000  # N/mm^2\n",
       "\ncontact.normal_load: 178.9  # N/mm\n",
       "\nsolver.scaling: auto\n",
-      "\nsolver.rtol: auto  # 1 (0.06 dx/a within [1e-6, 3e-3]; 2D with friction memory 1e-6)\n",
+      "\nsolver.rtol: auto  # 1 (0.06 dx/a within [1e-6, 3e-3])\n",
       "\nsolver.max_steps: 1000000",
       "\noutput.file: \"results/k_rel.nc\"\n",
       "\noutput.fields: [px, pn, slip, upl, ustar, tauc, regime]\n"};
