@@ -685,9 +685,15 @@ static int solve_at(rs_steady *s, double *y, rs_stats *stats, rs_msg *msg)
   /* 3D plastic continuation points on grids that can be coarsened: a stalled line
    * search goes to grid sequencing at once, whose fine-grid Newton then starts with the
    * line search, as plain Newton from the interpolated coarse solution diverges at most
-   * such points. Coarse grids rarely stall, so this matters on fine ones. */
+   * such points. Coarse grids rarely stall, so this matters on fine ones. With softening, a
+   * step that may fail fast (the sweep then halves it) is watched on the coarsest grid too:
+   * there Newton from the interpolated fine start stalled until its iteration cap at most
+   * failing steps in full sliding, where the halves converge in a few iterations each
+   * (bench/RESULTS.md, issue 42). */
+  const int softening = plastic && m->par.plasticity.k_tau < 0.0;
   if (status == RS_ERR_SOLVER && !s->failed) {
-    s->watch = three_plastic && !cold && can_coarsen(m);
+    s->watch =
+        three_plastic && !cold && (can_coarsen(m) || (softening && s->fail_fast == RS_FAIL_FAST));
     status = newton(s, y, plain, plastic ? 40 : 50, stats, &kin_flag);
     s->watch = 0;
   }
