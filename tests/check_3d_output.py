@@ -381,8 +381,10 @@ def check_as_from_rest(binary, work, path, d, points, label, plastic=False):
 
 def part_jumps(binary, work):
     """A coarse 3D sweep leaps across changes of regime where the steady state is unique
-    (Coulomb friction, no softening) and lands where the run from rest lands; with
-    softening (several steady states) continuation still halves such steps."""
+    (Coulomb friction, no softening) and lands where the run from rest lands. With softening
+    (k_rel -0.01, the softest of issue 42's range) a step whose Newton converges is taken
+    whole too (in 3D with Coulomb friction a failed or refused step is halved anyway) and
+    lands where a sweep in steps of a quarter of it lands."""
     path = os.path.join(work, "jumps.yaml")
     text = plastic_sweep_case(24, "[0.0, -0.001, -0.002]")
     nc = os.path.join(work, "jumps.nc")
@@ -392,9 +394,26 @@ def part_jumps(binary, work):
     d = xr.open_dataset(nc)
     check_as_from_rest(binary, work, path, d, ((1, "-0.001"), (2, "-0.002")),
                        "hardening, leap", plastic=True)
-    halved, said = sweep_count(binary, [path, "-o", nc, "--set", "plasticity.k_rel=-0.3"],
-                               "continuation steps halved")
-    check("softening: the same step halved", halved is not None and halved > 0, said)
+    soft = ["--set", "plasticity.k_rel=-0.01"]
+    halved, said = sweep_count(binary, [path, "-o", nc] + soft, "continuation steps halved")
+    check("softening: the steps of 0.1 % taken whole (no halving)", halved == 0, said)
+    fine_nc = os.path.join(work, "jumps_fine.nc")
+    fine = "[" + ", ".join(f"{-0.00025 * k:.5f}" for k in range(9)) + "]"
+    run(binary, ["sweep", path, "-o", fine_nc, "--quiet", "--set",
+                 "sweep.rolling.creepage=" + fine] + soft)
+    d, f = xr.open_dataset(nc), xr.open_dataset(fine_nc)
+    for k, kf in ((1, 4), (2, 8)):
+        xi = float(d["rolling_creepage"].values[k])
+        for v in ("Fx", "Fy", "Mz"):
+            got, want = float(d[v].values[k]), float(f[v].values[kf])
+            # the same root from another start: KINSOL's tolerance (1e-10 of the bound)
+            check(f"softening, xi = {xi:g}: step = four quarter steps: {v} (1e-7 of mu F_n)",
+                  abs(got - want) <= 1e-7 * 3000.0 * (4.0 if v == "Mz" else 1),
+                  f"{got:.10g} vs {want:.10g}")
+        counts = [(int(d[v].values[k]), int(f[v].values[kf]))
+                  for v in ("n_adhesion", "n_slip", "n_plastic")]
+        check(f"softening, xi = {xi:g}: step = four quarter steps: regime counts (adhesion, "
+              "slip, plastic)", all(a == b for a, b in counts) and counts[2][0] > 0, counts)
 
 
 def part_midpoints(binary, work):

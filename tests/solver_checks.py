@@ -1,6 +1,7 @@
 """Shared by the 3D solver checks (check_weak_hardening, check_low_yield, check_cold_start,
-check_heavy_sliding, check_transient_counts_3d, check_softening_curve): the pass/fail line, the
-contact of bench/cases/tractcurve_plast.yaml as case text, writing a case, and a sweep's counts."""
+check_heavy_sliding, check_transient_counts_3d, check_softening_curve,
+check_softening_partial_slip): the pass/fail line, the contact of
+bench/cases/tractcurve_plast.yaml as case text, writing a case, and a sweep's counts."""
 import os
 import re
 import subprocess

@@ -52,3 +52,9 @@ add_test(NAME threed_softening_curve
          COMMAND ${SYSTEM_PYTHON3} ${RS_TESTS}/check_softening_curve.py ${RS_BIN}
                  ${CMAKE_CURRENT_BINARY_DIR}/threed/softening_curve)
 set_tests_properties(threed_softening_curve PROPERTIES TIMEOUT 600)
+# Issue 42: partial-slip lines with softening (tau_c0 42 and 150, k_rel -0.001 and -0.01,
+# 22 x 22 cells) within 1.5 x the elastic line's Newton iterations each
+# (tests/check_softening_partial_slip.py).
+add_test(NAME threed_softening_partial_slip
+         COMMAND ${SYSTEM_PYTHON3} ${RS_TESTS}/check_softening_partial_slip.py ${RS_BIN}
+                 ${CMAKE_CURRENT_BINARY_DIR}/threed/softening_partial_slip)

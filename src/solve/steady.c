@@ -636,6 +636,41 @@ static int harder_start(rs_steady *s, double *y, rs_stats *stats)
   return status == RS_OK ? RS_OK : RS_ERR_SOLVER;
 }
 
+/* Softening from rest on the coarsest grid (a 3D model with Coulomb friction, no memory and no
+ * force control, k_tau < 0):
+ * the steady state of the same model with k_tau = 0 (perfect plasticity) from y as the start.
+ * From rest the softening model's line search failed there at small creepages with lateral
+ * creepage and spin, and the pseudo-time steps that followed took 70-80 Newton iterations,
+ * where the perfectly plastic model converges from rest and the softening one from its
+ * solution in a few iterations (bench/RESULTS.md, issue 42). RS_OK with the start in y
+ * (else y unchanged). */
+static int perfectly_plastic_start(rs_steady *s, double *y, rs_stats *stats)
+{
+  rs_model pp = *s->m;
+  rs_steady *ps = NULL;
+  rs_msg pmsg = {{0}};
+  rs_stats pst = {0};
+  const int neq = s->m->lay.neq;
+  double *z = malloc((size_t)neq * sizeof *z);
+  if (!z) return RS_ERR_INTERNAL;
+  memcpy(z, y, (size_t)neq * sizeof *z);
+  pp.par.plasticity.k_tau = 0.0;
+  int status = rs_steady_create(&ps, &pp, s->ctx, &pmsg);
+  if (status == RS_OK) ps->fail_fast = s->fail_fast;
+  if (status == RS_OK) status = rs_steady_solve(ps, s->in.t, z, &pst, &pmsg);
+  rs_steady_free(ps);
+  if (stats) {
+    stats->steps += pst.steps;
+    stats->nonlin_iters += pst.nonlin_iters;
+    stats->res_evals += pst.res_evals;
+    stats->lin_solves += pst.lin_solves;
+  }
+  s->coarse_jac_evals += pst.jac_evals;
+  if (status == RS_OK) memcpy(y, z, (size_t)neq * sizeof *y);
+  free(z);
+  return status == RS_OK ? RS_OK : RS_ERR_SOLVER;
+}
+
 /* The steady solve at the inputs in s->in. */
 static int solve_at(rs_steady *s, double *y, rs_stats *stats, rs_msg *msg)
 {
@@ -670,6 +705,10 @@ static int solve_at(rs_steady *s, double *y, rs_stats *stats, rs_msg *msg)
     }
   }
   if (cold && weak_hardening(m) && !can_coarsen(m) && harder_start(s, y, stats) == RS_OK) cold = 0;
+  if (cold && three_plastic && m->par.plasticity.k_tau < 0.0 && !can_coarsen(m) &&
+      !rs_friction_varies(&m->par.friction) && !m->lay.memory && !m->par.force_control &&
+      perfectly_plastic_start(s, y, stats) == RS_OK)
+    cold = 0;
   const int sequence_first = plastic && cold && can_coarsen(m);
   /* 3D: the fine grid's Newton from the interpolated coarse solution with the line search at
    * once; from full sliding plain Newton uses up its iterations without converging. */
@@ -685,13 +724,25 @@ static int solve_at(rs_steady *s, double *y, rs_stats *stats, rs_msg *msg)
   /* 3D plastic continuation points on grids that can be coarsened: a stalled line
    * search goes to grid sequencing at once, whose fine-grid Newton then starts with the
    * line search, as plain Newton from the interpolated coarse solution diverges at most
-   * such points. Coarse grids rarely stall, so this matters on fine ones. */
+   * such points. Coarse grids rarely stall, so this matters on fine ones. With softening, a
+   * step that may fail fast (the sweep then halves it) is watched on the coarsest grid too:
+   * there Newton from the interpolated fine start stalled until its iteration cap at most
+   * failing steps in full sliding, where the halves converge in a few iterations each
+   * (bench/RESULTS.md, issue 42). */
+  const int softening = plastic && m->par.plasticity.k_tau < 0.0;
   if (status == RS_ERR_SOLVER && !s->failed) {
-    s->watch = three_plastic && !cold && can_coarsen(m);
+    s->watch =
+        three_plastic && !cold && (can_coarsen(m) || (softening && s->fail_fast == RS_FAIL_FAST));
     status = newton(s, y, plain, plastic ? 40 : 50, stats, &kin_flag);
     s->watch = 0;
   }
-  if (status == RS_ERR_SOLVER && !sequence_first && !s->failed)
+  /* With hardening a 3D step that may fail fast leaves out grid sequencing too: the sweep
+   * halves it at once, from the last solution (the steady state is unique there). From the
+   * interpolated coarse solution the fine grid's Newton stalled again at most such steps of
+   * weak hardening (bench/RESULTS.md, issue 42). */
+  const int halved_next =
+      three_plastic && !cold && m->par.plasticity.k_tau > 0.0 && s->fail_fast == RS_FAIL_FAST;
+  if (status == RS_ERR_SOLVER && !sequence_first && !s->failed && !halved_next)
     status = grid_sequencing(s, y, three_plastic ? 0 : 10, stats);
   /* Pseudo-time from the interpolated coarse solution when there is one (a few steps
    * settle the trailing end of the plastic zone), else from the caller's start. */

@@ -92,18 +92,27 @@ static void set_rolling_value(rs_model *m, rs_rolling_input which, double x)
  * physical path only a few cells change regime per step. */
 enum { JUMP_MIN_CELLS = 4, JUMP_FRACTION = 10, MAX_HALVINGS = 3 };
 
-/* Where the steady state is unique the jump test only costs time: a 3D model with
- * Coulomb friction, elastic or plastic without softening (k_tau >= 0), where any step
- * lands on the solution the halved path reaches. Softening and velocity-dependent
- * friction have several steady states (which one a point reaches depends on the path),
- * so the test stays there, as in 2D. */
+/* Where the steady state is unique any step lands on the solution the halved path reaches:
+ * a 3D model with Coulomb friction, elastic or plastic without softening (k_tau >= 0).
+ * Softening and velocity-dependent friction have several steady states (which one a point
+ * reaches depends on the path). */
 static int unique_steady(int dimension, const rs_friction *friction, int plastic, double k_tau)
 {
   return dimension == 3 && !rs_friction_varies(friction) && (!plastic || k_tau >= 0.0);
 }
+static int unique_model(const rs_model *m)
+{
+  return unique_steady(m->el.dim, &m->par.friction, m->par.plasticity.on, m->par.plasticity.k_tau);
+}
+/* The jump test (halving a step whose solution changed the regime of many cells) stays for
+ * velocity-dependent friction and in 2D. In 3D with Coulomb friction it is left out for
+ * softening too: there a step whose Newton fails, or whose zero the steady check refuses, is
+ * halved anyway (continue_to), and over issue 42's range every step the test halved reached
+ * the same steady state as the step taken whole, at 2-15 times its Newton iterations
+ * (bench/RESULTS.md, issue 42). */
 static int halve_jumps(const rs_model *m)
 {
-  return !unique_steady(m->el.dim, &m->par.friction, m->par.plasticity.on, m->par.plasticity.k_tau);
+  return m->el.dim != 3 || rs_friction_varies(&m->par.friction);
 }
 
 /* The regimes of a solution y (and its results, kept in ch->diag). */
@@ -160,7 +169,7 @@ static int continue_to(steady_chain *ch, rs_rolling_input key, double x, double 
                        rs_stats *stats, rs_msg *msg)
 {
   const int neq = ch->m.lay.neq, n = ch->m.grid.n;
-  if (depth == 0 && !halve_jumps(&ch->m) && ch->m.par.plasticity.on && ch->nsolved >= 1 &&
+  if (depth == 0 && unique_model(&ch->m) && ch->m.par.plasticity.on && ch->nsolved >= 1 &&
       ch->changed_last > SUBSTEP_CELLS) {
     const double xmid = 0.5 * (ch->xlast + x);
     set_rolling_value(&ch->m, key, xmid);
