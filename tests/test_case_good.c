@@ -298,17 +298,16 @@ static void test_print(void)
   }
   rs_case_print(&c, out);
   fclose(out);
-  const char *want[] = {
-      "\nplasticity.k_tau: 123000  # N/mm^3\n",
-      "\nplasticity.tau_c_min: 3.5  # N/mm^2\n",
-      "\nsimulation.end_time: 0.0004  # s\n",
-      "\nmaterial.shear_modulus: 82000  # N/mm^2\n",
-      "\ncontact.normal_load: 178.9  # N/mm\n",
-      "\nsolver.scaling: auto\n",
-      "\nsolver.rtol: auto  # 1 (0.06 dx/a within [1e-6, 3e-3])\n",
-      "\nsolver.max_steps: 1000000",
-      "\noutput.file: \"results/k_rel.nc\"\n",
-      "\noutput.fields: [px, pn, slip, upl, ustar, tauc, regime]\n"};
+  const char *want[] = {"\nplasticity.k_tau: 123000  # N/mm^3\n",
+                        "\nplasticity.tau_c_min: 3.5  # N/mm^2\n",
+                        "\nsimulation.end_time: 0.0004  # s\n",
+                        "\nmaterial.shear_modulus: 82000  # N/mm^2\n",
+                        "\ncontact.normal_load: 178.9  # N/mm\n",
+                        "\nsolver.scaling: auto\n",
+                        "\nsolver.rtol: auto  # 1 (0.06 dx/a within [1e-6, 3e-3])\n",
+                        "\nsolver.max_steps: 1000000",
+                        "\noutput.file: \"results/k_rel.nc\"\n",
+                        "\noutput.fields: [px, pn, slip, upl, ustar, tauc, regime]\n"};
   for (size_t i = 0; i < sizeof want / sizeof want[0]; i++)
     if (!strstr(text, want[i])) {
       printf("FAIL rs_case_print: no line \"%s\" in:\n%s\n", want[i] + 1, text);

@@ -837,8 +837,7 @@ int rs_case_refuse_profiles(const rs_case *c, rs_msg *msg)
 {
   if (!c->has_profiles) return RS_OK;
   if (!c->source)
-    return rs_msg_set(msg, RS_ERR_INPUT,
-                      "profiles: runs on wheel-rail profiles are not built yet");
+    return rs_msg_set(msg, RS_ERR_INPUT, "profiles: runs on wheel-rail profiles are not built yet");
   rs_case_doc d = rs_case_source_doc(c, msg);
   yaml_node_t *root = rs_case_doc_root(&d);
   return rs_case_error(&d, root ? rs_case_lookup(&d, root, "profiles") : NULL, "profiles",
