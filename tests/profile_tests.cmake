@@ -78,3 +78,11 @@ add_test(NAME profile_creepages_flange
 # 3D solver on the same grid with the gap from the radii and the same creepages.
 add_test(NAME profile_tangential_crowns
   COMMAND ${SYSTEM_PYTHON3} ${RS_TESTS}/check_wr_tangential.py ${RS_BIN} ${RS_PROF_OUT}/crowns)
+
+# rollsim_post profiles --rollsim: the wheel drawn where rollsim places it, touching the drawn
+# rail at the first patch rollsim check finds, every patch on the drawn rail.
+add_test(NAME profile_plot_contact
+  COMMAND ${SYSTEM_PYTHON3} ${PROJECT_SOURCE_DIR}/postproc/tests/check_profiles_contact.py
+    ${RS_BIN} ${PROJECT_SOURCE_DIR}/postproc/rollsim_post.py ${RS_WR_CASE} ${RS_PROF_OUT}/contact)
+set_tests_properties(profile_plot_contact PROPERTIES
+  ENVIRONMENT "MPLCONFIGDIR=${RS_PROF_OUT}/mplconfig;MPLBACKEND=Agg")

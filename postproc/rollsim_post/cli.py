@@ -356,6 +356,11 @@ def cmd_profiles(args):
     figure_format(args.output)
     from . import profiles
     prof = profiles.read_case(args.case)
+    if args.rollsim:
+        prof["contact"] = profiles.contact(args.case, args.rollsim)
+        if prof["contact"] is None:
+            print(f"{PROG}: note: {args.case} gives no profiles.vertical_load: no contact "
+                  "patches to draw", file=sys.stderr)
     rec = Recorder()
     _plots().plot_profiles(prof, args.title or prof["title"] or os.path.basename(args.case),
                            args.output, rec)
@@ -518,9 +523,14 @@ def build_parser():
                "reads them\n(mirror, scale, smoothing): the rail inclined by rail_inclination, "
                "the wheel lowered\nonto it (where both are functions of y) with the first point "
                "of contact marked, the\ngauge height drawn. y toward the track centre, z "
-               "downward, mm. `rollsim check CASE`\nvalidates the files.",
+               "downward, mm. `rollsim check CASE`\nvalidates the files. With --rollsim and "
+               "profiles.vertical_load: the wheel placed as\nrollsim places it (track gauge, "
+               "flange back, lateral displacement) and each contact\npatch rollsim check finds "
+               "marked with its contact angle, normal force and peak\npressure, its normal drawn.",
                title_help="figure title (default: the case's title)")
     s.add_argument("case", metavar="CASE.yaml")
+    s.add_argument("--rollsim", metavar="BIN",
+                   help="the rollsim program whose `check` gives the contact patches")
     s.set_defaults(func=cmd_profiles)
 
     s = sub.add_parser("export", help="variables to CSV", epilog=EXPORT_EPILOG,

@@ -606,15 +606,30 @@ def plot_profiles(prof, title, out, rec=None):
         top = float(np.min(rail[1]))
         ax.axhline(top + prof["gauge_height"], color="C0", ls=":", lw=0.8,
                    label=f"gauge height, {prof['gauge_height']:g} mm below the rail's top")
+    contact = prof.get("contact")
     if prof["wheel"] is not None:
         wy, wz = prof["wheel"]
+        shift = contact["wheel_shift"] if contact else 0.0
+        wy = wy + shift
         drop, at = wheel_drop(rail, (wy, wz)) if rail is not None else (0.0, None)
-        label = "wheel" + (f" (moved {drop:+.3f} mm in z to touch the rail)" if at is not None else "")
+        moved = f" (moved {shift:+.3f} mm in y, {drop:+.3f} mm in z to touch the rail)" if contact \
+            else f" (moved {drop:+.3f} mm in z to touch the rail)"
+        label = "wheel" + (moved if at is not None else "")
         rec.line(ax, 0, wy, wz + drop, "-", color="C3", series=label, quantity="z_mm")
-        if at is not None:
+        if at is not None and not contact:
             zc = float(np.interp(at, rail[0], rail[1]))
             rec.line(ax, 0, [at], [zc], "o", color="k", ms=5,
                      series="first point of contact (rigid)", quantity="z_mm")
+    for k, p in enumerate(contact["patches"] if contact else []):
+        # the normal into the wheel: the rail's tangent (cos, sin) turned up (z downward)
+        d = math.radians(p["angle"])
+        ny, nz = math.sin(d), -math.cos(d)
+        label = (f"patch {k + 1}: {p['angle']:.2f} deg, F_n {p['fn'] / 1000.0:.3g} kN, "
+                 f"p_max {p['p_max']:.0f} N/mm^2")
+        rec.line(ax, 0, [p["y"]], [p["z"]], "o", color=f"C{2 + k}", ms=6, series=label,
+                 quantity="z_mm")
+        ax.annotate("", xy=(p["y"] + 6.0 * ny, p["z"] + 6.0 * nz), xytext=(p["y"], p["z"]),
+                    arrowprops={"arrowstyle": "->", "color": f"C{2 + k}", "lw": 1.2})
     ax.set_xlabel("y [mm], toward the track centre")
     ax.set_ylabel("z [mm], downward")
     ax.invert_yaxis()

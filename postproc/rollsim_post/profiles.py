@@ -124,6 +124,35 @@ def read_case(case_path):
     return out
 
 
+def contact(case_path, rollsim):
+    """The wheel-rail contact rollsim check computes for a case with profiles.vertical_load
+    (docs/case-file.md "profiles:"): {'wheel_shift': mm, 'patches': [{'y', 'z', 'angle' (deg),
+    'fn' (N), 'p_max' (N/mm^2)}, ...]}, or None when the case gives no vertical_load."""
+    import re
+    import subprocess
+    try:
+        out = subprocess.run([rollsim, "check", case_path], capture_output=True, text=True)
+    except OSError as e:
+        raise PostError(f"cannot run {rollsim}: {e.strerror or e}") from None
+    if out.returncode != 0:
+        raise PostError(f"{rollsim} check {case_path} failed: " + out.stderr.strip())
+    m = re.search(r"^wheel_rail\.wheel_shift: (\S+)", out.stdout, re.M)
+    if not m:
+        return None
+    patches = {}
+    for k, key, value in re.findall(r"^wheel_rail\.patch(\d+)\.(\w+): (.*?)(?:  #|$)",
+                                    out.stdout, re.M):
+        patches.setdefault(int(k), {})[key] = [float(v) for v in
+                                               re.findall(r"[-+]?[0-9.]+(?:[eE][-+]?\d+)?", value)]
+    found = []
+    for k in sorted(patches):
+        q = patches[k]
+        found.append({"y": q["rail_point"][0], "z": q["rail_point"][1],
+                      "angle": q["contact_angle"][0], "fn": q["normal_force"][0],
+                      "p_max": q.get("max_pressure", [0.0])[0]})
+    return {"wheel_shift": float(m.group(1)), "patches": found}
+
+
 def place_rail(y, z, theta):
     """The rail inclined by theta about its origin, its top sloping down toward the track
     centre (as rollsim check reports it)."""
