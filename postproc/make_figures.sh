@@ -26,6 +26,8 @@
 #                           surface temperatures per revolution (rollsim run, 30 revolutions)
 #   hot_creep_curve.png     cases/hot_creep_curve.yaml: a creep curve with mu falling with the
 #                           contact temperature, and the same without the table (steady)
+#   wheel_rail_contact.png  cases/profiles/wheel_rail_profiles.yaml: S1002 placed on UIC60 as
+#                           rollsim places it, the contact patch rollsim check finds
 set -eu
 
 ROOT=$(cd "$(dirname "$0")/.." && pwd)
@@ -96,6 +98,10 @@ fi
     --abs --percent --title "Creep curve of a hot contact (V = 60 m/s, Table 1 contact, elastic)" \
     -o "$OUT/hot_creep_curve.png" --data "$DATA/hot_creep_curve.csv"
 
+# Wheel-rail profiles: the wheel placed on the rail and the contact patch rollsim check finds.
+"$PY" "$POST" profiles "$ROOT/cases/profiles/wheel_rail_profiles.yaml" --rollsim "$RS" \
+    -o "$OUT/wheel_rail_contact.png" --data "$DATA/wheel_rail_contact.csv"
+
 echo "wrote $OUT/default_history.png $OUT/fig7_carter_plastic.png $OUT/fig8_meierhofer.png $OUT/fig9_creep_curves.png" \
     "$OUT/hertz3d_creep.png $OUT/hertz3d_traction.png $OUT/hertz3d_regimes.png" \
-    "$OUT/twin_disc_temperature.png $OUT/hot_creep_curve.png"
+    "$OUT/twin_disc_temperature.png $OUT/hot_creep_curve.png $OUT/wheel_rail_contact.png"
