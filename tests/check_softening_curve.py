@@ -18,19 +18,13 @@ import sys
 
 import netCDF4
 
-from solver_checks import Checks, eurosprinter, plastic_and_elastic
+from solver_checks import Checks, plastic_and_elastic, softening_sweep
 
 CREEPAGES = [-1.0e-5, -0.0004, -0.0008, -0.0012, -0.0016, -0.002, -0.0024, -0.0028, -0.0032,
              -0.0036, -0.004, -0.0044, -0.0048, -0.0052, -0.0056, -0.006, -0.008, -0.01, -0.02,
              -0.03, -0.04, -0.05, -0.075, -0.1, -0.125, -0.15, -0.175, -0.2, -0.225, -0.25]
-CASE = eurosprinter("softening: Eurosprinter contact, k_rel = -0.01, 32 x 32 cells", 32) + f"""\
-plasticity: {{tau_c0: 150.0, k_rel: -0.01}}
-rolling: {{velocity: 10000.0, creepage: 0.0}}
-simulation: {{mode: steady}}
-output: {{fields: []}}
-sweep:
-  rolling.creepage: [{", ".join(repr(x) for x in CREEPAGES)}]
-"""
+CASE = softening_sweep("softening: Eurosprinter contact, k_rel = -0.01, 32 x 32 cells", 32,
+                       CREEPAGES)
 check = Checks()
 
 

@@ -21,17 +21,11 @@ import sys
 
 import netCDF4
 
-from solver_checks import Checks, eurosprinter, sweep_counts, write_case
+from solver_checks import Checks, softening_sweep, sweep_counts, write_case
 
 CREEPAGES = [-1.0e-5, -0.0004, -0.0008, -0.0012, -0.0016, -0.002]
-CASE = eurosprinter("softening, partial slip: Eurosprinter contact, 22 x 22 cells", 22) + f"""\
-plasticity: {{tau_c0: 150.0, k_rel: -0.01}}
-rolling: {{velocity: 10000.0, creepage: 0.0}}
-simulation: {{mode: steady}}
-output: {{fields: []}}
-sweep:
-  rolling.creepage: [{", ".join(repr(x) for x in CREEPAGES)}]
-"""
+CASE = softening_sweep("softening, partial slip: Eurosprinter contact, 22 x 22 cells", 22,
+                       CREEPAGES)
 check = Checks()
 
 

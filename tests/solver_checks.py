@@ -29,6 +29,19 @@ def eurosprinter(title, cells):
             "friction: {mu: 0.33}\n")
 
 
+def softening_sweep(title, cells, creepages):
+    """A steady sweep over creepages of the Eurosprinter contact with softening (tau_c0 150
+    N/mm^2, k_rel -0.01) at V = 10 m/s, scalars only."""
+    return eurosprinter(title, cells) + f"""\
+plasticity: {{tau_c0: 150.0, k_rel: -0.01}}
+rolling: {{velocity: 10000.0, creepage: 0.0}}
+simulation: {{mode: steady}}
+output: {{fields: []}}
+sweep:
+  rolling.creepage: [{", ".join(repr(x) for x in creepages)}]
+"""
+
+
 def sweep_counts(binary, path, out, extra, timeout=300):
     """(points solved, failed, Newton iterations) of `rollsim sweep`, or None (printed why)."""
     try:

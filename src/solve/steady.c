@@ -504,6 +504,32 @@ static int pseudo_transient(rs_steady *s, double *y, rs_stats *stats, rs_msg *ms
   return status;
 }
 
+/* The work of an auxiliary solve (a coarser grid, a harder or perfectly plastic model) added
+ * to the caller's counts. */
+static void add_aux_stats(rs_steady *s, rs_stats *stats, const rs_stats *aux)
+{
+  if (stats) {
+    stats->steps += aux->steps;
+    stats->nonlin_iters += aux->nonlin_iters;
+    stats->res_evals += aux->res_evals;
+    stats->lin_solves += aux->lin_solves;
+  }
+  s->coarse_jac_evals += aux->jac_evals;
+}
+
+/* The steady state of an auxiliary model (sharing s's grid and operator, read only) from z,
+ * with s's fail-fast mode; its work added to *aux_stats. */
+static int aux_solve(const rs_steady *s, const rs_model *aux, double *z, rs_stats *aux_stats)
+{
+  rs_steady *as = NULL;
+  rs_msg msg = {{0}};
+  int status = rs_steady_create(&as, aux, s->ctx, &msg);
+  if (status == RS_OK) as->fail_fast = s->fail_fast;
+  if (status == RS_OK) status = rs_steady_solve(as, s->in.t, z, aux_stats, &msg);
+  rs_steady_free(as);
+  return status;
+}
+
 /* Grid sequencing (docs/model.md §13): first for a plastic model from rest, the first
  * fallback otherwise. The same problem on a grid of half the cells (solved by this
  * same function, so recursively down to a grid where Newton converges), interpolated
@@ -540,13 +566,7 @@ static int grid_sequencing(rs_steady *s, double *y, int plain, rs_stats *stats)
   if (status == RS_OK) status = rs_model_interpolate_state(m, y, &coarse, &cw, &s->in, yc, &cmsg);
   rs_stats cst = {0};
   if (status == RS_OK) status = rs_steady_solve(cs, s->in.t, yc, &cst, &cmsg);
-  if (stats) { /* the coarse grids' work counts too */
-    stats->steps += cst.steps;
-    stats->nonlin_iters += cst.nonlin_iters;
-    stats->res_evals += cst.res_evals;
-    stats->lin_solves += cst.lin_solves;
-  }
-  s->coarse_jac_evals += cst.jac_evals;
+  add_aux_stats(s, stats, &cst);
   double *z = status == RS_OK ? malloc((size_t)m->lay.neq * sizeof *z) : NULL;
   if (status == RS_OK && !z) status = RS_ERR_INTERNAL;
   if (status == RS_OK)
@@ -602,8 +622,6 @@ static void rescale_ustar(const rs_model *m, double *y, double f)
 static int harder_start(rs_steady *s, double *y, rs_stats *stats)
 {
   rs_model hard = *s->m;
-  rs_steady *hs = NULL;
-  rs_msg hmsg = {{0}};
   rs_stats hst = {0};
   const int neq = s->m->lay.neq;
   double *z = malloc((size_t)neq * sizeof *z);
@@ -616,56 +634,31 @@ static int harder_start(rs_steady *s, double *y, rs_stats *stats)
     hard.par.plasticity.k_tau = G * kr / (1.0 - kr);
     rescale_ustar(s->m, z, k_prev / hard.par.plasticity.k_tau);
     k_prev = hard.par.plasticity.k_tau;
-    status = rs_steady_create(&hs, &hard, s->ctx, &hmsg);
-    if (status == RS_OK) hs->fail_fast = s->fail_fast;
-    if (status == RS_OK) status = rs_steady_solve(hs, s->in.t, z, &hst, &hmsg);
-    rs_steady_free(hs);
-    hs = NULL;
+    status = aux_solve(s, &hard, z, &hst);
   }
-  if (stats) { /* the auxiliary model's work counts too */
-    stats->steps += hst.steps;
-    stats->nonlin_iters += hst.nonlin_iters;
-    stats->res_evals += hst.res_evals;
-    stats->lin_solves += hst.lin_solves;
-  }
-  s->coarse_jac_evals += hst.jac_evals;
+  add_aux_stats(s, stats, &hst);
   if (status == RS_OK) rescale_ustar(s->m, z, k_prev / k_tau);
   if (status == RS_OK) memcpy(y, z, (size_t)neq * sizeof *y);
-  rs_steady_free(hs);
   free(z);
   return status == RS_OK ? RS_OK : RS_ERR_SOLVER;
 }
 
 /* Softening from rest on the coarsest grid (a 3D model with Coulomb friction, no memory and no
- * force control, k_tau < 0):
- * the steady state of the same model with k_tau = 0 (perfect plasticity) from y as the start.
- * From rest the softening model's line search failed there at small creepages with lateral
- * creepage and spin, and the pseudo-time steps that followed took 70-80 Newton iterations,
- * where the perfectly plastic model converges from rest and the softening one from its
- * solution in a few iterations (bench/RESULTS.md, issue 42). RS_OK with the start in y
- * (else y unchanged). */
+ * force control, k_tau < 0): the steady state of the same model with k_tau = 0 (perfect
+ * plasticity) from y as the start, since the perfectly plastic model converges from rest where
+ * the softening one's line search can fail, and the softening one converges from it. RS_OK
+ * with the start in y (else y unchanged). */
 static int perfectly_plastic_start(rs_steady *s, double *y, rs_stats *stats)
 {
   rs_model pp = *s->m;
-  rs_steady *ps = NULL;
-  rs_msg pmsg = {{0}};
   rs_stats pst = {0};
   const int neq = s->m->lay.neq;
   double *z = malloc((size_t)neq * sizeof *z);
   if (!z) return RS_ERR_INTERNAL;
   memcpy(z, y, (size_t)neq * sizeof *z);
   pp.par.plasticity.k_tau = 0.0;
-  int status = rs_steady_create(&ps, &pp, s->ctx, &pmsg);
-  if (status == RS_OK) ps->fail_fast = s->fail_fast;
-  if (status == RS_OK) status = rs_steady_solve(ps, s->in.t, z, &pst, &pmsg);
-  rs_steady_free(ps);
-  if (stats) {
-    stats->steps += pst.steps;
-    stats->nonlin_iters += pst.nonlin_iters;
-    stats->res_evals += pst.res_evals;
-    stats->lin_solves += pst.lin_solves;
-  }
-  s->coarse_jac_evals += pst.jac_evals;
+  const int status = aux_solve(s, &pp, z, &pst);
+  add_aux_stats(s, stats, &pst);
   if (status == RS_OK) memcpy(y, z, (size_t)neq * sizeof *y);
   free(z);
   return status == RS_OK ? RS_OK : RS_ERR_SOLVER;
@@ -726,9 +719,8 @@ static int solve_at(rs_steady *s, double *y, rs_stats *stats, rs_msg *msg)
    * line search, as plain Newton from the interpolated coarse solution diverges at most
    * such points. Coarse grids rarely stall, so this matters on fine ones. With softening, a
    * step that may fail fast (the sweep then halves it) is watched on the coarsest grid too:
-   * there Newton from the interpolated fine start stalled until its iteration cap at most
-   * failing steps in full sliding, where the halves converge in a few iterations each
-   * (bench/RESULTS.md, issue 42). */
+   * a stall there ends the step early, as its halves converge more cheaply than Newton runs
+   * to its cap. */
   const int softening = plastic && m->par.plasticity.k_tau < 0.0;
   if (status == RS_ERR_SOLVER && !s->failed) {
     s->watch =
@@ -737,9 +729,8 @@ static int solve_at(rs_steady *s, double *y, rs_stats *stats, rs_msg *msg)
     s->watch = 0;
   }
   /* With hardening a 3D step that may fail fast leaves out grid sequencing too: the sweep
-   * halves it at once, from the last solution (the steady state is unique there). From the
-   * interpolated coarse solution the fine grid's Newton stalled again at most such steps of
-   * weak hardening (bench/RESULTS.md, issue 42). */
+   * halves it at once, from the last solution (the steady state is unique there), which
+   * converges where Newton from the interpolated coarse solution tends to stall again. */
   const int halved_next =
       three_plastic && !cold && m->par.plasticity.k_tau > 0.0 && s->fail_fast == RS_FAIL_FAST;
   if (status == RS_ERR_SOLVER && !sequence_first && !s->failed && !halved_next)

@@ -106,10 +106,8 @@ static int unique_model(const rs_model *m)
 }
 /* The jump test (halving a step whose solution changed the regime of many cells) stays for
  * velocity-dependent friction and in 2D. In 3D with Coulomb friction it is left out for
- * softening too: there a step whose Newton fails, or whose zero the steady check refuses, is
- * halved anyway (continue_to), and over issue 42's range every step the test halved reached
- * the same steady state as the step taken whole, at 2-15 times its Newton iterations
- * (bench/RESULTS.md, issue 42). */
+ * softening too: a step whose Newton fails, or whose zero the steady check refuses, is halved
+ * anyway (continue_to), and a converged step taken whole lands where its halves land. */
 static int halve_jumps(const rs_model *m)
 {
   return m->el.dim != 3 || rs_friction_varies(&m->par.friction);
