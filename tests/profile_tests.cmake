@@ -18,18 +18,12 @@ add_test(NAME profile_check
     --stdout "wheel flange height: (27\\.99[0-9]|28\\.00[0-9]) mm"
     -- ${RS_BIN} check ${RS_PROF_CASE})
 
-# run, sweep and fit refuse a case with profiles (exit 2, the case file's line, no output).
+# run and fit refuse a case with profiles (exit 2, the case file's line, no output).
 add_test(NAME profile_run_refused
   COMMAND ${SYSTEM_PYTHON3} ${RS_TESTS}/cli_expect.py --exit 2
-    --stderr "mbench_s1002_uic60.yaml:10: profiles: runs on wheel-rail profiles are not built yet"
+    --stderr "mbench_s1002_uic60.yaml:10: profiles: runs and fits on wheel-rail profiles are not built yet"
     --absent ${RS_PROF_OUT}/refused.nc
     -- ${RS_BIN} run ${RS_PROF_CASE} -o ${RS_PROF_OUT}/refused.nc --quiet)
-add_test(NAME profile_sweep_refused
-  COMMAND ${SYSTEM_PYTHON3} ${RS_TESTS}/cli_expect.py --exit 2
-    --stderr "profiles: runs on wheel-rail profiles are not built yet"
-    --absent ${RS_PROF_OUT}/refused_sweep.nc
-    -- ${RS_BIN} sweep ${RS_PROF_CASE} -o ${RS_PROF_OUT}/refused_sweep.nc --quiet
-       --set "sweep.rolling.creepage=[0.001, 0.002]")
 
 # rollsim_post profiles draws what rollsim reads: a second reader (Python) of the same files
 # against the ranges rollsim check prints (a Miniprof rail mirrored and inclined 1:40, a
@@ -56,12 +50,12 @@ add_test(NAME profile_contact_check
     -- ${RS_BIN} check ${RS_WR_CASE})
 add_test(NAME profile_contact_run_refused
   COMMAND ${SYSTEM_PYTHON3} ${RS_TESTS}/cli_expect.py --exit 2
-    --stderr "wheel_rail_profiles.yaml:[0-9]+: profiles: runs on wheel-rail profiles are not built yet"
+    --stderr "wheel_rail_profiles.yaml:[0-9]+: profiles: runs and fits on wheel-rail profiles are not built yet"
     --absent ${RS_PROF_OUT}/refused_contact.nc
     -- ${RS_BIN} run ${RS_WR_CASE} -o ${RS_PROF_OUT}/refused_contact.nc --quiet)
 add_test(NAME profile_contact_fit_refused
   COMMAND ${SYSTEM_PYTHON3} ${RS_TESTS}/cli_expect.py --exit 2
-    --stderr "profiles: runs on wheel-rail profiles are not built yet"
+    --stderr "profiles: runs and fits on wheel-rail profiles are not built yet"
     -- ${RS_BIN} fit ${RS_WR_CASE} -o ${RS_PROF_OUT}/refused_fit.nc --quiet)
 
 # The creepages of the patch for a given wheelset motion (V, the wheel's angular velocity,
@@ -86,3 +80,47 @@ add_test(NAME profile_plot_contact
     ${RS_BIN} ${PROJECT_SOURCE_DIR}/postproc/rollsim_post.py ${RS_WR_CASE} ${RS_PROF_OUT}/contact)
 set_tests_properties(profile_plot_contact PROPERTIES
   ENVIRONMENT "MPLCONFIGDIR=${RS_PROF_OUT}/mplconfig;MPLBACKEND=Agg")
+
+# rollsim sweep on profiles: a path of wheelset positions (the Manchester benchmark's A-2.2 right
+# wheel), checked against closed-form creepages, the load sharing and rollsim check.
+set(RS_A22_CASE ${RS_CASES}/profiles/mbench_a22_right.yaml)
+add_test(NAME profile_sweep_positions
+  COMMAND ${SYSTEM_PYTHON3} ${RS_TESTS}/check_wr_sweep.py ${RS_BIN} ${RS_A22_CASE}
+    ${RS_PROF_OUT}/sweep)
+
+# A sweep on profiles refuses, before it solves anything (exit 2, no file): a key other than a
+# wheelset position's, lists of different lengths (the file's line), a position off the rail,
+# a yaw out of range, no vertical_load, and --part (one process).
+add_test(NAME profile_sweep_creepage_refused
+  COMMAND ${SYSTEM_PYTHON3} ${RS_TESTS}/cli_expect.py --exit 2
+    --stderr "--set sweep.rolling.creepage: sweep: rolling.creepage: a sweep on profiles is a path of wheelset positions"
+    --absent ${RS_PROF_OUT}/refused_sweep.nc
+    -- ${RS_BIN} sweep ${RS_WR_CASE} -o ${RS_PROF_OUT}/refused_sweep.nc --quiet
+       --set "sweep.rolling.creepage=[0.001, 0.002]")
+add_test(NAME profile_sweep_lengths_refused
+  COMMAND ${SYSTEM_PYTHON3} ${RS_TESTS}/cli_expect.py --exit 2
+    --stderr "sweep_lengths.yaml:16: sweep: profiles.yaw has 2 values and profiles.lateral_displacement 3"
+    --absent ${RS_PROF_OUT}/refused_lengths.nc
+    -- ${RS_BIN} sweep ${RS_TESTS}/profiles/sweep_lengths.yaml -o ${RS_PROF_OUT}/refused_lengths.nc)
+add_test(NAME profile_sweep_off_rail_refused
+  COMMAND ${SYSTEM_PYTHON3} ${RS_TESTS}/cli_expect.py --exit 2
+    --stderr "sweep_off_rail.yaml:14: sweep.profiles.lateral_displacement: 50 mm: .* share no lateral range"
+    --absent ${RS_PROF_OUT}/refused_off_rail.nc
+    -- ${RS_BIN} sweep ${RS_TESTS}/profiles/sweep_off_rail.yaml -o ${RS_PROF_OUT}/refused_off_rail.nc)
+add_test(NAME profile_sweep_yaw_refused
+  COMMAND ${SYSTEM_PYTHON3} ${RS_TESTS}/cli_expect.py --exit 2
+    --stderr "--set sweep.profiles.yaw: 0.5 rad is outside \\[-0.1, 0.1\\] rad"
+    --absent ${RS_PROF_OUT}/refused_yaw.nc
+    -- ${RS_BIN} sweep ${RS_WR_CASE} -o ${RS_PROF_OUT}/refused_yaw.nc
+       --set "sweep.profiles.yaw=[0, 0.5]")
+add_test(NAME profile_sweep_no_load_refused
+  COMMAND ${SYSTEM_PYTHON3} ${RS_TESTS}/cli_expect.py --exit 2
+    --stderr "sweep: profiles.lateral_displacement: a sweep on profiles needs profiles.vertical_load"
+    --absent ${RS_PROF_OUT}/refused_no_load.nc
+    -- ${RS_BIN} sweep ${RS_PROF_CASE} -o ${RS_PROF_OUT}/refused_no_load.nc
+       --set "sweep.profiles.lateral_displacement=[0, 1]")
+add_test(NAME profile_sweep_part_refused
+  COMMAND ${SYSTEM_PYTHON3} ${RS_TESTS}/cli_expect.py --exit 2
+    --stderr "a sweep on profiles runs in one process"
+    --absent ${RS_PROF_OUT}/refused_part.nc
+    -- ${RS_BIN} sweep ${RS_A22_CASE} -o ${RS_PROF_OUT}/refused_part.nc --part 1/2)

@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "cli/cli.h"
+#include "io/profile.h"
 
 typedef struct rs_command_help {
   const char *name;
@@ -179,6 +180,17 @@ static void print_values(FILE *out, const rs_sweep_axis *ax)
 
 void rs_cli_print_sweep(FILE *out, const rs_sweep *s, int dimension)
 {
+  if (s->positions) {
+    fprintf(out, "# sweep on profiles: %zu wheelset positions (the k-th value of every key)\n",
+            s->npoints);
+    for (int a = 0; a < s->naxes; a++) {
+      const rs_sweep_axis *ax = &s->axes[a];
+      fprintf(out, "sweep.%s: ", ax->key);
+      print_values(out, ax);
+      fprintf(out, "  # %s\n", rs_wheel_rail_position_key(ax->key + 9)->unit);
+    }
+    return;
+  }
   fprintf(out, "# sweep: %zu points (", s->npoints);
   for (int a = 0; a < s->naxes; a++) fprintf(out, "%s%d", a ? " x " : "", s->axes[a].n);
   fprintf(out, "; the last key varies fastest)\n");

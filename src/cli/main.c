@@ -184,10 +184,47 @@ static int cmd_check(const rs_case *c, const cli_args *a, const rs_sweep *sw)
   return status == RS_ERR_SOLVER ? RS_ERR_INPUT : status;
 }
 
+/* rollsim sweep on profiles: a path of wheelset positions, on rank 0 only. */
+static int cmd_sweep_positions(const rs_case *c, const cli_args *a, const rs_sweep *sw,
+                               const rs_run_opts *o)
+{
+  if (a->mpi->rank > 0) return RS_OK;
+  if (a->resume || a->parts > 0 || a->mpi->size > 1) {
+    fprintf(stderr,
+            "rollsim sweep: %s: a sweep on profiles runs in one process (no --resume, --part or "
+            "mpirun yet): its positions take a fraction of a second each\n",
+            a->case_path);
+    return RS_ERR_INPUT;
+  }
+  print_title(c, a->case_path);
+  const rs_wr_sweep_opts wo = {.output_path = o->output_path ? o->output_path : c->output_file,
+                               .history = o->history,
+                               .case_text = c->yaml_text ? c->yaml_text : "",
+                               .table = a->quiet ? NULL : stdout,
+                               .interrupt_flag = o->interrupt_flag};
+  if (wo.table)
+    printf("# lateral displacement mm, yaw rad; per patch: y on the rail mm, contact angle deg, "
+           "F_n, F_x, F_s N "
+           "(on the wheel)\n");
+  rs_msg msg = {{0}};
+  rs_wr_sweep_result res;
+  const int status = rs_wheel_rail_sweep(c, sw, &wo, &res, &msg);
+  if (status != RS_OK) fprintf(stderr, "rollsim: %s: %s\n", a->case_path, msg.text);
+  if (!*res.file) return status;
+  printf("sweep over %zu wheelset positions:", sw->npoints);
+  for (int k = 0; k < sw->naxes; k++) printf(" %s", sw->axes[k].key);
+  printf("; %zu solved, %zu failed, Newton iterations %ld, wall time %.3f s\n", res.done,
+         res.failed, res.newton, res.wall_seconds);
+  printf("  output: %s%s%s%s\n", res.file, *res.backup ? " (the previous file kept as " : "",
+         res.backup, *res.backup ? ")" : "");
+  return status;
+}
+
 /* rollsim sweep: every point of the case's sweep: block into one file. */
 static int cmd_sweep(const rs_case *c, const cli_args *a, const rs_sweep *sw, const rs_run_opts *o)
 {
   rs_msg msg = {{0}};
+  if (sw->positions) return cmd_sweep_positions(c, a, sw, o);
   if (a->mpi->rank > 0) { /* an MPI worker: compute, print nothing */
     const rs_sweep_dist d = {.mpi = a->mpi, .resume = a->resume};
     rs_sweep_result sres;
@@ -470,7 +507,8 @@ static int run_command(int argc, char **argv, cli_args *ap)
     free(a.sets);
     return exit_code(status);
   }
-  if (strcmp(a.cmd, "check") && (status = rs_case_refuse_profiles(&c, &msg)) != RS_OK) {
+  if (strcmp(a.cmd, "check") && strcmp(a.cmd, "sweep") &&
+      (status = rs_case_refuse_profiles(&c, &msg)) != RS_OK) {
     if (a.mpi->rank == 0) fprintf(stderr, "%s\n", msg.text);
     rs_case_free(&c);
     free(a.sets);

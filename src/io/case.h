@@ -160,7 +160,8 @@ int rs_case_load(rs_case *c, const char *path, const char *const *sets, int nset
 void rs_case_free(rs_case *c);
 
 /* RS_ERR_INPUT with "CASE:LINE: profiles: ..." when the case has a profiles: block, which
- * only `rollsim check` uses so far (runs on profiles are not built yet). */
+ * `rollsim check` and `rollsim sweep` use (a single run or a fit on profiles is not built
+ * yet). */
 int rs_case_refuse_profiles(const rs_case *c, rs_msg *msg);
 /* The summary of the profiles for `rollsim check` (nothing without a profiles: block). */
 void rs_case_print_profiles(const rs_case *c, FILE *out);

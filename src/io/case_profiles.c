@@ -189,6 +189,51 @@ static int contact_check(const rs_case_doc *d, const yaml_node_t *map, rs_wheel_
   return RS_OK;
 }
 
+static const rs_wheel_rail_key position_keys[] = {
+    {"lateral_displacement", "mm", -50.0, 50.0},
+    {"yaw", "rad", -0.1, 0.1},
+    {"wheel_angular_velocity", "rad/s", 1e-6, 1e5},
+};
+
+const rs_wheel_rail_key *rs_wheel_rail_position_key(const char *name)
+{
+  for (size_t k = 0; k < sizeof position_keys / sizeof *position_keys; k++)
+    if (!strcmp(position_keys[k].name, name)) return &position_keys[k];
+  return NULL;
+}
+
+static double *position_field(rs_wheel_rail *w, const char *name)
+{
+  return !strcmp(name, "lateral_displacement") ? &w->lateral_displacement
+         : !strcmp(name, "yaw")                ? &w->yaw
+                                               : &w->wheel_angular_velocity;
+}
+
+static int position_key(const rs_case_doc *d, const yaml_node_t *map, const char *name,
+                        rs_wheel_rail *w)
+{
+  const rs_wheel_rail_key *k = rs_wheel_rail_position_key(name);
+  return number_key(d, map, name, k->lo, k->hi, k->unit, position_field(w, name));
+}
+
+int rs_wheel_rail_set(rs_wheel_rail *w, const char *name, double x, rs_msg *msg)
+{
+  const rs_wheel_rail_key *k = rs_wheel_rail_position_key(name);
+  if (!k) return rs_msg_set(msg, RS_ERR_INPUT, "not a wheelset position key");
+  if (!(x >= k->lo && x <= k->hi))
+    return rs_msg_set(msg, RS_ERR_INPUT, "%g %s is outside [%g, %g] %s", x, k->unit, k->lo, k->hi,
+                      k->unit);
+  *position_field(w, name) = x;
+  if (strcmp(name, "lateral_displacement") || !w->placed) return RS_OK;
+  rs_wr_input in;
+  rs_msg m = {{0}};
+  int status = rs_wheel_rail_input(w, &in, &m);
+  rs_wr_geometry geo;
+  if (status == RS_OK && (status = rs_wr_geometry_build(&in, &geo, &m)) == RS_OK)
+    rs_wr_geometry_free(&geo);
+  return status == RS_OK ? RS_OK : rs_msg_set(msg, status, "%g mm: %s", x, m.text);
+}
+
 int rs_case_profiles_read(const rs_case_doc *d, struct rs_wheel_rail **out)
 {
   *out = NULL;
@@ -226,18 +271,14 @@ int rs_case_profiles_read(const rs_case_doc *d, struct rs_wheel_rail **out)
   if (status == RS_OK)
     status =
         number_key(d, map, "flange_back_position", -200.0, 200.0, "mm", &w->flange_back_position);
-  if (status == RS_OK)
-    status =
-        number_key(d, map, "lateral_displacement", -50.0, 50.0, "mm", &w->lateral_displacement);
+  if (status == RS_OK) status = position_key(d, map, "lateral_displacement", w);
   if (status == RS_OK)
     status = number_key(d, map, "vertical_load", 1e-3, 1e7, "N", &w->vertical_load);
   if (status == RS_OK)
     status = number_key(d, map, "patch_separation", 0.0, 10.0, "mm", &w->patch_separation);
   if (status == RS_OK) status = cells_key(d, map, w->grid_cells);
-  if (status == RS_OK) status = number_key(d, map, "yaw", -0.1, 0.1, "rad", &w->yaw);
-  if (status == RS_OK)
-    status = number_key(d, map, "wheel_angular_velocity", 1e-6, 1e5, "rad/s",
-                        &w->wheel_angular_velocity);
+  if (status == RS_OK) status = position_key(d, map, "yaw", w);
+  if (status == RS_OK) status = position_key(d, map, "wheel_angular_velocity", w);
   ro.scale = wo.scale = scale;
   ro.smoothing = wo.smoothing = smoothing;
   if (status == RS_OK)
@@ -365,8 +406,9 @@ void rs_case_print_profiles(const rs_case *c, FILE *out)
   else
     fprintf(out, "profiles.wheel_angular_velocity: null  # pure rolling of the nominal radius\n");
   fprintf(out,
-          "# profiles read and checked; %s; runs on profiles are not built yet, so run, sweep "
-          "and fit refuse this case\n",
+          "# profiles read and checked; %s; rollsim sweep runs a path of wheelset positions "
+          "(sweep: profiles.lateral_displacement, yaw, wheel_angular_velocity), run and fit "
+          "on profiles are not built yet\n",
           w->vertical_load > 0 ? "the steady problem per patch follows"
                                : "give vertical_load for the contact patches");
 }

@@ -9,6 +9,7 @@
 
 #include "io/case_internal.h"
 #include "io/case_sweep.h"
+#include "io/profile.h"
 
 void rs_sweep_free(rs_sweep *s)
 {
@@ -63,6 +64,46 @@ static int read_values(const rs_case_doc *d, const yaml_node_t *v, const char *k
   return RS_OK;
 }
 
+/* The axis of KEY in a sweep on profiles: a wheelset position key, each value checked by
+ * placing the wheelset there (a copy of the block: the case's keeps its values). */
+static int position_axis(const rs_case_doc *d, const rs_case *c, const yaml_node_t *k,
+                         const yaml_node_t *v, const char *key, rs_sweep *s)
+{
+  const char *name = !strncmp(key, "profiles.", 9) ? key + 9 : "";
+  if (!rs_wheel_rail_position_key(name))
+    return rs_case_error(d, k, "sweep",
+                         "%s: a sweep on profiles is a path of wheelset positions and varies "
+                         "profiles.lateral_displacement, profiles.yaw and "
+                         "profiles.wheel_angular_velocity only",
+                         key);
+  if (!c->profiles || !(c->profiles->vertical_load > 0))
+    return rs_case_error(d, k, "sweep",
+                         "%s: a sweep on profiles needs profiles.vertical_load (the wheel load)",
+                         key);
+  for (int j = 0; j < s->naxes; j++)
+    if (!strcmp(s->axes[j].key, key)) return rs_case_error(d, k, "sweep", "%s is swept twice", key);
+  rs_sweep_axis *ax = &s->axes[s->naxes];
+  ax->key_index = -1;
+  if (!(ax->key = strdup(key))) return rs_msg_set(d->msg, RS_ERR_INTERNAL, "out of memory");
+  s->naxes++;
+  int status = read_values(d, v, key, ax);
+  if (status == RS_OK && s->naxes > 1 && ax->n != s->axes[0].n)
+    return rs_case_error(d, v, "sweep",
+                         "%s has %d values and %s %d: a sweep on profiles takes the k-th value of "
+                         "every key for its k-th wheelset position, so the lists need one length",
+                         key, ax->n, s->axes[0].key, s->axes[0].n);
+  rs_wheel_rail w = *c->profiles;
+  char ctx[256];
+  snprintf(ctx, sizeof ctx, "sweep.%s", key);
+  for (int i = 0; status == RS_OK && i < ax->n; i++) {
+    rs_msg inner = {{0}};
+    if (rs_wheel_rail_set(&w, name, ax->values[i], &inner) != RS_OK)
+      status = rs_case_error(d, v, ctx, "%s", inner.text);
+  }
+  s->npoints = (size_t)ax->n;
+  return status;
+}
+
 int rs_sweep_load(rs_sweep *s, const rs_case *c, rs_msg *msg)
 {
   memset(s, 0, sizeof *s);
@@ -94,6 +135,11 @@ int rs_sweep_load(rs_sweep *s, const rs_case *c, rs_msg *msg)
       const char *key = (const char *)k->data.scalar.value;
       if (rs_case_is_null(v)) /* KEY: null (e.g. --set sweep.KEY=null): not swept */
         continue;
+      if (c->has_profiles) {
+        s->positions = 1;
+        if ((status = position_axis(&d, c, k, v, key, s)) != RS_OK) break;
+        continue;
+      }
       const int idx = rs_case_key_index(key);
       if (!rs_case_key_numeric(idx)) {
         status = rs_case_error(&d, k, "sweep", "%s is not a numeric case key", key);
@@ -125,7 +171,7 @@ int rs_sweep_load(rs_sweep *s, const rs_case *c, rs_msg *msg)
   }
   /* Every value must give a valid case: the case derived with it. */
   char num[64];
-  for (int a = 0; status == RS_OK && a < s->naxes; a++)
+  for (int a = 0; status == RS_OK && !s->positions && a < s->naxes; a++)
     for (int k = 0; status == RS_OK && k < s->axes[a].n; k++) {
       const rs_case_override ov = {s->axes[a].key_index, s->axes[a].values[k]};
       rs_case pc;

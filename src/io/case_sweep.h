@@ -18,12 +18,15 @@ typedef struct rs_sweep_axis {
 typedef struct rs_sweep {
   int naxes;
   rs_sweep_axis *axes; /* in file order; the last varies fastest */
-  size_t npoints;      /* product of the axis lengths */
+  size_t npoints;      /* product of the axis lengths (positions: their common length) */
+  /* 1: a sweep on profiles, a path of wheelset positions: keys of the profiles: block
+   * (key_index -1), point k takes the k-th value of every axis */
+  int positions;
 } rs_sweep;
 
 /* Read the sweep block of a loaded case (rs_case_load: after the --set assignments).
  * Errors name file:line and the key; every swept value is validated by deriving the case
- * with it (rs_case_derive). */
+ * with it (rs_case_derive), a position of a sweep on profiles by placing the wheelset there. */
 int rs_sweep_load(rs_sweep *s, const rs_case *c, rs_msg *msg);
 void rs_sweep_free(rs_sweep *s);
 

@@ -216,4 +216,26 @@ int rs_sweep_output_write(rs_sweep_output *out, size_t index, const rs_sweep_poi
                           rs_msg *msg);
 /* Write the points not yet written, set the status attribute and close. */
 int rs_sweep_output_close(rs_sweep_output *out, const char *status, rs_msg *msg);
+
+/* The file of a sweep on profiles (docs/file-format.md "Wheel-rail sweep files"): dimensions
+ * position and patch, one double variable per column (NaN where a position has no such patch
+ * or its point failed), written whole to PATH.part and renamed over PATH (an older file kept
+ * as PATH~, its name in backup, else ""). */
+typedef struct rs_positions_column {
+  const char *name, *units, *long_name;
+  int per_patch; /* 1: over (position, patch), data [npos][stride]; 0: [npos] */
+  const double *data;
+} rs_positions_column;
+
+typedef struct rs_positions_output {
+  const char *path, *title, *history, *case_text;
+  const char *status; /* "complete", "interrupted" or "failed: ..." */
+  const char *frames; /* global attribute: the frames the forces are given in */
+  size_t npos;
+  int npatch, stride; /* patches written (at least 1), patches stored per position */
+  int ncols;
+  const rs_positions_column *cols;
+} rs_positions_output;
+int rs_positions_output_write(const rs_positions_output *o, char *backup, size_t backup_len,
+                              rs_msg *msg);
 #endif

@@ -65,6 +65,18 @@ int rs_wheel_rail_input(const rs_wheel_rail *w, rs_wr_input *in, rs_msg *msg);
 
 void rs_wheel_rail_free(rs_wheel_rail *w);
 
+/* The profiles: keys a sweep on profiles varies (a path of wheelset positions, docs/case-file.md
+ * "sweep:"): NAME is the key without its "profiles." prefix. rs_wheel_rail_position_key: the
+ * key's unit and range (NULL when NAME is not one of them). rs_wheel_rail_set: the block with
+ * NAME set to x; with lateral_displacement the geometry must find a contact there (RS_ERR_INPUT
+ * with the reason, without a file position, otherwise). */
+typedef struct rs_wheel_rail_key {
+  const char *name, *unit;
+  double lo, hi;
+} rs_wheel_rail_key;
+const rs_wheel_rail_key *rs_wheel_rail_position_key(const char *name);
+int rs_wheel_rail_set(rs_wheel_rail *w, const char *name, double x, rs_msg *msg);
+
 /* The format a file name's extension stands for (case-insensitive). */
 rs_profile_format rs_profile_format_of(const char *path);
 const char *rs_profile_format_name(rs_profile_format f);

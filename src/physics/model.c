@@ -74,9 +74,13 @@ static int build_grid(rs_model *m, int nx, double x_lo, double x_hi, int ny, dou
   rs_elastic_work ew = {0};
   if (status == RS_OK && rs_elastic_work_create(&ew, &m->el) != RS_OK)
     status = rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory for the elastic products");
-  if (status == RS_OK)
+  if (status == RS_OK && m->par.normal_pressure && m->par.gap_at && !m->load_varies) {
+    memcpy(m->pn, m->par.normal_pressure, (size_t)n * sizeof *m->pn);
+    m->approach = m->par.normal_approach;
+  } else if (status == RS_OK) {
     status =
         rs_model_pressure(m, &ew, rs_history_eval(&m->par.load, 0.0), m->pn, &m->approach, msg);
+  }
   rs_elastic_work_free(&ew);
   if (status != RS_OK) return status;
   const double mu = rs_friction_mu(&m->par.friction, 0.0);
@@ -142,6 +146,7 @@ int rs_model_create(rs_model *m, const rs_model_params *par, rs_msg *msg)
                  ? build_grid(m, par->cells, par->x_range[0], par->x_range[1], 1, 0.0, 0.0, msg)
                  : build_grid(m, par->cells, -half, half, 1, 0.0, 0.0, msg);
   }
+  m->par.normal_pressure = NULL; /* read here only: a regridded model solves its own */
   if (status != RS_OK) rs_model_free(m);
   return status;
 }

@@ -48,6 +48,11 @@ typedef struct rs_model_params {
    * quadratic gap above. */
   double (*gap_at)(const void *gap_ctx, double x, double y);
   const void *gap_ctx;
+  /* 3D with gap_at and a constant load: the normal solution on this grid (cells row by row
+   * along x) and its approach, when the caller has solved it already (the wheel-rail patches);
+   * copied at creation, not solved again (a regridded model solves its own). NULL: solved. */
+  const double *normal_pressure;
+  double normal_approach;
   rs_normal_solution normal_solution;
   double reference_length; /* mm, L of the 2D kernel */
   double shear_modulus, poisson_ratio;

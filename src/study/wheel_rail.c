@@ -4,7 +4,10 @@
 
 #include <math.h>
 #include <stdlib.h>
+#include <string.h>
 
+#include "base/util.h"
+#include "io/output.h"
 #include "io/profile.h"
 #include "physics/elastic2d.h" /* RS_PI */
 #include "physics/history.h"
@@ -52,23 +55,51 @@ static double lateral_radius(const rs_wr_patch *p, const rs_wr_patch_result *r, 
  * friction and plasticity, the patch's normal force and its creepages: the forces on the
  * wheel in the patch's frame (F_x along the track, F_s along s, M_n about the normal through
  * the contact point) and the normal force of the model's own normal solution. */
+#define TANGENTIAL_MARGIN 1
 static int patch_tangential(const rs_case *c, const rs_wr_patch *p, const rs_wr_patch_result *r,
-                            double V, const rs_creepages *cr, rs_diag *d, rs_msg *msg)
+                            double V, const rs_creepages *cr, rs_diag *d, long *newton, rs_msg *msg)
 {
+  /* The patch's grid cut to its contact cells and TANGENTIAL_MARGIN cells around them: the
+   * cells outside carry no traction, and the margin keeps every contact cell's upstream
+   * neighbour, the same problem on fewer cells. */
+  const rs_grid3d *g = &r->grid;
+  int lo[2] = {g->nx, g->ny}, hi[2] = {-1, -1};
+  for (int j = 0; j < g->ny; j++)
+    for (int i = 0; i < g->nx; i++)
+      if (r->pn[(size_t)j * g->nx + i] > 0.0) {
+        lo[0] = i < lo[0] ? i : lo[0];
+        hi[0] = i > hi[0] ? i : hi[0];
+        lo[1] = j < lo[1] ? j : lo[1];
+        hi[1] = j > hi[1] ? j : hi[1];
+      }
+  for (int a = 0; a < 2; a++) {
+    const int n = a ? g->ny : g->nx;
+    lo[a] = lo[a] - TANGENTIAL_MARGIN > 0 ? lo[a] - TANGENTIAL_MARGIN : 0;
+    hi[a] = hi[a] + TANGENTIAL_MARGIN < n - 1 ? hi[a] + TANGENTIAL_MARGIN : n - 1;
+  }
+  const int nx = hi[0] - lo[0] + 1, ny = hi[1] - lo[1] + 1;
+  if (nx < 1 || ny < 1) return rs_msg_set(msg, RS_ERR_INTERNAL, "a loaded patch without pressure");
+  double *pn = malloc((size_t)nx * ny * sizeof *pn);
+  if (!pn) return rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory for a patch's solution");
+  for (int j = 0; j < ny; j++)
+    for (int i = 0; i < nx; i++)
+      pn[(size_t)j * nx + i] = r->pn[(size_t)(j + lo[1]) * g->nx + i + lo[0]];
   rs_model_params par;
   rs_model_params_from_case(c, &par);
   par.dimension = 3;
-  par.cells = r->grid.nx;
-  par.cells_y = r->grid.ny;
+  par.cells = nx;
+  par.cells_y = ny;
   par.grid_from_range = 1;
-  par.x_range[0] = r->grid.x0;
-  par.x_range[1] = r->grid.x0 + r->grid.nx * r->grid.dx;
-  par.y_range[0] = r->grid.y0;
-  par.y_range[1] = r->grid.y0 + r->grid.ny * r->grid.dy;
+  par.x_range[0] = g->x0 + lo[0] * g->dx;
+  par.x_range[1] = g->x0 + (hi[0] + 1) * g->dx;
+  par.y_range[0] = g->y0 + lo[1] * g->dy;
+  par.y_range[1] = g->y0 + (hi[1] + 1) * g->dy;
   par.radius = p->rolling_radius / cos(p->delta);
   par.radius_y = lateral_radius(p, r, par.radius);
   par.gap_at = patch_gap_at;
   par.gap_ctx = p;
+  par.normal_pressure = pn; /* the load sharing's solution on this grid */
+  par.normal_approach = r->approach;
   par.force_control = 0;
   par.load = (rs_history){.kind = RS_HISTORY_CONSTANT, .value = r->normal_force};
   par.velocity = (rs_history){.kind = RS_HISTORY_CONSTANT, .value = V};
@@ -77,6 +108,7 @@ static int patch_tangential(const rs_case *c, const rs_wr_patch *p, const rs_wr_
   par.spin = (rs_history){.kind = RS_HISTORY_CONSTANT, .value = cr->phi};
   rs_model m;
   int status = rs_model_create(&m, &par, msg);
+  free(pn);
   if (status != RS_OK) return status;
   double *y = calloc((size_t)m.lay.neq, sizeof *y), *yp = calloc((size_t)m.lay.neq, sizeof *yp);
   rs_steady *s = NULL;
@@ -84,6 +116,7 @@ static int patch_tangential(const rs_case *c, const rs_wr_patch *p, const rs_wr_
   status = y && yp ? rs_steady_create(&s, &m, NULL, msg)
                    : rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory for a patch's solution");
   if (status == RS_OK) status = rs_steady_solve(s, 0.0, y, &st, msg);
+  *newton += st.nonlin_iters;
   rs_steady_free(s);
   if (status == RS_OK) {
     rs_work w;
@@ -103,25 +136,67 @@ static int patch_tangential(const rs_case *c, const rs_wr_patch *p, const rs_wr_
 
 int rs_wheel_rail_given(const rs_case *c) { return c->profiles && c->profiles->vertical_load > 0; }
 
+/* Everything at one wheelset position: the patches, the load sharing and, rolling, each
+ * loaded patch's creepages and steady tangential solution. */
+typedef struct wr_position {
+  rs_wr_geometry geo;
+  rs_wr_solution sol;
+  double V, omega; /* mm/s, rad/s */
+  int tangential;  /* 1: V > 0, cr and d of the loaded patches filled */
+  rs_creepages cr[RS_WR_MAX_PATCHES];
+  rs_diag d[RS_WR_MAX_PATCHES];
+  long newton; /* Newton iterations of the tangential solves */
+} wr_position;
+
+static void position_free(wr_position *pos)
+{
+  rs_wr_solution_free(&pos->sol);
+  rs_wr_geometry_free(&pos->geo);
+}
+
+/* Solve the position of w (the case's block or a sweep's copy of it). On failure nothing is
+ * left to free. */
+static int position_solve(const rs_case *c, const rs_wheel_rail *w, wr_position *pos, rs_msg *msg)
+{
+  memset(pos, 0, sizeof *pos);
+  rs_wr_input in;
+  int status = rs_wheel_rail_input(w, &in, msg);
+  if (status != RS_OK) return status;
+  if ((status = rs_wr_geometry_build(&in, &pos->geo, msg)) != RS_OK) return status;
+  status = rs_wr_normal_solve(&pos->geo, w->vertical_load, c->shear_modulus, c->poisson_ratio,
+                              w->grid_cells[0], w->grid_cells[1], &pos->sol, msg);
+  if (status != RS_OK) {
+    rs_wr_geometry_free(&pos->geo);
+    return status;
+  }
+  pos->V = rs_history_eval(&c->velocity, 0.0);
+  pos->omega = w->wheel_angular_velocity > 0.0 ? w->wheel_angular_velocity
+                                               : pos->V / w->nominal_rolling_radius;
+  pos->tangential = pos->V > 0.0;
+  for (int k = 0; status == RS_OK && pos->tangential && k < pos->geo.npatch; k++) {
+    const rs_wr_patch *p = &pos->geo.patch[k];
+    const rs_wr_patch_result *r = &pos->sol.patch[k];
+    if (!r->loaded) continue;
+    status = patch_creepages(p, pos->V, w->yaw, pos->omega, &pos->cr[k], msg);
+    if (status == RS_OK)
+      status = patch_tangential(c, p, r, pos->V, &pos->cr[k], &pos->d[k], &pos->newton, msg);
+  }
+  if (status != RS_OK) position_free(pos);
+  return status;
+}
+
 int rs_wheel_rail_print(const rs_case *c, FILE *out, rs_msg *msg)
 {
   const rs_wheel_rail *w = c->profiles;
   if (!w || !(w->vertical_load > 0)) return RS_OK;
-  rs_wr_input in;
-  int status = rs_wheel_rail_input(w, &in, msg);
+  wr_position pos;
+  int status = position_solve(c, w, &pos, msg);
   if (status != RS_OK) return status;
-  rs_wr_geometry geo;
-  if ((status = rs_wr_geometry_build(&in, &geo, msg)) != RS_OK) return status;
-  rs_wr_solution sol;
-  status = rs_wr_normal_solve(&geo, w->vertical_load, c->shear_modulus, c->poisson_ratio,
-                              w->grid_cells[0], w->grid_cells[1], &sol, msg);
-  if (status != RS_OK) {
-    rs_wr_geometry_free(&geo);
-    return status;
-  }
-  const double deg = 180.0 / RS_PI, V = rs_history_eval(&c->velocity, 0.0);
-  const double omega =
-      w->wheel_angular_velocity > 0.0 ? w->wheel_angular_velocity : V / w->nominal_rolling_radius;
+  const rs_wr_geometry *geo = &pos.geo;
+  const rs_wr_solution *sol = &pos.sol;
+  rs_wr_input in;
+  rs_wheel_rail_input(w, &in, msg);
+  const double deg = 180.0 / RS_PI, V = pos.V, omega = pos.omega;
   fprintf(out,
           "# wheel-rail contact at lateral displacement %g mm under %g N (docs/model.md §20)\n",
           w->lateral_displacement, w->vertical_load);
@@ -129,19 +204,19 @@ int rs_wheel_rail_print(const rs_case *c, FILE *out, rs_msg *msg)
           "wheel_rail.wheel_shift: %.6f  # mm, y on the rail profile = y on the wheel's + this\n",
           in.wheel_shift);
   fprintf(out, "wheel_rail.patches: %d  # of %d gap minima, grouped by patch_separation %g mm\n",
-          geo.npatch, geo.minima, w->patch_separation);
+          geo->npatch, geo->minima, w->patch_separation);
   fprintf(out, "wheel_rail.vertical_approach: %.6g  # mm, of the wheel from first contact\n",
-          sol.dz);
+          sol->dz);
   fprintf(out, "wheel_rail.vertical_force: %.9g  # N, sum of F_n cos(contact angle)\n",
-          sol.vertical);
+          sol->vertical);
   fprintf(out,
           "wheel_rail.motion: [%.9g, %.9g, %.9g]  # V mm/s (rolling.velocity), yaw rad, the "
           "wheel's angular velocity rad/s%s\n",
           V, w->yaw, omega,
           w->wheel_angular_velocity > 0.0 ? "" : " (pure rolling of the nominal radius)");
-  for (int k = 0; k < geo.npatch; k++) {
-    const rs_wr_patch *p = &geo.patch[k];
-    const rs_wr_patch_result *r = &sol.patch[k];
+  for (int k = 0; k < geo->npatch; k++) {
+    const rs_wr_patch *p = &geo->patch[k];
+    const rs_wr_patch_result *r = &sol->patch[k];
     fprintf(out, "wheel_rail.patch%d.rail_point: [%.4f, %.4f]  # mm, y z on the rail (inclined)\n",
             k + 1, p->y, p->z_rail);
     fprintf(out, "wheel_rail.patch%d.wheel_point: [%.4f, %.4f]  # mm, y z on the wheel profile\n",
@@ -165,19 +240,17 @@ int rs_wheel_rail_print(const rs_case *c, FILE *out, rs_msg *msg)
             "contact point\n",
             k + 1, r->s_extent[0], r->s_extent[1]);
     fprintf(out, "wheel_rail.patch%d.max_pressure: %.6g  # N/mm^2\n", k + 1, r->p_max);
-    rs_creepages cr;
-    if (!(V > 0.0)) continue;
-    if ((status = patch_creepages(p, V, w->yaw, omega, &cr, msg)) != RS_OK) break;
+    if (!pos.tangential) continue;
+    const rs_creepages *cr = &pos.cr[k];
     fprintf(out,
             "wheel_rail.patch%d.creepages: [%.6g, %.6g, %.6g]  # xi, eta, phi (1/mm) of the "
             "wheel against the rail (docs/model.md §21)\n",
-            k + 1, cr.xi, cr.eta, cr.phi);
-    rs_diag d;
-    if ((status = patch_tangential(c, p, r, V, &cr, &d, msg)) != RS_OK) break;
+            k + 1, cr->xi, cr->eta, cr->phi);
+    const rs_diag *d = &pos.d[k];
     fprintf(out,
             "wheel_rail.patch%d.tangential: [%.6g, %.6g, %.6g]  # F_x N, F_s N, M_n N mm on the "
             "wheel, steady rolling (F_n %.6g N on the patch's grid)\n",
-            k + 1, d.Fx, d.Fy, d.Mz, d.Fn);
+            k + 1, d->Fx, d->Fy, d->Mz, d->Fn);
     fprintf(out,
             "wheel_rail.patch%d.grid: [[%.4f, %.4f], [%.4f, %.4f]]  # mm, x and s, %d x %d "
             "cells\n",
@@ -187,8 +260,231 @@ int rs_wheel_rail_print(const rs_case *c, FILE *out, rs_msg *msg)
   fprintf(out,
           "# %d grid round(s), %d normal solves; the contact: block's Hertz contact is not used "
           "(nothing derived from it is printed)\n",
-          sol.grid_rounds, sol.normal_solves);
-  rs_wr_solution_free(&sol);
-  rs_wr_geometry_free(&geo);
+          sol->grid_rounds, sol->normal_solves);
+  position_free(&pos);
+  return RS_OK;
+}
+
+/* The columns of a sweep file on profiles (docs/file-format.md "Wheel-rail sweep files"). */
+enum {
+  C_Y,
+  C_YAW,
+  C_OMEGA,
+  C_NPATCH,
+  C_DZ,
+  C_FX_TRACK,
+  C_FY_TRACK,
+  C_FZ_TRACK,
+  C_NEWTON,
+  C_CONVERGED,
+  C_POSITION_COLS
+};
+enum {
+  P_RAIL_Y,
+  P_RAIL_Z,
+  P_WHEEL_Y,
+  P_WHEEL_Z,
+  P_DELTA,
+  P_RADIUS,
+  P_FN,
+  P_APPROACH,
+  P_AREA,
+  P_PMAX,
+  P_XI,
+  P_ETA,
+  P_PHI,
+  P_FX,
+  P_FS,
+  P_MN,
+  P_PATCH_COLS
+};
+static const rs_positions_column position_cols[C_POSITION_COLS] = {
+    {"lateral_displacement", "mm", "lateral displacement of the wheelset toward this rail", 0, 0},
+    {"yaw", "rad", "yaw angle of the wheelset", 0, 0},
+    {"wheel_angular_velocity", "rad/s", "angular velocity of the wheel about its axle", 0, 0},
+    {"patches", "1", "contact patches found (loaded or open)", 0, 0},
+    {"vertical_approach", "mm", "vertical approach of the wheel from first contact", 0, 0},
+    {"Fx_track", "N", "force on the wheel along the track, summed over the patches", 0, 0},
+    {"Fy_track", "N", "lateral force on the wheel toward the track centre, summed", 0, 0},
+    {"Fz_track", "N", "vertical force on the wheel (up), summed", 0, 0},
+    {"newton_iterations", "1", "Newton iterations of the tangential solves", 0, 0},
+    {"converged", "1", "1: solved; 0: this position failed (its values NaN)", 0, 0},
+};
+static const rs_positions_column patch_cols[P_PATCH_COLS] = {
+    {"rail_y", "mm", "contact point on the rail: y of the inclined rail profile", 1, 0},
+    {"rail_z", "mm", "contact point on the rail: z (downward) of the inclined rail profile", 1, 0},
+    {"wheel_y", "mm", "contact point on the wheel: y of the wheel profile", 1, 0},
+    {"wheel_z", "mm", "contact point on the wheel: z of the wheel profile", 1, 0},
+    {"contact_angle", "rad", "contact angle (positive toward the flange)", 1, 0},
+    {"rolling_radius", "mm", "rolling radius of the wheel at the contact point", 1, 0},
+    {"Fn", "N", "normal force on the patch", 1, 0},
+    {"normal_approach", "mm", "normal approach of the patch", 1, 0},
+    {"area", "mm2", "contact area (cells in contact)", 1, 0},
+    {"max_pressure", "N/mm2", "maximum pressure", 1, 0},
+    {"xi", "1", "longitudinal creepage of the wheel against the rail", 1, 0},
+    {"eta", "1", "lateral creepage (along s)", 1, 0},
+    {"phi", "1/mm", "spin creepage", 1, 0},
+    {"Fx", "N", "tangential force on the wheel along the track", 1, 0},
+    {"Fs", "N", "tangential force on the wheel along s (the profile's tangent)", 1, 0},
+    {"Mn", "N mm", "spin moment on the wheel about the normal through the contact point", 1, 0},
+};
+
+static void position_store(const wr_position *pos, const rs_wheel_rail *w, size_t i, double *pc,
+                           double *pp)
+{
+  double *row = pc + i * C_POSITION_COLS, *patch = pp + i * RS_WR_MAX_PATCHES * P_PATCH_COLS;
+  row[C_NPATCH] = pos->geo.npatch;
+  row[C_DZ] = pos->sol.dz;
+  row[C_NEWTON] = (double)pos->newton;
+  row[C_CONVERGED] = 1.0;
+  double F[3] = {0.0, 0.0, 0.0};
+  for (int k = 0; k < pos->geo.npatch; k++) {
+    const rs_wr_patch *p = &pos->geo.patch[k];
+    const rs_wr_patch_result *r = &pos->sol.patch[k];
+    double *v = patch + (size_t)k * P_PATCH_COLS;
+    v[P_RAIL_Y] = p->y;
+    v[P_RAIL_Z] = p->z_rail;
+    v[P_WHEEL_Y] = p->y_wheel;
+    v[P_WHEEL_Z] = p->z_wheel;
+    v[P_DELTA] = p->delta;
+    v[P_RADIUS] = p->rolling_radius;
+    v[P_FN] = r->loaded ? r->normal_force : 0.0;
+    if (!r->loaded) continue;
+    v[P_APPROACH] = r->approach;
+    v[P_AREA] = r->area;
+    v[P_PMAX] = r->p_max;
+    /* the wheel's forces in the track frame (x along the track, y toward the track centre,
+     * z up): s = (0, cos delta, -sin delta), n = (0, sin delta, cos delta) (docs/model.md §21) */
+    const double cd = cos(p->delta), sd = sin(p->delta), fn = r->normal_force;
+    double fx = 0.0, fs = 0.0;
+    if (pos->tangential) {
+      v[P_XI] = pos->cr[k].xi;
+      v[P_ETA] = pos->cr[k].eta;
+      v[P_PHI] = pos->cr[k].phi;
+      v[P_FX] = fx = pos->d[k].Fx;
+      v[P_FS] = fs = pos->d[k].Fy;
+      v[P_MN] = pos->d[k].Mz;
+    }
+    F[0] += fx;
+    F[1] += fs * cd + fn * sd;
+    F[2] += -fs * sd + fn * cd;
+  }
+  (void)w;
+  row[C_FX_TRACK] = F[0];
+  row[C_FY_TRACK] = F[1];
+  row[C_FZ_TRACK] = F[2];
+}
+
+int rs_wheel_rail_sweep(const rs_case *c, const rs_sweep *sw, const rs_wr_sweep_opts *o,
+                        rs_wr_sweep_result *res, rs_msg *msg)
+{
+  memset(res, 0, sizeof *res);
+  const size_t n = sw->npoints;
+  const int stride = RS_WR_MAX_PATCHES;
+  double *pc = malloc(n * C_POSITION_COLS * sizeof *pc);
+  double *pp = malloc(n * (size_t)stride * P_PATCH_COLS * sizeof *pp);
+  double *cols = malloc(n * (C_POSITION_COLS + (size_t)stride * P_PATCH_COLS) * sizeof *cols);
+  if (!pc || !pp || !cols) {
+    free(pc);
+    free(pp);
+    free(cols);
+    return rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory for the sweep's %zu positions", n);
+  }
+  for (size_t i = 0; i < n * C_POSITION_COLS; i++) pc[i] = NAN;
+  for (size_t i = 0; i < n * (size_t)stride * P_PATCH_COLS; i++) pp[i] = NAN;
+  const double t0 = rs_wall_clock();
+  int npatch = 1, interrupted = 0;
+  char first_error[512] = "";
+  for (size_t i = 0; i < n; i++) {
+    if (o->interrupt_flag && *o->interrupt_flag) {
+      interrupted = 1;
+      break;
+    }
+    rs_wheel_rail w = *c->profiles;
+    rs_msg ignored = {{0}};
+    for (int a = 0; a < sw->naxes; a++) /* values checked by rs_sweep_load */
+      rs_wheel_rail_set(&w, sw->axes[a].key + 9, sw->axes[a].values[i], &ignored);
+    double *row = pc + i * C_POSITION_COLS;
+    row[C_Y] = w.lateral_displacement;
+    row[C_YAW] = w.yaw;
+    row[C_OMEGA] = w.wheel_angular_velocity > 0.0
+                       ? w.wheel_angular_velocity
+                       : rs_history_eval(&c->velocity, 0.0) / w.nominal_rolling_radius;
+    wr_position pos;
+    rs_msg pm = {{0}};
+    if (position_solve(c, &w, &pos, &pm) != RS_OK) {
+      row[C_CONVERGED] = 0.0;
+      res->failed++;
+      if (!*first_error)
+        snprintf(first_error, sizeof first_error,
+                 "position %zu (lateral displacement %g mm): %.400s", i + 1, w.lateral_displacement,
+                 pm.text);
+      if (o->table)
+        fprintf(o->table, "%8g %9.4g  failed: %s\n", w.lateral_displacement, w.yaw, pm.text);
+      continue;
+    }
+    position_store(&pos, &w, i, pc, pp);
+    if (pos.geo.npatch > npatch) npatch = pos.geo.npatch;
+    res->newton += pos.newton;
+    res->done++;
+    if (o->table) {
+      fprintf(o->table, "%8g %9.4g", w.lateral_displacement, w.yaw);
+      const double *v = pp + i * (size_t)stride * P_PATCH_COLS;
+      for (int k = 0; k < pos.geo.npatch; k++, v += P_PATCH_COLS)
+        fprintf(o->table, "  | %8.3f %7.2f %9.1f %8.1f %8.1f", v[P_RAIL_Y],
+                v[P_DELTA] * 180.0 / RS_PI, v[P_FN], v[P_FX], v[P_FS]);
+      fputc('\n', o->table);
+    }
+    position_free(&pos);
+  }
+  res->wall_seconds = rs_wall_clock() - t0;
+  /* the columns laid out for the writer: position columns [n], patch columns [n][stride] */
+  rs_positions_column spec[C_POSITION_COLS + P_PATCH_COLS];
+  for (int k = 0; k < C_POSITION_COLS; k++) {
+    double *d = cols + (size_t)k * n;
+    for (size_t i = 0; i < n; i++) d[i] = pc[i * C_POSITION_COLS + k];
+    spec[k] = position_cols[k];
+    spec[k].data = d;
+  }
+  for (int k = 0; k < P_PATCH_COLS; k++) {
+    double *d = cols + C_POSITION_COLS * n + (size_t)k * n * stride;
+    for (size_t i = 0; i < n; i++)
+      for (int j = 0; j < stride; j++) d[i * stride + j] = pp[(i * stride + j) * P_PATCH_COLS + k];
+    spec[C_POSITION_COLS + k] = patch_cols[k];
+    spec[C_POSITION_COLS + k].data = d;
+  }
+  char status_text[700];
+  if (interrupted)
+    snprintf(status_text, sizeof status_text, "interrupted");
+
+  else if (res->failed)
+    snprintf(status_text, sizeof status_text, "failed: %zu of %zu positions; the first: %.500s",
+             res->failed, n, first_error);
+  else
+    snprintf(status_text, sizeof status_text, "complete");
+  const rs_positions_output out = {
+      .path = o->output_path,
+      .title = c->title ? c->title : "",
+      .history = o->history,
+      .case_text = o->case_text,
+      .status = status_text,
+      .frames = "per patch: x along the track, s along the profile's tangent (toward the track "
+                "centre), n the normal into the wheel; *_track: x along the track, y toward the "
+                "track centre, z up; forces on the wheel",
+      .npos = n,
+      .npatch = npatch,
+      .stride = stride,
+      .ncols = C_POSITION_COLS + P_PATCH_COLS,
+      .cols = spec};
+  int status = rs_positions_output_write(&out, res->backup, sizeof res->backup, msg);
+  if (status == RS_OK) snprintf(res->file, sizeof res->file, "%s", o->output_path);
+  if (status == RS_OK && interrupted)
+    status = rs_msg_set(msg, RS_ERR_INTERRUPTED, "interrupted: %zu of %zu positions written",
+                        res->done + res->failed, n);
+  else if (status == RS_OK && res->failed)
+    status = rs_msg_set(msg, RS_ERR_SOLVER, "%s", status_text + strlen("failed: "));
+  free(pc);
+  free(pp);
+  free(cols);
   return status;
 }
