@@ -109,6 +109,9 @@ typedef struct rs_wr_solution {
 #define RS_WR_APPROACH_TOL 1e-9
 /* Margin of a patch's grid on each side, as a fraction of its interpenetration region. */
 #define RS_WR_MARGIN       0.1
+/* Grids of at least 4 times this many cells along each axis start with a scout round on a
+ * quarter of the cells (docs/model.md §20 "Grids"). */
+#define RS_WR_SCOUT_CELLS  4
 
 /* The vertical approach dz with sum F_n,i cos(delta_i) = vertical_load (N) and each patch's
  * pressure on nx x ns cells; G, nu the combined elastic constants. */

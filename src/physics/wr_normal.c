@@ -333,18 +333,25 @@ int rs_wr_normal_solve(const rs_wr_geometry *geo, double vertical_load, double s
   double dz = estimate_dz(geo, vertical_load, estar), dz_new = dz;
   int status = RS_OK, settled = 0;
   /* grids from the interpenetration regions at dz; again at the solved dz until the set of
-   * loaded patches stays and dz moves by at most 5 % (the regions' lengths by ~2.5 %) */
-  for (int round = 0; round < 8 && status == RS_OK && !settled; round++) {
+   * loaded patches stays and dz moves by at most 5 % (the regions' lengths by ~2.5 %). The
+   * first round, a scout, runs on a quarter of the cells along each axis (a sixteenth of the
+   * work): its dz replaces the closed-form estimate, which can be off by more than 5 % for a
+   * patch that is not Hertzian, so that the first round on the case's grid settles. */
+  const int scout = nx >= 4 * RS_WR_SCOUT_CELLS && ns >= 4 * RS_WR_SCOUT_CELLS;
+  for (int round = 0; round < 8 + scout && status == RS_OK && !settled; round++) {
+    const int coarse = scout && round == 0;
     for (int i = 0; i < geo->npatch; i++) patch_solver_free(&ps[i]);
     for (int i = 0; i < geo->npatch && status == RS_OK; i++) {
       const double d = normal_approach(&geo->patch[i], dz);
-      if (d > 0) status = patch_grid(&ps[i], d, nx, ns, shear_modulus, poisson_ratio, msg);
+      if (d > 0)
+        status = patch_grid(&ps[i], d, coarse ? nx / 4 : nx, coarse ? ns / 4 : ns, shear_modulus,
+                            poisson_ratio, msg);
     }
     if (status != RS_OK) break;
-    sol->grid_rounds++;
+    sol->grid_rounds += !coarse;
     status = balance(&c, dz, &dz_new, msg);
     if (status != RS_OK) break;
-    settled = fabs(dz_new - dz) <= 0.05 * dz_new;
+    settled = !coarse && fabs(dz_new - dz) <= 0.05 * dz_new;
     for (int i = 0; i < geo->npatch; i++)
       if ((normal_approach(&geo->patch[i], dz_new) > 0) != ps[i].active) settled = 0;
     if (!settled) dz = dz_new;
