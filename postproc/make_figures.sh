@@ -28,6 +28,9 @@
 #                           contact temperature, and the same without the table (steady)
 #   wheel_rail_contact.png  cases/profiles/wheel_rail_profiles.yaml: S1002 placed on UIC60 as
 #                           rollsim places it, the contact patch rollsim check finds
+#   wheel_rail_sweep.png    cases/profiles/mbench_a22_right.yaml: the Manchester benchmark's A-2.2
+#                           right wheel, contact point, angle and forces against the lateral
+#                           displacement (rollsim sweep, 21 positions)
 set -eu
 
 ROOT=$(cd "$(dirname "$0")/.." && pwd)
@@ -102,6 +105,13 @@ fi
 "$PY" "$POST" profiles "$ROOT/cases/profiles/wheel_rail_profiles.yaml" --rollsim "$RS" \
     -o "$OUT/wheel_rail_contact.png" --data "$DATA/wheel_rail_contact.csv"
 
+# A path of wheelset positions: the contact moving from the tread to the flange.
+"$RS" sweep "$ROOT/cases/profiles/mbench_a22_right.yaml" -o "$DATA/mbench_a22_right.nc" \
+    --quiet >/dev/null
+"$PY" "$POST" wheelrail "$DATA/mbench_a22_right.nc" -o "$OUT/wheel_rail_sweep.png" \
+    --data "$DATA/wheel_rail_sweep.csv"
+
 echo "wrote $OUT/default_history.png $OUT/fig7_carter_plastic.png $OUT/fig8_meierhofer.png $OUT/fig9_creep_curves.png" \
     "$OUT/hertz3d_creep.png $OUT/hertz3d_traction.png $OUT/hertz3d_regimes.png" \
-    "$OUT/twin_disc_temperature.png $OUT/hot_creep_curve.png $OUT/wheel_rail_contact.png"
+    "$OUT/twin_disc_temperature.png $OUT/hot_creep_curve.png $OUT/wheel_rail_contact.png" \
+    "$OUT/wheel_rail_sweep.png"

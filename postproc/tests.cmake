@@ -211,6 +211,8 @@ pp_error(pp_err_sweep_no_fields figures "fig9\\.nc: sweep file without the profi
   traction ${PP_FIG_DATA}/fig9.nc -o ${PP_OUT}/never.png)
 pp_error(pp_err_sweep_time figures "fig7\\.nc: --time applies to time-history files"
   traction ${PP_FIG_DATA}/fig7.nc --time 0 -o ${PP_OUT}/never.png)
+pp_error(pp_err_wheelrail_run pp_default "pp_default\\.nc: not a sweep file on profiles"
+  wheelrail ${PP_DEFAULT} -o ${PP_OUT}/never.png)
 pp_error(pp_err_panel_run pp_default "--panel needs one sweep file"
   creepcurve ${PP_DEFAULT} --panel friction.mu -o ${PP_OUT}/never.png)
 pp_error(pp_err_panel_key figures "fig9\\.nc: friction.mu is not swept in this file"

@@ -124,3 +124,11 @@ add_test(NAME profile_sweep_part_refused
     --stderr "a sweep on profiles runs in one process"
     --absent ${RS_PROF_OUT}/refused_part.nc
     -- ${RS_BIN} sweep ${RS_A22_CASE} -o ${RS_PROF_OUT}/refused_part.nc --part 1/2)
+
+# rollsim_post wheelrail draws a sweep file on profiles: the plotted series are the file's
+# values (a file of another kind: pp_err_wheelrail_run in postproc/tests.cmake).
+add_test(NAME profile_sweep_plot
+  COMMAND ${SYSTEM_PYTHON3} ${PROJECT_SOURCE_DIR}/postproc/tests/check_wheelrail_plot.py ${RS_BIN}
+    ${PROJECT_SOURCE_DIR}/postproc/rollsim_post.py ${RS_A22_CASE} ${RS_PROF_OUT}/plot_sweep)
+set_tests_properties(profile_sweep_plot PROPERTIES
+  ENVIRONMENT "MPLCONFIGDIR=${RS_PROF_OUT}/mplconfig;MPLBACKEND=Agg")

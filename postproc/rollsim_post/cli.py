@@ -367,6 +367,19 @@ def cmd_profiles(args):
     _finish(args, rec)
 
 
+def cmd_wheelrail(args):
+    figure_format(args.output)
+    from . import profiles
+    d = profiles.read_sweep(args.file)
+    if d["status"] and d["status"] != "complete":
+        print(f"{PROG}: warning: {args.file}: status {d['status']!r}: positions that failed are "
+              "not drawn", file=sys.stderr)
+    rec = Recorder()
+    _plots().plot_wheelrail(d, args.title or d["title"] or os.path.basename(args.file),
+                            args.output, rec)
+    _finish(args, rec)
+
+
 def cmd_export(args):
     with RunFile(args.file) as run:
         header, columns = extract.export_table(run, args.var)
@@ -532,6 +545,14 @@ def build_parser():
     s.add_argument("--rollsim", metavar="BIN",
                    help="the rollsim program whose `check` gives the contact patches")
     s.set_defaults(func=cmd_profiles)
+
+    s = figure("wheelrail", "a sweep on profiles against the lateral displacement",
+               "A sweep file on profiles (rollsim sweep on a case with profiles:): per patch the "
+               "contact\npoint on the rail, the contact angle, F_n, F_x and F_s on the wheel, "
+               "and the lateral and\nvertical force on the wheel in track coordinates, against "
+               "the wheelset's lateral\ndisplacement.")
+    s.add_argument("file", metavar="FILE")
+    s.set_defaults(func=cmd_wheelrail)
 
     s = sub.add_parser("export", help="variables to CSV", epilog=EXPORT_EPILOG,
                        description="Write variables of a rollsim file to CSV.",

@@ -637,3 +637,48 @@ def plot_profiles(prof, title, out, rec=None):
     ax.grid(alpha=0.25)
     ax.legend(fontsize=8, loc="best")
     save(fig, out)
+
+
+def plot_wheelrail(d, title, out, rec=None):
+    """A sweep on profiles against the lateral displacement: each patch's contact point on the
+    rail and contact angle, its normal and tangential forces, and the lateral force on the wheel
+    in track coordinates (docs/file-format.md "Wheel-rail sweep files")."""
+    rec = rec or Recorder()
+    y = d["lateral_displacement"]
+    npatch = d["Fn"].shape[1]
+    fig, axes = plt.subplots(2, 2, figsize=(10.0, 7.0), layout="constrained", sharex=True)
+    fig.suptitle(title, fontsize=10)
+    panels = [
+        (axes[0, 0], "contact point on the rail", "y on the rail [mm], toward the track centre",
+         [("rail_y", 1.0, "y_mm")]),
+        (axes[0, 1], "contact angle", "contact angle [deg]",
+         [("contact_angle", 180.0 / math.pi, "angle_deg")]),
+        (axes[1, 0], "forces on the wheel per patch", "force [kN]",
+         [("Fn", 1e-3, "Fn_kN"), ("Fx", 1e-3, "Fx_kN"), ("Fs", 1e-3, "Fs_kN")]),
+    ]
+    styles = {"Fn": "-", "Fx": "--", "Fs": ":"}
+    for panel, (ax, name, ylabel, series) in enumerate(panels):
+        ax.set_title(name, fontsize=9)
+        for j, (var, scale, quantity) in enumerate(series):
+            for k in range(npatch):
+                v = d[var][:, k] * scale
+                if not np.any(np.isfinite(v)):
+                    continue
+                label = f"patch {k + 1}" if len(series) == 1 else f"{var}, patch {k + 1}"
+                rec.line(ax, panel, y, v, styles.get(var, "-"), marker="o", ms=3,
+                         color=f"C{(k * len(series) + j) % 10}", series=label, quantity=quantity)
+        ax.set_ylabel(ylabel)
+        ax.grid(alpha=0.25)
+        ax.legend(fontsize=7, loc="best")
+    ax = axes[1, 1]
+    ax.set_title("lateral and vertical force on the wheel (track coordinates)", fontsize=9)
+    rec.line(ax, 3, y, d["Fy_track"] * 1e-3, "-", marker="o", ms=3, color="C0",
+             series="F_y toward the track centre", quantity="Fy_kN")
+    rec.line(ax, 3, y, d["Fz_track"] * 1e-3, "--", marker="o", ms=3, color="C1",
+             series="F_z up", quantity="Fz_kN")
+    ax.set_ylabel("force [kN]")
+    ax.grid(alpha=0.25)
+    ax.legend(fontsize=7, loc="best")
+    for ax in axes[1]:
+        ax.set_xlabel("lateral displacement of the wheelset toward the rail [mm]")
+    save(fig, out)

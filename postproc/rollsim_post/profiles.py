@@ -174,3 +174,24 @@ def wheel_drop(rail, wheel):
     gap = np.interp(ys, ry, rz) - np.interp(ys, wy, wz)
     k = int(np.argmin(gap))
     return float(gap[k]), float(ys[k])
+
+
+def read_sweep(path):
+    """A sweep file on profiles (docs/file-format.md "Wheel-rail sweep files"): its variables
+    as arrays (NaN where a position has no such patch), title and status."""
+    import netCDF4
+    try:
+        nc = netCDF4.Dataset(path)
+    except (OSError, RuntimeError) as e:
+        raise PostError(f"{path}: cannot read as netCDF: {e}") from None
+    with nc:
+        need = ("lateral_displacement", "patches", "rail_y", "contact_angle", "Fn", "Fx", "Fs",
+                "Fy_track")
+        missing = [v for v in need if v not in nc.variables]
+        if missing:
+            raise PostError(f"{path}: not a sweep file on profiles (no {', '.join(missing)}; "
+                            "rollsim sweep on a case with profiles: writes one)")
+        data = {k: np.ma.filled(nc.variables[k][:].astype(float), np.nan) for k in nc.variables}
+        data["title"] = getattr(nc, "title", "")
+        data["status"] = getattr(nc, "status", "")
+    return data
