@@ -18,11 +18,11 @@ add_test(NAME profile_check
     --stdout "wheel flange height: (27\\.99[0-9]|28\\.00[0-9]) mm"
     -- ${RS_BIN} check ${RS_PROF_CASE})
 
-# run and fit refuse a case with profiles (exit 2, the case file's line, no output).
-add_test(NAME profile_run_refused
+# run on profiles needs the wheel load (exit 2, naming the key, no output).
+add_test(NAME profile_run_no_load_refused
   COMMAND ${SYSTEM_PYTHON3} ${RS_TESTS}/cli_expect.py --exit 2
-    --stderr "mbench_s1002_uic60.yaml:10: profiles: runs and fits on wheel-rail profiles are not built yet"
-    --absent ${RS_PROF_OUT}/refused.nc
+    --stderr "mbench_s1002_uic60.yaml: profiles.vertical_load: not given"
+    --absent ${RS_PROF_OUT}/refused_patch1.nc
     -- ${RS_BIN} run ${RS_PROF_CASE} -o ${RS_PROF_OUT}/refused.nc --quiet)
 
 # rollsim_post profiles draws what rollsim reads: a second reader (Python) of the same files
@@ -48,14 +48,18 @@ add_test(NAME profile_contact_check
     --stdout "wheel_rail.patch1.contact_angle: [0-2]\\.[0-9]+  # deg"
     --stdout "wheel_rail.patch1.max_pressure: [0-9.]+  # N/mm"
     -- ${RS_BIN} check ${RS_WR_CASE})
-add_test(NAME profile_contact_run_refused
+# rollsim run on profiles: each patch's transient from rest ends at its steady state, and the
+# steady run gives what rollsim check prints.
+add_test(NAME profile_run_patches
+  COMMAND ${SYSTEM_PYTHON3} ${RS_TESTS}/check_wr_run.py ${RS_BIN} ${RS_WR_CASE}
+    ${RS_PROF_OUT}/run)
+add_test(NAME profile_run_restart_refused
   COMMAND ${SYSTEM_PYTHON3} ${RS_TESTS}/cli_expect.py --exit 2
-    --stderr "wheel_rail_profiles.yaml:[0-9]+: profiles: runs and fits on wheel-rail profiles are not built yet"
-    --absent ${RS_PROF_OUT}/refused_contact.nc
-    -- ${RS_BIN} run ${RS_WR_CASE} -o ${RS_PROF_OUT}/refused_contact.nc --quiet)
+    --stderr "--restart is not built for runs on profiles"
+    -- ${RS_BIN} run ${RS_WR_CASE} -o ${RS_PROF_OUT}/restart.nc --restart ${RS_PROF_OUT}/none.nc)
 add_test(NAME profile_contact_fit_refused
   COMMAND ${SYSTEM_PYTHON3} ${RS_TESTS}/cli_expect.py --exit 2
-    --stderr "profiles: runs and fits on wheel-rail profiles are not built yet"
+    --stderr "profiles: fits on wheel-rail profiles are not built yet"
     -- ${RS_BIN} fit ${RS_WR_CASE} -o ${RS_PROF_OUT}/refused_fit.nc --quiet)
 
 # The creepages of the patch for a given wheelset motion (V, the wheel's angular velocity,

@@ -400,8 +400,36 @@ static void print_summary(const rs_case *c, const cli_args *a, const rs_run_resu
 }
 
 /* rollsim run: one case. */
+/* rollsim run on profiles: one run file per loaded patch. */
+static int cmd_run_patches(const rs_case *c, const cli_args *a, const rs_run_opts *o)
+{
+  if (a->restart_path) {
+    fprintf(stderr,
+            "rollsim run: %s: --restart is not built for runs on profiles (each patch has a file "
+            "of its own)\n",
+            a->case_path);
+    return RS_ERR_INPUT;
+  }
+  if (!rs_wheel_rail_given(c)) {
+    fprintf(stderr,
+            "rollsim run: %s: profiles.vertical_load: not given: a run on profiles needs the "
+            "wheel load to find the contact patches\n",
+            a->case_path);
+    return RS_ERR_INPUT;
+  }
+  print_title(c, a->case_path);
+  rs_msg msg = {{0}};
+  rs_wr_run_result res;
+  const int status = rs_wheel_rail_run(c, o, stdout, &res, &msg);
+  if (status != RS_OK) fprintf(stderr, "rollsim: %s: %s\n", a->case_path, msg.text);
+  printf("%d patch(es) found, %d run: Newton iterations %ld, steps %ld\n", res.patches, res.runs,
+         res.newton, res.steps);
+  return status;
+}
+
 static int cmd_run(const rs_case *c, const cli_args *a, const rs_run_opts *o)
 {
+  if (c->has_profiles) return cmd_run_patches(c, a, o);
   rs_msg msg = {{0}};
   rs_run_result res;
   const int status = rs_run(c, o, &res, &msg);
@@ -507,8 +535,7 @@ static int run_command(int argc, char **argv, cli_args *ap)
     free(a.sets);
     return exit_code(status);
   }
-  if (strcmp(a.cmd, "check") && strcmp(a.cmd, "sweep") &&
-      (status = rs_case_refuse_profiles(&c, &msg)) != RS_OK) {
+  if (!strcmp(a.cmd, "fit") && (status = rs_case_refuse_profiles(&c, &msg)) != RS_OK) {
     if (a.mpi->rank == 0) fprintf(stderr, "%s\n", msg.text);
     rs_case_free(&c);
     free(a.sets);

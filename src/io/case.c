@@ -837,16 +837,13 @@ int rs_case_refuse_profiles(const rs_case *c, rs_msg *msg)
 {
   if (!c->has_profiles) return RS_OK;
   if (!c->source)
-    return rs_msg_set(msg, RS_ERR_INPUT,
-                      "profiles: runs and fits on wheel-rail profiles are not built yet");
+    return rs_msg_set(msg, RS_ERR_INPUT, "profiles: fits on wheel-rail profiles are not built yet");
   rs_case_doc d = rs_case_source_doc(c, msg);
   yaml_node_t *root = rs_case_doc_root(&d);
   return rs_case_error(&d, root ? rs_case_lookup(&d, root, "profiles") : NULL, "profiles",
-                       "runs and fits on wheel-rail profiles are not built yet: `rollsim check` "
-                       "solves the steady problem of every contact patch at the block's wheelset "
-                       "position and prints its forces, `rollsim sweep` does so along a path of "
-                       "positions (sweep: profiles.lateral_displacement, profiles.yaw, "
-                       "profiles.wheel_angular_velocity) into one file");
+                       "fits on wheel-rail profiles are not built yet: `rollsim run` runs every "
+                       "contact patch at the block's wheelset position, `rollsim sweep` solves "
+                       "them along a path of positions");
 }
 
 /* The case of `src` with typed overrides: each value as a plain scalar node outside the

@@ -160,8 +160,7 @@ int rs_case_load(rs_case *c, const char *path, const char *const *sets, int nset
 void rs_case_free(rs_case *c);
 
 /* RS_ERR_INPUT with "CASE:LINE: profiles: ..." when the case has a profiles: block, which
- * `rollsim check` and `rollsim sweep` use (a single run or a fit on profiles is not built
- * yet). */
+ * `rollsim check`, `run` and `sweep` use (a fit on profiles is not built yet). */
 int rs_case_refuse_profiles(const rs_case *c, rs_msg *msg);
 /* The summary of the profiles for `rollsim check` (nothing without a profiles: block). */
 void rs_case_print_profiles(const rs_case *c, FILE *out);

@@ -406,9 +406,9 @@ void rs_case_print_profiles(const rs_case *c, FILE *out)
   else
     fprintf(out, "profiles.wheel_angular_velocity: null  # pure rolling of the nominal radius\n");
   fprintf(out,
-          "# profiles read and checked; %s; rollsim sweep runs a path of wheelset positions "
-          "(sweep: profiles.lateral_displacement, yaw, wheel_angular_velocity), run and fit "
-          "on profiles are not built yet\n",
+          "# profiles read and checked; %s; rollsim run runs each patch, rollsim sweep a path "
+          "of wheelset positions (sweep: profiles.lateral_displacement, yaw, "
+          "wheel_angular_velocity); fits on profiles are not built yet\n",
           w->vertical_load > 0 ? "the steady problem per patch follows"
                                : "give vertical_load for the contact patches");
 }

@@ -437,6 +437,8 @@ static int define_file(rs_output *out, const rs_output_spec *spec, const char **
       (err = rs_output_put_text(ncid, NC_GLOBAL, "history", spec->history ? spec->history : "")) ||
       (err = rs_output_put_text(ncid, NC_GLOBAL, "case", spec->case_text ? spec->case_text : "")))
     return err;
+  if (spec->patch && (err = rs_output_put_text(ncid, NC_GLOBAL, "wheel_rail_patch", spec->patch)))
+    return err;
   char status[RS_OUTPUT_STATUS_LEN];
   rs_output_status_text(status, "running");
   if ((err = nc_put_att_text(ncid, NC_GLOBAL, "status", RS_OUTPUT_STATUS_LEN, status))) return err;

@@ -30,6 +30,8 @@ typedef struct rs_output_spec {
   const char *title;     /* global attribute title */
   const char *case_text; /* global attribute case: the full YAML as run */
   const char *history;   /* global attribute history: e.g. the command line and date */
+  const char *patch;     /* global attribute wheel_rail_patch: which patch of a run on
+                          * profiles the file holds (NULL: none) */
   int dimension;         /* 2: force units N/mm; 3: N, fields over (time, y, x) */
   size_t nx;             /* number of cells (3D: along x) */
   const double *x;       /* cell centres, mm [nx] */

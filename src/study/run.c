@@ -176,6 +176,14 @@ static int transient_companions(const rs_case *c, const rs_run_opts *o, const rs
     cc.error_estimate = 0;
     cc.accuracy = 0.0;
     rs_run_opts co = {.no_output = 1, .records = &comp[k], .interrupt_flag = o->interrupt_flag};
+    rs_model_params pc;
+    if (o->params) { /* a wheel-rail patch: its grid's range on fewer cells, its own pressure */
+      pc = *o->params;
+      pc.cells = cc.cells;
+      pc.cells_y = cc.cells_y;
+      pc.normal_pressure = NULL;
+      co.params = &pc;
+    }
     rs_run_result rr;
     rs_msg cmsg = {{0}};
     const int status = rs_run(&cc, &co, &rr, &cmsg);
@@ -384,7 +392,7 @@ int rs_run(const rs_case *c, const rs_run_opts *o, rs_run_result *res, rs_msg *m
     return rs_msg_set(msg, RS_ERR_INTERNAL, "could not create the SUNDIALS context");
   s.est = (rs_diag){0};
   rs_errest_none(&s.est);
-  int status = rs_model_from_case(&s.m, c, msg);
+  int status = o->params ? rs_model_create(&s.m, o->params, msg) : rs_model_from_case(&s.m, c, msg);
   if (status != RS_OK) {
     free_state(&s);
     return status;
@@ -527,7 +535,8 @@ int rs_run(const rs_case *c, const rs_run_opts *o, rs_run_result *res, rs_msg *m
                          .history = history      ? history
                                     : o->history ? o->history
                                                  : "",
-                         .dimension = c->dimension,
+                         .patch = o->params ? o->patch : NULL,
+                         .dimension = s.m.par.dimension,
                          .nx = (size_t)s.m.grid.nx,
                          .x = s.m.grid.x,
                          .ny = (size_t)s.m.grid.ny,
@@ -535,7 +544,7 @@ int rs_run(const rs_case *c, const rs_run_opts *o, rs_run_result *res, rs_msg *m
                          .fields = fields,
                          .requested_fields = asked | (fields & RS_FIELD_MU),
                          .rig = rig ? &rig_spec : NULL,
-                         .hertz_a = s.m.hertz_a,
+                         .hertz_a = s.m.par.gap_at ? 0.0 : s.m.hertz_a, /* not Hertzian */
                          .hertz_b = s.m.hertz_b,
                          .hertz_load = s.m.normal_load,
                          .rtol = c->mode == RS_MODE_TRANSIENT ? res->rtol : 0.0,

@@ -48,6 +48,10 @@ typedef struct rs_run_opts {
   volatile sig_atomic_t *interrupt_flag;
   /* When set: every record's quantities appended (the error estimate's companion runs). */
   rs_record_diags *records;
+  /* The model's parameters instead of the case's (a wheel-rail patch, study/wheel_rail.h; the
+   * case still gives the mode, times, tolerances, outputs and temperature). NULL: the case's. */
+  const rs_model_params *params;
+  const char *patch; /* with params: the file's wheel_rail_patch attribute */
 } rs_run_opts;
 
 typedef struct rs_run_result {

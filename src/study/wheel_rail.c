@@ -51,17 +51,17 @@ static double lateral_radius(const rs_wr_patch *p, const rs_wr_patch_result *r, 
   return fmin(fmax(ry, 1e-3 * rx), 1e3 * rx);
 }
 
-/* The steady tangential problem of a loaded patch on its grid, with the case's material,
- * friction and plasticity, the patch's normal force and its creepages: the forces on the
- * wheel in the patch's frame (F_x along the track, F_s along s, M_n about the normal through
- * the contact point) and the normal force of the model's own normal solution. */
+/* The model of a loaded patch's tangential problem: the case's material, friction and
+ * plasticity, the patch's gap, normal force and pressure, its creepages. Its grid is the
+ * patch's cut to its contact cells and TANGENTIAL_MARGIN cells around them: the cells outside
+ * carry no traction, and the margin keeps every contact cell's upstream neighbour, the same
+ * problem on fewer cells. *pn_out (the pressure on that grid, which par points to) is the
+ * caller's to free once the model is created. */
 #define TANGENTIAL_MARGIN 1
-static int patch_tangential(const rs_case *c, const rs_wr_patch *p, const rs_wr_patch_result *r,
-                            double V, const rs_creepages *cr, rs_diag *d, long *newton, rs_msg *msg)
+static int patch_params(const rs_case *c, const rs_wr_patch *p, const rs_wr_patch_result *r,
+                        double V, const rs_creepages *cr, rs_model_params *par, double **pn_out,
+                        rs_msg *msg)
 {
-  /* The patch's grid cut to its contact cells and TANGENTIAL_MARGIN cells around them: the
-   * cells outside carry no traction, and the margin keeps every contact cell's upstream
-   * neighbour, the same problem on fewer cells. */
   const rs_grid3d *g = &r->grid;
   int lo[2] = {g->nx, g->ny}, hi[2] = {-1, -1};
   for (int j = 0; j < g->ny; j++)
@@ -79,35 +79,47 @@ static int patch_tangential(const rs_case *c, const rs_wr_patch *p, const rs_wr_
   }
   const int nx = hi[0] - lo[0] + 1, ny = hi[1] - lo[1] + 1;
   if (nx < 1 || ny < 1) return rs_msg_set(msg, RS_ERR_INTERNAL, "a loaded patch without pressure");
-  double *pn = malloc((size_t)nx * ny * sizeof *pn);
+  double *pn = *pn_out = malloc((size_t)nx * ny * sizeof *pn);
   if (!pn) return rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory for a patch's solution");
   for (int j = 0; j < ny; j++)
     for (int i = 0; i < nx; i++)
       pn[(size_t)j * nx + i] = r->pn[(size_t)(j + lo[1]) * g->nx + i + lo[0]];
+  rs_model_params_from_case(c, par);
+  par->dimension = 3;
+  par->cells = nx;
+  par->cells_y = ny;
+  par->grid_from_range = 1;
+  par->x_range[0] = g->x0 + lo[0] * g->dx;
+  par->x_range[1] = g->x0 + (hi[0] + 1) * g->dx;
+  par->y_range[0] = g->y0 + lo[1] * g->dy;
+  par->y_range[1] = g->y0 + (hi[1] + 1) * g->dy;
+  par->radius = p->rolling_radius / cos(p->delta);
+  par->radius_y = lateral_radius(p, r, par->radius);
+  par->gap_at = patch_gap_at;
+  par->gap_ctx = p;
+  par->normal_pressure = pn; /* the load sharing's solution on this grid */
+  par->normal_approach = r->approach;
+  par->force_control = 0;
+  par->load = (rs_history){.kind = RS_HISTORY_CONSTANT, .value = r->normal_force};
+  par->velocity = (rs_history){.kind = RS_HISTORY_CONSTANT, .value = V};
+  par->creepage = (rs_history){.kind = RS_HISTORY_CONSTANT, .value = cr->xi};
+  par->lateral_creepage = (rs_history){.kind = RS_HISTORY_CONSTANT, .value = cr->eta};
+  par->spin = (rs_history){.kind = RS_HISTORY_CONSTANT, .value = cr->phi};
+  return RS_OK;
+}
+
+/* The steady tangential problem of a loaded patch (patch_params): the forces on the wheel in
+ * the patch's frame (F_x along the track, F_s along s, M_n about the normal through the
+ * contact point) and the normal force of the model's pressure. */
+static int patch_tangential(const rs_case *c, const rs_wr_patch *p, const rs_wr_patch_result *r,
+                            double V, const rs_creepages *cr, rs_diag *d, long *newton, rs_msg *msg)
+{
   rs_model_params par;
-  rs_model_params_from_case(c, &par);
-  par.dimension = 3;
-  par.cells = nx;
-  par.cells_y = ny;
-  par.grid_from_range = 1;
-  par.x_range[0] = g->x0 + lo[0] * g->dx;
-  par.x_range[1] = g->x0 + (hi[0] + 1) * g->dx;
-  par.y_range[0] = g->y0 + lo[1] * g->dy;
-  par.y_range[1] = g->y0 + (hi[1] + 1) * g->dy;
-  par.radius = p->rolling_radius / cos(p->delta);
-  par.radius_y = lateral_radius(p, r, par.radius);
-  par.gap_at = patch_gap_at;
-  par.gap_ctx = p;
-  par.normal_pressure = pn; /* the load sharing's solution on this grid */
-  par.normal_approach = r->approach;
-  par.force_control = 0;
-  par.load = (rs_history){.kind = RS_HISTORY_CONSTANT, .value = r->normal_force};
-  par.velocity = (rs_history){.kind = RS_HISTORY_CONSTANT, .value = V};
-  par.creepage = (rs_history){.kind = RS_HISTORY_CONSTANT, .value = cr->xi};
-  par.lateral_creepage = (rs_history){.kind = RS_HISTORY_CONSTANT, .value = cr->eta};
-  par.spin = (rs_history){.kind = RS_HISTORY_CONSTANT, .value = cr->phi};
+  double *pn = NULL;
+  int status = patch_params(c, p, r, V, cr, &par, &pn, msg);
+  if (status != RS_OK) return status;
   rs_model m;
-  int status = rs_model_create(&m, &par, msg);
+  status = rs_model_create(&m, &par, msg);
   free(pn);
   if (status != RS_OK) return status;
   double *y = calloc((size_t)m.lay.neq, sizeof *y), *yp = calloc((size_t)m.lay.neq, sizeof *yp);
@@ -486,5 +498,86 @@ int rs_wheel_rail_sweep(const rs_case *c, const rs_sweep *sw, const rs_wr_sweep_
   free(pc);
   free(pp);
   free(cols);
+  return status;
+}
+
+/* OUT.nc -> OUT_patchK.nc (K from 1); a path without .nc gets _patchK.nc appended. */
+static int patch_path(const char *base, int k, char *out, size_t len)
+{
+  size_t stem = strlen(base);
+  if (stem > 3 && !strcmp(base + stem - 3, ".nc")) stem -= 3;
+  return snprintf(out, len, "%.*s_patch%d.nc", (int)stem, base, k) < (int)len;
+}
+
+int rs_wheel_rail_run(const rs_case *c, const rs_run_opts *o, FILE *out, rs_wr_run_result *res,
+                      rs_msg *msg)
+{
+  memset(res, 0, sizeof *res);
+  const rs_wheel_rail *w = c->profiles;
+  rs_wr_input in;
+  int status = rs_wheel_rail_input(w, &in, msg);
+  rs_wr_geometry geo;
+  if (status != RS_OK || (status = rs_wr_geometry_build(&in, &geo, msg)) != RS_OK) return status;
+  rs_wr_solution sol;
+  status = rs_wr_normal_solve(&geo, w->vertical_load, c->shear_modulus, c->poisson_ratio,
+                              w->grid_cells[0], w->grid_cells[1], &sol, msg);
+  if (status != RS_OK) {
+    rs_wr_geometry_free(&geo);
+    return status;
+  }
+  const double V = rs_history_eval(&c->velocity, 0.0);
+  const double omega =
+      w->wheel_angular_velocity > 0.0 ? w->wheel_angular_velocity : V / w->nominal_rolling_radius;
+  const char *base = o->output_path ? o->output_path : c->output_file;
+  res->patches = geo.npatch;
+  for (int k = 0; k < geo.npatch && status == RS_OK; k++) {
+    const rs_wr_patch *p = &geo.patch[k];
+    const rs_wr_patch_result *r = &sol.patch[k];
+    if (!r->loaded) {
+      if (out)
+        fprintf(out, "patch %d: open (its gap exceeds the approach): nothing to run\n", k + 1);
+      continue;
+    }
+    rs_creepages cr;
+    rs_model_params par;
+    double *pn = NULL;
+    char path[1100];
+    if (!patch_path(base, k + 1, path, sizeof path)) {
+      status = rs_msg_set(msg, RS_ERR_INPUT, "output file %s: the name is too long", base);
+      break;
+    }
+    if ((status = patch_creepages(p, V, w->yaw, omega, &cr, msg)) != RS_OK) break;
+    if ((status = patch_params(c, p, r, V, &cr, &par, &pn, msg)) != RS_OK) break;
+    char note[400];
+    snprintf(note, sizeof note,
+             "patch %d of %d at lateral displacement %g mm, yaw %g rad: contact point y %.4f mm, "
+             "z %.4f mm on the rail, contact angle %.6g rad, rolling radius %.4f mm, F_n %.9g N, "
+             "creepages [%.9g, %.9g, %.9g]; x along the track, y along s (the profile's tangent "
+             "toward the track centre, from the contact point), forces on the wheel",
+             k + 1, geo.npatch, w->lateral_displacement, w->yaw, p->y, p->z_rail, p->delta,
+             p->rolling_radius, r->normal_force, cr.xi, cr.eta, cr.phi);
+    rs_run_opts po = *o;
+    po.output_path = path;
+    po.params = &par;
+    po.patch = note;
+    rs_run_result rr;
+    status = rs_run(c, &po, &rr, msg);
+    free(pn);
+    if (rr.records > 0) {
+      res->runs++;
+      res->newton += rr.stats.nonlin_iters;
+      res->steps += rr.stats.steps;
+      if (out)
+        fprintf(out,
+                "patch %d: contact angle %.2f deg, F_n %.6g N, creepages [%.6g, %.6g, %.6g]: F_x "
+                "%.6g N, F_s %.6g N, M_n %.6g N mm at t = %g s (%zu records) -> %s%s%s%s\n",
+                k + 1, p->delta * 180.0 / RS_PI, r->normal_force, cr.xi, cr.eta, cr.phi,
+                rr.final.Fx, rr.final.Fy, rr.final.Mz, rr.time, rr.records, rr.file,
+                *rr.backup ? " (the previous file kept as " : "", rr.backup, *rr.backup ? ")" : "");
+    }
+    rs_run_result_free(&rr);
+  }
+  rs_wr_solution_free(&sol);
+  rs_wr_geometry_free(&geo);
   return status;
 }

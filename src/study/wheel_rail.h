@@ -8,6 +8,7 @@
 
 #include "io/case.h"
 #include "io/case_sweep.h"
+#include "study/run.h"
 #include "base/status.h"
 
 /* With profiles.vertical_load: the patches, the load sharing and each patch's normal
@@ -35,5 +36,16 @@ typedef struct rs_wr_sweep_result {
 } rs_wr_sweep_result;
 int rs_wheel_rail_sweep(const rs_case *c, const rs_sweep *sw, const rs_wr_sweep_opts *o,
                         rs_wr_sweep_result *res, rs_msg *msg);
+
+/* rollsim run on profiles: at the block's wheelset position, each loaded patch run as the case
+ * says (steady or transient, with its plasticity, friction and temperature) on the patch's
+ * model, its file OUT_patchK.nc a 3D run file over the patch's (x, s) (docs/file-format.md);
+ * with out, one line per patch. Stops at the first patch that fails. */
+typedef struct rs_wr_run_result {
+  int patches, runs; /* patches found, patches run */
+  long newton, steps;
+} rs_wr_run_result;
+int rs_wheel_rail_run(const rs_case *c, const rs_run_opts *o, FILE *out, rs_wr_run_result *res,
+                      rs_msg *msg);
 
 #endif
