@@ -27,9 +27,12 @@ typedef struct rs_temperature_run {
    * factor tau_c0_table(T)/tau_c0 (rs_model.yield_factor) [n]; each NULL without its table. */
   double *T_used, *mu_factor, *yield_factor;
   const rs_history *mu_table, *tau_table;
-  double mu_rest;  /* mu_law(0) */
-  double tau_rest; /* plasticity.tau_c0 */
-  long couplings;  /* fixed-point iterations of the coupled steady states, summed */
+  double mu_rest;         /* mu_law(0) */
+  double tau_rest;        /* plasticity.tau_c0 */
+  int coupling;           /* temperature.coupling: RS_COUPLING_NEWTON or RS_COUPLING_FIXED_POINT */
+  long couplings;         /* coupled iterations (steady solves with the factors held), summed */
+  long newton_steps;      /* Newton steps of the coupling, summed */
+  long coupling_products; /* products with the coupling's Jacobian (GMRES), summed */
 } rs_temperature_run;
 
 /* Nothing to do (on = 0) when the case has no temperature: block. */
