@@ -313,6 +313,7 @@ static int steady_point(const rs_case *c, steady_chain *ch, double **y, int *ny,
   sum->refused += stats.refused;
   sum->couplings += stats.couplings;
   sum->coupling_newton += stats.coupling_newton;
+  sum->coupling_products += stats.coupling_products;
   ch->jac_now = stats.jac_evals;
   if (status != RS_OK) chain_drop(ch); /* no reuse after a failure */
   return status;
@@ -381,6 +382,7 @@ static void line_totals(const rs_sweep_line *line, const rs_stats *sum, const st
     line->stats->refused += sum->refused;
     line->stats->couplings += sum->couplings;
     line->stats->coupling_newton += sum->coupling_newton;
+    line->stats->coupling_products += sum->coupling_products;
     line->stats->jac_evals += ch->jac_evals + ch->jac_now;
   }
   if (line->refined) *line->refined += ch->refined;

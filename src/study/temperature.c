@@ -264,6 +264,7 @@ typedef struct coupling_newton {
   double *b, *x, *yt, *q0, *qp, *qm, *Tt, *T2t, *fric, *plast; /* scratch */
   signed char *cont;
   unsigned char *fixed; /* contact cells held at T0 in the step [nc] */
+  double eta;           /* GMRES's relative tolerance of the step */
   long products;
 } coupling_newton;
 
@@ -336,7 +337,7 @@ static int coupling_times(coupling_newton *cn, const rs_inputs *in, const double
   }
   for (int j = 0; j < cn->nc; j++) Jv[j] = v[j];
   if (bmax == 0.0) return RS_OK; /* no slope: the factors do not move */
-  int status = rs_steady_linear_solve(cn->st, cn->b, cn->x, 1e-10, msg);
+  int status = rs_steady_linear_solve(cn->st, cn->b, cn->x, 1e-2 * cn->eta, msg);
   if (status != RS_OK) return status;
   /* q is bilinear in y (tractions times slip velocities, those affine in y): the central
    * difference is its derivative exactly, for any step; one of 1e-3 of y keeps roundoff low */
@@ -523,9 +524,7 @@ static int newton_step(coupling_newton *cn, rs_work *w, const double *y, double 
       const int I = cn->cell[j];
       rhs[j] = cn->fixed[j] ? T0 - t->T_used[I] : t->T1[I] - t->T_used[I];
     }
-    /* Newton's own forcing term: the linear residual 1e-6 of G's (the iteration then
-     * converges quadratically to far below the coupling's tolerance) */
-    status = coupling_gmres(cn, in, rhs, dT, 1e-6, msg);
+    status = coupling_gmres(cn, in, rhs, dT, cn->eta, msg);
     int more = 0;
     for (int j = 0; j < cn->nc && status == RS_OK; j++)
       if (!cn->fixed[j] && t->T_used[cn->cell[j]] + dT[j] < T0) cn->fixed[j] = more = 1;
@@ -619,6 +618,9 @@ int rs_temperature_couple(rs_temperature_run *t, rs_model *m, rs_work *w, rs_ste
       for (int i = 0; i < n; i++)
         if (t->contact[i]) cn.cell[cn.nc++] = i;
       rs_msg why = {{0}};
+      /* GMRES's tolerance: a tenth of G's relative size, within [1e-6, 1e-3] (an inexact Newton
+       * step as accurate as the iterate warrants keeps the quadratic convergence) */
+      cn.eta = fmax(1e-6, fmin(1e-3, 0.1 * change / rise));
       if (newton_step(&cn, w, y_acc, T0, dT, &why) == RS_OK) {
         t->newton_steps++;
         lambda = 1.0;
@@ -639,6 +641,7 @@ int rs_temperature_couple(rs_temperature_run *t, rs_model *m, rs_work *w, rs_ste
   if (stats) {
     stats->couplings += t->couplings - couplings0;
     stats->coupling_newton += t->newton_steps - newton0;
+    stats->coupling_products += cn.products;
   }
   free(rest);
   free(acc.dx);
