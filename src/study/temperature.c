@@ -337,7 +337,7 @@ static int coupling_times(coupling_newton *cn, const rs_inputs *in, const double
   }
   for (int j = 0; j < cn->nc; j++) Jv[j] = v[j];
   if (bmax == 0.0) return RS_OK; /* no slope: the factors do not move */
-  int status = rs_steady_linear_solve(cn->st, cn->b, cn->x, 1e-2 * cn->eta, msg);
+  int status = rs_steady_linear_solve(cn->st, cn->b, cn->x, 0.1 * cn->eta, msg);
   if (status != RS_OK) return status;
   /* q is bilinear in y (tractions times slip velocities, those affine in y): the central
    * difference is its derivative exactly, for any step; one of 1e-3 of y keeps roundoff low */
