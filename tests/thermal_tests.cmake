@@ -45,10 +45,12 @@ add_test(NAME temperature_tau_table
           ${RS_CASES}/hot_creep_curve.yaml ${RS_CASES}/ertz_temperature.yaml
           ${CMAKE_CURRENT_BINARY_DIR}/tau_table)
 # A fixed point that does not settle (a saw-tooth tau_c0(T), 600 and 30 N/mm^2 every 5 degC): exit 3
-# naming the table, after the iteration cap.
+# naming the table, after the iteration cap (the fixed point's path, temperature.coupling:
+# fixed_point; Newton finds a coupled state there).
 add_test(NAME temperature_tau_table_no_fixed_point COMMAND ${SYSTEM_PYTHON3} ${RS_TESTS}/cli_expect.py
   --exit 3 --stderr "plasticity.tau_c0_table: the coupled steady state \\(tau_c0 from the contact temperature\\) did not converge in 200 iterations"
   -- ${RS_BIN} run ${RS_CASES}/hot_creep_curve.yaml --set sweep=null --set rolling.creepage=-0.04
+  --set temperature.coupling=fixed_point
   --set friction.temperature_table=null --set "plasticity={tau_c0: 300, k_rel: 0.0}"
   --set "plasticity.tau_c0_table={temperature: [20, 25, 30, 35, 40, 45, 50, 55, 60], tau_c0: [600, 30, 600, 30, 600, 30, 600, 30, 600]}"
   -o ${CMAKE_CURRENT_BINARY_DIR}/tau_table_no_fixed_point.nc --quiet)
@@ -65,6 +67,13 @@ add_test(NAME temperature_tau_table_fit_tau_c0 COMMAND ${SYSTEM_PYTHON3} ${RS_TE
   -- ${RS_BIN} fit ${RS_CASES}/fit_creep_curve.yaml --set "temperature={bulk: 20}"
   --set "plasticity.tau_c0_table={temperature: [20, 400], tau_c0: [200, 100]}"
   -o ${CMAKE_CURRENT_BINARY_DIR}/tau_table_fit_tau_c0.nc --quiet)
+# The coupled steady state by Newton (temperature.coupling: newton, the default): quadratic
+# convergence on a mild table, the same states as the fixed point's (mu(T), tau_c0(T), 3D), and a
+# steep table's points where the fixed point fails (docs/model.md §18 "Couplings").
+add_test(NAME temperature_coupling_newton
+  COMMAND ${SYSTEM_PYTHON3} ${RS_TESTS}/check_coupling_newton.py ${RS_BIN}
+          ${RS_CASES}/hot_creep_curve.yaml ${RS_CASES}/ertz_temperature.yaml
+          ${CMAKE_CURRENT_BINARY_DIR}/coupling_newton)
 # mu(T) and tau_c0(T) in transients: steady = transient limit in 2D (with both tables) and 3D,
 # energy per record, a constant table as no table bit for bit, Newton iterations per step against
 # the uncoupled run (docs/model.md §18 "Couplings in transients", docs/verification.md 31).

@@ -269,6 +269,9 @@ static int cmd_sweep(const rs_case *c, const cli_args *a, const rs_sweep *sw, co
            "again on grids of a half and a quarter of the cells, whose coarsest needs at least "
            "%d cells across the contact)\n",
            RS_ERREST_MIN_CELLS);
+  if (sres.couplings > 0)
+    printf("  temperature coupling: %ld coupled solves, %ld Newton steps, %ld Jacobian products\n",
+           sres.couplings, sres.coupling_newton, sres.coupling_products);
   if (sres.lines_in_two > 0)
     printf("  solver.threads 2: %ld continuation line%s solved in two parts at once\n",
            sres.lines_in_two, sres.lines_in_two == 1 ? "" : "s");
@@ -368,6 +371,9 @@ static void print_summary(const rs_case *c, const cli_args *a, const rs_run_resu
   else
     printf("  Newton iterations %ld, linear solves %ld, Jacobian evaluations %ld\n",
            st->nonlin_iters, st->lin_solves, st->jac_evals);
+  if (st->couplings > 0)
+    printf("  temperature coupling: %ld coupled solves, %ld Newton steps, %ld Jacobian products\n",
+           st->couplings, st->coupling_newton, st->coupling_products);
   /* Rolling transients: the cost per cell passage (docs/model.md §5: one passage is one cell
    * length rolled; a fixed-shift scheme takes one step per passage). */
   if (c->mode == RS_MODE_TRANSIENT && !c->rig.on && res->rolled > 0.0 && res->dx > 0.0)

@@ -9,6 +9,9 @@
 #include "physics/thermal.h" /* rs_thermal_params */
 #include "base/status.h"
 
+/* temperature.coupling (the order of its names in the case file) */
+enum { RS_COUPLING_NEWTON = 0, RS_COUPLING_FIXED_POINT = 1 };
+
 typedef enum { RS_MODE_TRANSIENT = 0, RS_MODE_STEADY = 1 } rs_mode;
 typedef enum { RS_START_REST = 0, RS_START_STEADY = 1 } rs_initial_state;
 
@@ -102,6 +105,9 @@ typedef struct rs_case {
   /* plasticity.tau_c0_table: tau_c0 against the contact temperature, piecewise linear (t: degC,
    * strictly increasing; v: N/mm^2); n = 0: none (docs/model.md §18) */
   rs_history tau_c0_table;
+  /* temperature.coupling: how steady states with either table are coupled to their
+   * temperature (docs/model.md §18): RS_COUPLING_NEWTON (default) or RS_COUPLING_FIXED_POINT */
+  int temperature_coupling;
 
   /* rolling: */
   rs_history velocity;           /* V, mm/s */

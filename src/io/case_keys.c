@@ -22,6 +22,7 @@ static const char *const law_names[] = {"coulomb",  "linear", "exponential",
                                         "rational", "polach", NULL};
 static const char *const mu_table_columns[] = {"temperature", "mu", NULL};
 static const char *const tau_table_columns[] = {"temperature", "tau_c0", NULL};
+static const char *const coupling_names[] = {"newton", "fixed_point", NULL};
 const char *const rs_case_field_names[] = {"px",    "pn",   "slip",   "upl",
                                            "ustar", "tauc", "regime", NULL};
 
@@ -157,6 +158,8 @@ const rs_case_key rs_case_keys[] = {
      RS_KEY_HI_ABSURD | RS_KEY_NULLABLE, NULL},
     {"temperature.disc_mass", RS_KEY_VECTOR, F(t_disc_mass), "kg", 0, 1e4,
      RS_KEY_HI_ABSURD | RS_KEY_BODIES | RS_KEY_NULLABLE, NULL},
+    {"temperature.coupling", RS_KEY_CHOICE, F(c.temperature_coupling), "", 0, 0, RS_KEY_NULLABLE,
+     coupling_names},
 
     {"simulation", RS_KEY_SECTION, 0, "", 0, 0, 0, NULL},
     {"simulation.mode", RS_KEY_CHOICE, F(c.mode), "", 0, 0, 0, mode_names},

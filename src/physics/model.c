@@ -434,6 +434,28 @@ void rs_model_cell_law(const rs_model *m, const rs_work *w, const double *y, int
   rs_contact_law(rs_model_cell_plasticity(m, I, &pl), &in, jac, out);
 }
 
+int rs_model_cell_rows(const rs_model *m, const rs_work *w, const double *y, int I, int *row,
+                       double *R)
+{
+  const rs_layout *L = &m->lay;
+  rs_law_out o;
+  rs_model_cell_law(m, w, y, I, 0, &o);
+  int k = 0;
+  for (int c = 0; c < L->ncomp; c++) {
+    row[k] = rs_at_p(L, c, I);
+    R[k++] = o.R[rs_law_row_f(c)];
+    row[k] = rs_at_upl(L, c, I);
+    R[k++] = o.R[rs_law_row_pl(L->ncomp, c)];
+  }
+  row[k] = rs_at_ustar(L, I);
+  R[k++] = o.R[rs_law_row_star(L->ncomp)];
+  if (L->memory) {
+    row[k] = rs_at_mu(L, I);
+    R[k++] = o.R[rs_law_row_mu(L->ncomp)];
+  }
+  return k;
+}
+
 int rs_model_residual(const rs_model *m, rs_work *w, const rs_inputs *in, const double *y,
                       const double *yp, double cj, double *F)
 {

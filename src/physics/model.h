@@ -210,6 +210,13 @@ int rs_model_residual(const rs_model *m, rs_work *w, const rs_inputs *in, const 
 int rs_model_jacobian(const rs_model *m, rs_work *w, const rs_inputs *in, const double *y,
                       const double *yp, double cj, int band, int band_y, rs_csr *J);
 int64_t rs_model_jac_capacity(const rs_model *m, int band, int band_y);
+/* The residual's rows of cell I (its p, u_pl, u* and, with memory, mu rows: their indices in
+ * row, their values in R, each of at most RS_LAW_NROW) with its law evaluated afresh on the
+ * kinematics of w (a residual evaluated at y) and the model's factors as they are now: a
+ * caller varying mu_factor[I] or yield_factor[I] gets the rows' dependence on them
+ * (docs/model.md §18, "Couplings"). Returns the number of rows. */
+int rs_model_cell_rows(const rs_model *m, const rs_work *w, const double *y, int I, int *row,
+                       double *R);
 /* rs_model_jacobian in two parts: the local laws with their Jacobians at (y, yp) into w
  * (w->law, w->branch, w->dense, w->pivot: what rs_model_jv needs), and the assembly of J
  * from them (in and cj as given to rs_model_linearise). */

@@ -882,6 +882,69 @@ int rs_steady_solve(rs_steady *s, double t, double *y, rs_stats *stats, rs_msg *
 
 void rs_steady_set_fail_fast(rs_steady *s, rs_fail_mode mode) { s->fail_fast = mode; }
 
+const rs_inputs *rs_steady_inputs(const rs_steady *s) { return &s->in; }
+
+int rs_steady_linearise(rs_steady *s, double t, const double *y, rs_msg *msg)
+{
+  const rs_model *m = s->m;
+  rs_model_inputs_at(m, t, &s->in);
+  s->in.newton = 1;
+  s->cj = 0.0;
+  double *yp = rates(s, y);
+  int status;
+  if (s->gmres) {
+    status = rs_krylov_setup(&s->kry, &s->in, y, yp, 0.0);
+    if (status == RS_OK) s->ls.jac_evals++;
+    if (status != RS_OK)
+      return rs_msg_set(msg, RS_ERR_SOLVER, "steady Jacobian at the coupled state: %s",
+                        rs_krylov_error(&s->kry)[0] ? rs_krylov_error(&s->kry)
+                                                    : "near field singular");
+    return RS_OK;
+  }
+  status = rs_linsys_assemble(&s->ls, m, &s->work, &s->in, y, yp, 0.0);
+  if (status != RS_OK)
+    return rs_msg_set(msg, RS_ERR_SOLVER, "steady Jacobian at the coupled state: %s",
+                      s->work.msg.text);
+  if (SUNLinSolSetup(rs_linsys_solver(&s->ls), rs_linsys_matrix(&s->ls)) != 0)
+    return rs_msg_set(msg, RS_ERR_SOLVER, "steady Jacobian at the coupled state is singular");
+  return RS_OK;
+}
+
+int rs_steady_linear_solve(rs_steady *s, const double *b, double *x, double rtol, rs_msg *msg)
+{
+  const int neq = s->m->lay.neq;
+  N_Vector vb = N_VNew_Serial(neq, s->ctx), vx = N_VNew_Serial(neq, s->ctx);
+  if (!vb || !vx) {
+    if (vb) N_VDestroy(vb);
+    if (vx) N_VDestroy(vx);
+    return rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory (steady sensitivity)");
+  }
+  memcpy(N_VGetArrayPointer(vb), b, (size_t)neq * sizeof *b);
+  N_VConst(0.0, vx);
+  int flag = 0;
+  if (s->gmres) { /* GMRES stops at |fscale (b - J x)|_2 <= delta, as in KINSOL's solves */
+    SUNLinSolSetScalingVectors(s->gmres, s->fscale, s->fscale);
+    N_Vector sb = N_VClone(vb);
+    double delta = 0.0;
+    if (sb) {
+      N_VProd(vb, s->fscale, sb);
+      delta = rtol * sqrt(N_VDotProd(sb, sb));
+      N_VDestroy(sb);
+    }
+    flag = sb ? SUNLinSolSolve(s->gmres, NULL, vx, vb, delta) : -1;
+  } else {
+    flag = SUNLinSolSolve(rs_linsys_solver(&s->ls), rs_linsys_matrix(&s->ls), vx, vb, 0.0);
+  }
+  if (flag == 0) memcpy(x, N_VGetArrayPointer(vx), (size_t)neq * sizeof *x);
+  N_VDestroy(vb);
+  N_VDestroy(vx);
+  /* a Krylov solve that reduced the residual short of delta still serves a sensitivity */
+  if (flag == SUNLS_RES_REDUCED && s->gmres) flag = 0;
+  return flag == 0 ? RS_OK
+                   : rs_msg_set(msg, RS_ERR_SOLVER,
+                                "steady sensitivity: the linear solve failed (flag %d)", flag);
+}
+
 const rs_work *rs_steady_evaluated(rs_steady *s, const double *y)
 {
   if (!s->krylov3d || s->cj != 0.0) return NULL;

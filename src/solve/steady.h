@@ -37,4 +37,16 @@ typedef enum { RS_FAIL_NEVER = 0, RS_FAIL_FAST = 1, RS_FAIL_UNROLLED = 2 } rs_fa
 void rs_steady_set_fail_fast(rs_steady *s, rs_fail_mode mode);
 void rs_steady_free(rs_steady *s);
 
+/* Solves with the steady Jacobian J = dF/dy (y' = 0) at a steady state y at time t, the
+ * solver's own linear algebra (the direct factorisation, or GMRES with the near-field
+ * preconditioner): sensitivities of the steady state, dy/ds = -J^-1 dF/ds (docs/model.md §18,
+ * "Couplings"). rs_steady_linearise sets J up at y (and the inputs of t, as a solve does);
+ * then any number of rs_steady_linear_solve, x = J^-1 b (rtol: the Krylov path's relative
+ * residual in the scaled 2-norm; the direct paths solve exactly). The next solve of s sets up
+ * its own. RS_ERR_SOLVER when J is singular or GMRES fails. */
+int rs_steady_linearise(rs_steady *s, double t, const double *y, rs_msg *msg);
+int rs_steady_linear_solve(rs_steady *s, const double *b, double *x, double rtol, rs_msg *msg);
+/* The inputs of the last solve or linearisation (those its residual reads: in.newton set). */
+const rs_inputs *rs_steady_inputs(const rs_steady *s);
+
 #endif

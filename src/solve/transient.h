@@ -31,6 +31,9 @@ typedef struct rs_stats {
       factorizations; /* of the iteration matrix (transient; a matrix equal to the last keeps it) */
   long refused;       /* steady solutions refused by rs_model_check_steady (then recomputed
                          by rolling the material, or the solve failed) */
+  long couplings;     /* steady solves of mu(T), tau_c0(T) coupled states (docs/model.md §18) */
+  long coupling_newton;   /* their Newton steps */
+  long coupling_products; /* and the products with their Jacobian (GMRES iterations) */
 } rs_stats;
 
 /* Linear algebra of the steady Newton iteration (all give the same solution to the

@@ -311,6 +311,9 @@ static int steady_point(const rs_case *c, steady_chain *ch, double **y, int *ny,
   sum->nonlin_iters += stats.nonlin_iters;
   sum->lin_solves += stats.lin_solves;
   sum->refused += stats.refused;
+  sum->couplings += stats.couplings;
+  sum->coupling_newton += stats.coupling_newton;
+  sum->coupling_products += stats.coupling_products;
   ch->jac_now = stats.jac_evals;
   if (status != RS_OK) chain_drop(ch); /* no reuse after a failure */
   return status;
@@ -377,6 +380,9 @@ static void line_totals(const rs_sweep_line *line, const rs_stats *sum, const st
     line->stats->nonlin_iters += sum->nonlin_iters;
     line->stats->lin_solves += sum->lin_solves;
     line->stats->refused += sum->refused;
+    line->stats->couplings += sum->couplings;
+    line->stats->coupling_newton += sum->coupling_newton;
+    line->stats->coupling_products += sum->coupling_products;
     line->stats->jac_evals += ch->jac_evals + ch->jac_now;
   }
   if (line->refined) *line->refined += ch->refined;

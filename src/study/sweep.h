@@ -23,6 +23,8 @@ typedef struct rs_sweep_result {
   long refined;      /* continuation steps halved where the regimes jumped or Newton failed */
   long midpoints;    /* approximate intermediate points before steps with many regime changes */
   long lines_in_two; /* lines solved in two parts at once (solver.threads: 2) */
+  /* mu(T), tau_c0(T): steady solves, Newton steps, products with the coupling's Jacobian */
+  long couplings, coupling_newton, coupling_products;
   /* --resume: the points of the lines complete in the file (counted in points_done and
    * points_failed, not computed again) */
   size_t points_kept;

@@ -483,6 +483,9 @@ done:
   res->lin_solves = r.stats.lin_solves;
   res->jac_evals = r.stats.jac_evals;
   res->refused = r.stats.refused;
+  res->couplings = r.stats.couplings;
+  res->coupling_newton = r.stats.coupling_newton;
+  res->coupling_products = r.stats.coupling_products;
   res->refined = r.refined;
   res->midpoints = r.midpoints;
   res->lines_in_two = r.in_two;
