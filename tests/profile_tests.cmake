@@ -136,3 +136,24 @@ add_test(NAME profile_sweep_plot
     ${PROJECT_SOURCE_DIR}/postproc/rollsim_post.py ${RS_A22_CASE} ${RS_PROF_OUT}/plot_sweep)
 set_tests_properties(profile_sweep_plot PROPERTIES
   ENVIRONMENT "MPLCONFIGDIR=${RS_PROF_OUT}/mplconfig;MPLBACKEND=Agg")
+
+# A moving wheelset (profiles.lateral_displacement a history): held positions reach the steady
+# sweep's states, the lateral velocity enters the creepages exactly, the state is carried from
+# interval to interval.
+add_test(NAME profile_run_moving
+  COMMAND ${SYSTEM_PYTHON3} ${RS_TESTS}/check_wr_moving.py ${RS_BIN} ${RS_WR_CASE}
+    ${RS_PROF_OUT}/moving)
+add_test(NAME profile_run_moving_off_rail_refused
+  COMMAND ${SYSTEM_PYTHON3} ${RS_TESTS}/cli_expect.py --exit 2
+    --stderr "sweep_off_rail.yaml: profiles.lateral_displacement at t = 0.8 s: 40 mm: .*share no lateral range"
+    --absent ${RS_PROF_OUT}/moving_off_rail.nc
+    -- ${RS_BIN} run ${RS_TESTS}/profiles/sweep_off_rail.yaml -o ${RS_PROF_OUT}/moving_off_rail.nc
+       --set sweep=null --set simulation.end_time=1 --set simulation.output_interval=0.1
+       --set "profiles.lateral_displacement={ramp: {from: 0, to: 50, start: 0, duration: 1}}")
+add_test(NAME profile_run_moving_temperature_refused
+  COMMAND ${SYSTEM_PYTHON3} ${RS_TESTS}/cli_expect.py --exit 2
+    --stderr "temperature: not with a moving wheelset yet"
+    --absent ${RS_PROF_OUT}/moving_temperature.nc
+    -- ${RS_BIN} run ${RS_WR_CASE} -o ${RS_PROF_OUT}/moving_temperature.nc
+       --set "temperature={bulk: 20}"
+       --set "profiles.lateral_displacement={ramp: {from: 0, to: 1, start: 0, duration: 1e-3}}")

@@ -50,7 +50,13 @@ static const rs_command_help commands[] = {
      "Warnings on stderr (the run goes on, the exit code is unchanged): a creepage that looks\n"
      "like a percentage (|xi|, in 3D also |eta|, >= 0.05) or a longitudinal creepage far\n"
      "beyond full sliding (> 10 mu a/R); a transient projected to take more than 2 minutes\n"
-     "(ETA and a hint).\n"},
+     "(ETA and a hint).\n"
+     "\n"
+     "A case with a profiles: block and vertical_load runs every contact patch at the\n"
+     "wheelset's position on its own model into OUT_patchK.nc (one 3D run file per patch);\n"
+     "with profiles.lateral_displacement or profiles.yaw a history (transient) the wheelset\n"
+     "moves, the contact is updated every output interval and one file over time is\n"
+     "written (docs/case-file.md, profiles:).\n"},
     {"check", "check CASE.yaml [--set KEY=VALUE]...",
      "validate a case, print every resolved and derived parameter; run nothing",
      "Validates the case file and prints every key with its resolved value and unit\n"
@@ -90,7 +96,12 @@ static const rs_command_help commands[] = {
      "Under MPI (mpirun -n N rollsim sweep ...) the continuation lines are farmed out to the\n"
      "ranks (rank 0 computes too and writes the points as they arrive); the file has the\n"
      "serial sweep's numbers plus the per-point variable rank and the attribute ranks.\n"
-     "A point that fails is NaN in the file (counts -1, converged 0) and the exit code is 3.\n"},
+     "A point that fails is NaN in the file (counts -1, converged 0) and the exit code is 3.\n"
+     "\n"
+     "On a case with a profiles: block the sweep is a path of wheelset positions: the keys\n"
+     "profiles.lateral_displacement, profiles.yaw and profiles.wheel_angular_velocity, lists of\n"
+     "one length, the k-th value of each for the k-th position; one file over (position,\n"
+     "patch); in one process (no --part, --resume or mpirun).\n"},
     {"fit", "fit CASE.yaml [-o FIT.nc] [--set KEY=VALUE]... [--resume] [--quiet]",
      "fit case keys to measurements (the case's fit: block), write FIT.nc",
      "Fits the parameters of the case's fit: block (case keys with start and bounds) to the\n"

@@ -426,10 +426,19 @@ static int cmd_run_patches(const rs_case *c, const cli_args *a, const rs_run_opt
   print_title(c, a->case_path);
   rs_msg msg = {{0}};
   rs_wr_run_result res;
-  const int status = rs_wheel_rail_run(c, o, stdout, &res, &msg);
+  const int status = rs_wheel_rail_run(c, o, a->quiet ? NULL : stdout, &res, &msg);
   if (status != RS_OK) fprintf(stderr, "rollsim: %s: %s\n", a->case_path, msg.text);
-  printf("%d patch(es) found, %d run: Newton iterations %ld, steps %ld\n", res.patches, res.runs,
-         res.newton, res.steps);
+  if (status == RS_ERR_INPUT) return status; /* refused: nothing was run */
+  if (rs_wheel_rail_moving(c)) {
+    printf("moving wheelset: %zu intervals written, Newton iterations %ld, steps %ld\n",
+           res.records, res.newton, res.steps);
+    if (*res.file)
+      printf("  output: %s%s%s%s\n", res.file, *res.backup ? " (the previous file kept as " : "",
+             res.backup, *res.backup ? ")" : "");
+  } else {
+    printf("%d patch(es) found, %d run: Newton iterations %ld, steps %ld\n", res.patches, res.runs,
+           res.newton, res.steps);
+  }
   return status;
 }
 

@@ -209,11 +209,36 @@ static double *position_field(rs_wheel_rail *w, const char *name)
                                                : &w->wheel_angular_velocity;
 }
 
+static rs_history *position_history(rs_wheel_rail *w, const char *name)
+{
+  return !strcmp(name, "lateral_displacement") ? &w->lateral_history
+         : !strcmp(name, "yaw")                ? &w->yaw_history
+                                               : NULL;
+}
+
+/* A position key: lateral_displacement and yaw a history (its value at t = 0 the number the
+ * steady problems use), every value within the key's range; wheel_angular_velocity a number. */
 static int position_key(const rs_case_doc *d, const yaml_node_t *map, const char *name,
                         rs_wheel_rail *w)
 {
   const rs_wheel_rail_key *k = rs_wheel_rail_position_key(name);
-  return number_key(d, map, name, k->lo, k->hi, k->unit, position_field(w, name));
+  rs_history *h = position_history(w, name);
+  if (!h) return number_key(d, map, name, k->lo, k->hi, k->unit, position_field(w, name));
+  char key[64];
+  snprintf(key, sizeof key, "profiles.%s", name);
+  const yaml_node_t *n = rs_case_lookup(d, map, name);
+  if (!n || rs_case_is_null(n)) {
+    *h = (rs_history){.kind = RS_HISTORY_CONSTANT, .value = *position_field(w, name)};
+    return RS_OK;
+  }
+  int status = rs_case_history(d, n, key, k->unit, h);
+  /* the keys' ranges are symmetric: the largest |value| over all times bounds them */
+  const double largest = status == RS_OK ? rs_history_max_abs(h, 0.0, INFINITY) : 0.0;
+  if (status == RS_OK && !(largest <= k->hi))
+    status = rs_case_error(d, n, key, "%g %s is outside [%g, %g] %s", largest, k->unit, k->lo,
+                           k->hi, k->unit);
+  if (status == RS_OK) *position_field(w, name) = rs_history_eval(h, 0.0);
+  return status;
 }
 
 int rs_wheel_rail_set(rs_wheel_rail *w, const char *name, double x, rs_msg *msg)
@@ -224,6 +249,8 @@ int rs_wheel_rail_set(rs_wheel_rail *w, const char *name, double x, rs_msg *msg)
     return rs_msg_set(msg, RS_ERR_INPUT, "%g %s is outside [%g, %g] %s", x, k->unit, k->lo, k->hi,
                       k->unit);
   *position_field(w, name) = x;
+  rs_history *h = position_history(w, name);
+  if (h) *h = (rs_history){.kind = RS_HISTORY_CONSTANT, .value = x};
   if (strcmp(name, "lateral_displacement") || !w->placed) return RS_OK;
   rs_wr_input in;
   rs_msg m = {{0}};
@@ -395,12 +422,14 @@ void rs_case_print_profiles(const rs_case *c, FILE *out)
   fprintf(out, "profiles.flange_back_distance: %g  # mm\n", w->flange_back_distance);
   fprintf(out, "profiles.nominal_rolling_radius: %g  # mm\n", w->nominal_rolling_radius);
   fprintf(out, "profiles.flange_back_position: %g  # mm\n", w->flange_back_position);
-  fprintf(out, "profiles.lateral_displacement: %g  # mm, toward this rail\n",
-          w->lateral_displacement);
+  fprintf(out, "profiles.lateral_displacement: %g  # mm, toward this rail%s\n",
+          w->lateral_displacement,
+          rs_history_is_constant(&w->lateral_history) ? "" : " (at t = 0; a history)");
   if (w->vertical_load > 0) fprintf(out, "profiles.vertical_load: %g  # N\n", w->vertical_load);
   fprintf(out, "profiles.patch_separation: %g  # mm\n", w->patch_separation);
   fprintf(out, "profiles.grid_cells: [%d, %d]\n", w->grid_cells[0], w->grid_cells[1]);
-  fprintf(out, "profiles.yaw: %g  # rad\n", w->yaw);
+  fprintf(out, "profiles.yaw: %g  # rad%s\n", w->yaw,
+          rs_history_is_constant(&w->yaw_history) ? "" : " (at t = 0; a history)");
   if (w->wheel_angular_velocity > 0)
     fprintf(out, "profiles.wheel_angular_velocity: %.9g  # rad/s\n", w->wheel_angular_velocity);
   else

@@ -233,6 +233,7 @@ typedef struct rs_positions_output {
   const char *path, *title, *history, *case_text;
   const char *status; /* "complete", "interrupted" or "failed: ..." */
   const char *frames; /* global attribute: the frames the forces are given in */
+  const char *dim;    /* the first dimension's name: NULL "position", or "time" */
   size_t npos;
   int npatch, stride; /* patches written (at least 1), patches stored per position */
   int ncols;

@@ -39,7 +39,7 @@ int rs_positions_output_write(const rs_positions_output *o, char *backup, size_t
   snprintf(part, plen, "%s.part", o->path);
   int ncid = -1, dims[2];
   int err = nc_create(part, NC_CLOBBER | NC_64BIT_OFFSET, &ncid);
-  if (!err) err = nc_def_dim(ncid, "position", o->npos, &dims[0]);
+  if (!err) err = nc_def_dim(ncid, o->dim ? o->dim : "position", o->npos, &dims[0]);
   if (!err) err = nc_def_dim(ncid, "patch", npatch, &dims[1]);
   for (int k = 0; !err && k < o->ncols; k++) err = define_column(ncid, &o->cols[k], dims, &ids[k]);
   char source[64];

@@ -437,6 +437,8 @@ void rs_wheel_rail_free(rs_wheel_rail *w)
   free(w->rail_file);
   free(w->wheel_file);
   free(w->placed);
+  rs_history_free(&w->lateral_history);
+  rs_history_free(&w->yaw_history);
   free(w);
 }
 

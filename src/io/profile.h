@@ -8,6 +8,7 @@
 
 #include <stddef.h>
 
+#include "physics/history.h"
 #include "physics/wr_contact.h"
 #include "base/status.h"
 
@@ -48,11 +49,14 @@ typedef struct rs_wheel_rail {
   double flange_back_distance;   /* mm, between the wheels' flange backs */
   double nominal_rolling_radius; /* mm, of the wheel at its profile's origin (y = 0) */
   double flange_back_position;   /* mm, y of the wheel's flange back in its profile */
-  double lateral_displacement;   /* mm, of the wheelset toward this rail */
+  double lateral_displacement;   /* mm, of the wheelset toward this rail (at t = 0) */
   double vertical_load;          /* N, on the wheel; 0: not given (no contact computed) */
   double patch_separation;       /* mm, the gap rise that separates two patches */
   int grid_cells[2];             /* cells of every patch's grid along x and s */
-  double yaw;                    /* rad, of the wheelset about the vertical */
+  double yaw;                    /* rad, of the wheelset about the vertical (at t = 0) */
+  /* Both as histories (docs/case-file.md): constant unless the case gives a ramp, steps, sine
+   * or table, which only transient runs follow (a moving wheelset, study/wheel_rail.h). */
+  rs_history lateral_history, yaw_history;
   double wheel_angular_velocity; /* rad/s, of the wheel about its axle; 0: pure rolling of the
                                   * nominal rolling radius at rolling.velocity */
   double *placed;                /* [2 rail.n] the rail inclined: y then z (NULL: none) */
@@ -68,8 +72,9 @@ void rs_wheel_rail_free(rs_wheel_rail *w);
 /* The profiles: keys a sweep on profiles varies (a path of wheelset positions, docs/case-file.md
  * "sweep:"): NAME is the key without its "profiles." prefix. rs_wheel_rail_position_key: the
  * key's unit and range (NULL when NAME is not one of them). rs_wheel_rail_set: the block with
- * NAME set to x; with lateral_displacement the geometry must find a contact there (RS_ERR_INPUT
- * with the reason, without a file position, otherwise). */
+ * NAME set to x (a constant, on a copy of the case's block: its histories are not freed); with
+ * lateral_displacement the geometry must find a contact there (RS_ERR_INPUT with the reason,
+ * without a file position, otherwise). */
 typedef struct rs_wheel_rail_key {
   const char *name, *unit;
   double lo, hi;

@@ -16,16 +16,26 @@
 #include "solve/steady.h"
 #include "study/run.h"
 
-/* The creepages of a patch (docs/model.md §21) for the wheelset rolling along the track at V
- * (mm/s), yawed by psi, its wheel turning at omega about the axle: the profiles' frame taken as
- * a right wheel's, x along the track, y toward the track centre, z up; the contact point below
- * the axle by the patch's rolling radius, its tangent plane turned by the contact angle. */
-static int patch_creepages(const rs_wr_patch *p, double V, double psi, double omega,
-                           rs_creepages *cr, rs_msg *msg)
+/* The wheelset's motion at one time: forward speed V (mm/s), yaw psi (rad), the wheel's
+ * angular velocity omega about the axle (rad/s); moving wheelsets also the lateral velocity
+ * toward the track centre (mm/s), the yaw rate (rad/s) and the distance from the contact's
+ * lateral position to the wheelset's centre line (mm, toward the track centre). */
+typedef struct wr_motion {
+  double V, psi, omega;
+  double v_lateral, yaw_rate, to_centre;
+} wr_motion;
+
+/* The creepages of a patch (docs/model.md §21) for the wheelset rolling along the track: the
+ * profiles' frame taken as a right wheel's, x along the track, y toward the track centre, z up;
+ * the contact point below the axle by the patch's rolling radius, its tangent plane turned by
+ * the contact angle. The yaw rate about the wheelset's centre moves the axle point above the
+ * contact along x by -yaw_rate times its lateral offset from the centre. */
+static int patch_creepages(const rs_wr_patch *p, const wr_motion *mo, rs_creepages *cr, rs_msg *msg)
 {
-  const rs_wheelset_motion w = {.velocity = {V, 0.0, 0.0},
-                                .omega = {-omega * sin(psi), omega * cos(psi), 0.0},
-                                .centre = {0.0, 0.0, 0.0}};
+  const rs_wheelset_motion w = {
+      .velocity = {mo->V + mo->yaw_rate * mo->to_centre, mo->v_lateral, 0.0},
+      .omega = {-mo->omega * sin(mo->psi), mo->omega * cos(mo->psi), mo->yaw_rate},
+      .centre = {0.0, 0.0, 0.0}};
   const double point[3] = {0.0, 0.0, -p->rolling_radius};
   rs_contact_frame f;
   /* the profiles' z grows downward: the rail's slope delta turns the tangent down toward +y */
@@ -148,6 +158,13 @@ static int patch_tangential(const rs_case *c, const rs_wr_patch *p, const rs_wr_
 
 int rs_wheel_rail_given(const rs_case *c) { return c->profiles && c->profiles->vertical_load > 0; }
 
+int rs_wheel_rail_moving(const rs_case *c)
+{
+  return rs_wheel_rail_given(c) && c->mode == RS_MODE_TRANSIENT &&
+         (!rs_history_is_constant(&c->profiles->lateral_history) ||
+          !rs_history_is_constant(&c->profiles->yaw_history));
+}
+
 /* Everything at one wheelset position: the patches, the load sharing and, rolling, each
  * loaded patch's creepages and steady tangential solution. */
 typedef struct wr_position {
@@ -189,7 +206,8 @@ static int position_solve(const rs_case *c, const rs_wheel_rail *w, wr_position 
     const rs_wr_patch *p = &pos->geo.patch[k];
     const rs_wr_patch_result *r = &pos->sol.patch[k];
     if (!r->loaded) continue;
-    status = patch_creepages(p, pos->V, w->yaw, pos->omega, &pos->cr[k], msg);
+    const wr_motion mo = {.V = pos->V, .psi = w->yaw, .omega = pos->omega};
+    status = patch_creepages(p, &mo, &pos->cr[k], msg);
     if (status == RS_OK)
       status = patch_tangential(c, p, r, pos->V, &pos->cr[k], &pos->d[k], &pos->newton, msg);
   }
@@ -501,6 +519,297 @@ int rs_wheel_rail_sweep(const rs_case *c, const rs_sweep *sw, const rs_wr_sweep_
   return status;
 }
 
+/* A patch's transient state kept from one geometry update of a moving wheelset to the next. */
+typedef struct patch_state {
+  int valid;
+  rs_model m;
+  double *y;
+  double rail_y, delta; /* the contact point on the rail (mm) and the contact angle (rad) */
+} patch_state;
+
+static void patch_state_free(patch_state *k)
+{
+  if (k->valid) {
+    rs_model_free(&k->m);
+    free(k->y);
+  }
+  memset(k, 0, sizeof *k);
+}
+
+/* The patch of the last update a patch continues: the nearest on the rail, within
+ * CARRY_DISTANCE mm and CARRY_ANGLE rad of contact angle (else it starts from rest: a new
+ * patch, or a jump from the tread to the flange). */
+#define CARRY_DISTANCE 2.0
+#define CARRY_ANGLE    0.05
+static const patch_state *nearest_patch(const patch_state *last, const rs_wr_patch *p)
+{
+  const patch_state *best = NULL;
+  for (int j = 0; j < RS_WR_MAX_PATCHES; j++)
+    if (last[j].valid && fabs(last[j].rail_y - p->y) <= CARRY_DISTANCE &&
+        fabs(last[j].delta - p->delta) <= CARRY_ANGLE &&
+        (!best || fabs(last[j].rail_y - p->y) < fabs(best->rail_y - p->y)))
+      best = &last[j];
+  return best;
+}
+
+/* The state of `from` carried onto the model m of the patch now at rail_y: interpolated in
+ * (x, s) with s shifted by the contact point's move along the profile, (rail_y - from's) /
+ * cos(delta), so that a point of the surface keeps its place on the rail. */
+static int carry_state(const patch_state *from, double rail_y, double delta, const rs_model *m,
+                       rs_work *w, const rs_inputs *in, double *y, rs_msg *msg)
+{
+  const double ds = (rail_y - from->rail_y) / cos(delta);
+  const int ny = from->m.grid.ny;
+  double *ys = malloc((size_t)ny * sizeof *ys);
+  if (!ys) return rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory");
+  for (int j = 0; j < ny; j++) ys[j] = from->m.grid.y[j] - ds;
+  rs_model shifted = from->m; /* shallow: only its grid and layout are read */
+  shifted.grid.y = ys;
+  const int status = rs_model_interpolate_state(&shifted, from->y, m, w, in, y, msg);
+  free(ys);
+  return status;
+}
+
+/* One patch over one interval of a moving wheelset: its model at the interval's start, its
+ * state carried from `from` (or rest), the transient to t1; the forces at t1 into d and the
+ * model and state into keep. */
+static int patch_interval(const rs_case *c, const rs_wr_patch *p, const rs_wr_patch_result *r,
+                          double V, const rs_creepages *cr, const patch_state *from, double t0,
+                          double t1, volatile sig_atomic_t *interrupt, SUNContext ctx, rs_diag *d,
+                          rs_stats *stats, patch_state *keep, rs_msg *msg)
+{
+  rs_model_params par;
+  double *pn = NULL;
+  int status = patch_params(c, p, r, V, cr, &par, &pn, msg);
+  if (status != RS_OK) return status;
+  rs_model m;
+  status = rs_model_create(&m, &par, msg);
+  free(pn);
+  if (status != RS_OK) return status;
+  double *y = calloc((size_t)m.lay.neq, sizeof *y), *yp = calloc((size_t)m.lay.neq, sizeof *yp);
+  rs_work w;
+  int have_work = 0;
+  rs_inputs in;
+  rs_model_inputs_at(&m, t0, &in);
+  status = y && yp ? rs_work_create(&w, &m) : RS_ERR_INTERNAL;
+  if (status != RS_OK) status = rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory for a patch");
+  have_work = status == RS_OK;
+  if (status == RS_OK) {
+    rs_model_rest_state(&m, y);
+    if (from) status = carry_state(from, p->y, p->delta, &m, &w, &in, y, msg);
+  }
+  if (status == RS_OK) status = rs_model_project_state(&m, &w, &in, y, msg);
+  if (status == RS_OK) status = rs_model_consistent_rates(&m, &w, &in, y, yp, msg);
+  rs_transient *tr = NULL;
+  const rs_transient_opts topts = {.rtol = c->rtol > 0.0 ? c->rtol : rs_transient_auto_rtol(&m),
+                                   .atol = c->atol,
+                                   .max_order = c->max_order,
+                                   .max_steps = c->max_steps,
+                                   .max_newton = 10,
+                                   .t_stop = t1,
+                                   .interrupt = interrupt};
+  if (status == RS_OK) status = rs_transient_create(&tr, &m, ctx, t0, y, yp, &topts, msg);
+  if (status == RS_OK) status = rs_transient_advance(tr, t1, y, yp, msg);
+  if (tr) {
+    rs_stats st;
+    rs_transient_get_stats(tr, &st);
+    stats->steps += st.steps;
+    stats->nonlin_iters += st.nonlin_iters;
+    rs_transient_free(tr);
+  }
+  if (status == RS_OK) {
+    rs_model_inputs_at(&m, t1, &in);
+    status = rs_model_diagnostics(&m, &w, &in, y, yp, d, NULL, NULL, NULL);
+  }
+  if (have_work) rs_work_free(&w);
+  free(yp);
+  if (status == RS_OK) {
+    *keep = (patch_state){.valid = 1, .m = m, .y = y, .rail_y = p->y, .delta = p->delta};
+    return RS_OK;
+  }
+  free(y);
+  rs_model_free(&m);
+  return status;
+}
+
+/* rollsim run with the wheelset moving (profiles.lateral_displacement or yaw a history): at
+ * the start of every output interval the patches, the load sharing and each patch's creepages
+ * (with the lateral velocity and the yaw rate) for the position then, held over the interval,
+ * each patch's transient continuing the nearest patch's state; one record per interval
+ * (docs/model.md §20, "A moving wheelset"). */
+static int path_run(const rs_case *c, const rs_run_opts *o, FILE *out, rs_wr_run_result *res,
+                    rs_msg *msg)
+{
+  const rs_wheel_rail *w0 = c->profiles;
+  const double T = c->end_time, dt = c->output_interval;
+  const long nrec = (long)ceil(T / dt - 1e-9);
+  if (c->temperature.on)
+    return rs_msg_set(msg, RS_ERR_INPUT,
+                      "temperature: not with a moving wheelset yet (profiles.lateral_displacement "
+                      "or profiles.yaw a history): run without the temperature: block or hold "
+                      "the wheelset");
+  for (long k = 0; k < nrec; k++) { /* every position placed before anything is solved */
+    rs_wheel_rail wk = *w0;
+    rs_msg m = {{0}};
+    const double t = k * dt;
+    if (rs_wheel_rail_set(&wk, "lateral_displacement", rs_history_eval(&w0->lateral_history, t),
+                          &m) != RS_OK ||
+        rs_wheel_rail_set(&wk, "yaw", rs_history_eval(&w0->yaw_history, t), &m) != RS_OK)
+      return rs_msg_set(msg, RS_ERR_INPUT, "profiles.lateral_displacement at t = %g s: %s", t,
+                        m.text);
+  }
+  const size_t n = (size_t)nrec;
+  const int stride = RS_WR_MAX_PATCHES;
+  double *times = malloc(n * sizeof *times), *pc = malloc(n * C_POSITION_COLS * sizeof *pc);
+  double *pp = malloc(n * (size_t)stride * P_PATCH_COLS * sizeof *pp);
+  double *cols = malloc(n * (C_POSITION_COLS + (size_t)stride * P_PATCH_COLS) * sizeof *cols);
+  SUNContext ctx = NULL;
+  int status =
+      times && pc && pp && cols ? RS_OK : rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory");
+  if (status == RS_OK && SUNContext_Create(NULL, &ctx) != 0)
+    status = rs_msg_set(msg, RS_ERR_INTERNAL, "could not create the SUNDIALS context");
+  for (size_t i = 0; status == RS_OK && i < n * C_POSITION_COLS; i++) pc[i] = NAN;
+  for (size_t i = 0; status == RS_OK && i < n * (size_t)stride * P_PATCH_COLS; i++) pp[i] = NAN;
+  patch_state last[RS_WR_MAX_PATCHES] = {{0}};
+  size_t done = 0;
+  int npatch = 1, interrupted = 0;
+  if (status == RS_OK && out)
+    fprintf(out, "# t s, lateral displacement mm, yaw rad; per patch: y on the rail mm, contact "
+                 "angle deg, F_n, F_x, F_s N (on the wheel)\n");
+  for (long k = 0; status == RS_OK && k < nrec; k++) {
+    if (o->interrupt_flag && *o->interrupt_flag) {
+      interrupted = 1;
+      break;
+    }
+    const double t0 = k * dt, t1 = k + 1 == nrec ? T : (k + 1) * dt;
+    rs_wheel_rail wk = *w0;
+    rs_msg ignored = {{0}};
+    rs_wheel_rail_set(&wk, "lateral_displacement", rs_history_eval(&w0->lateral_history, t0),
+                      &ignored);
+    rs_wheel_rail_set(&wk, "yaw", rs_history_eval(&w0->yaw_history, t0), &ignored);
+    wr_position pos;
+    memset(&pos, 0, sizeof pos);
+    rs_wr_input in;
+    status = rs_wheel_rail_input(&wk, &in, msg);
+    if (status == RS_OK) status = rs_wr_geometry_build(&in, &pos.geo, msg);
+    if (status != RS_OK) break;
+    status = rs_wr_normal_solve(&pos.geo, wk.vertical_load, c->shear_modulus, c->poisson_ratio,
+                                wk.grid_cells[0], wk.grid_cells[1], &pos.sol, msg);
+    if (status != RS_OK) {
+      rs_wr_geometry_free(&pos.geo);
+      break;
+    }
+    pos.V = rs_history_eval(&c->velocity, t0);
+    pos.omega = wk.wheel_angular_velocity > 0.0 ? wk.wheel_angular_velocity
+                                                : pos.V / wk.nominal_rolling_radius;
+    pos.tangential = 1;
+    patch_state next[RS_WR_MAX_PATCHES] = {{0}};
+    rs_stats st = {0};
+    for (int j = 0; status == RS_OK && j < pos.geo.npatch; j++) {
+      const rs_wr_patch *p = &pos.geo.patch[j];
+      const rs_wr_patch_result *r = &pos.sol.patch[j];
+      if (!r->loaded) continue;
+      const wr_motion mo = {.V = pos.V,
+                            .psi = wk.yaw,
+                            .omega = pos.omega,
+                            .v_lateral = -rs_history_rate(&w0->lateral_history, t0),
+                            .yaw_rate = rs_history_rate(&w0->yaw_history, t0),
+                            .to_centre = in.wheel_shift + 0.5 * wk.flange_back_distance +
+                                         wk.flange_back_position - p->y};
+      status = patch_creepages(p, &mo, &pos.cr[j], msg);
+      if (status == RS_OK)
+        status = patch_interval(c, p, r, pos.V, &pos.cr[j], nearest_patch(last, p), t0, t1,
+                                o->interrupt_flag, ctx, &pos.d[j], &st, &next[j], msg);
+    }
+    for (int j = 0; j < RS_WR_MAX_PATCHES; j++) {
+      patch_state_free(&last[j]);
+      last[j] = next[j];
+    }
+    res->newton += st.nonlin_iters;
+    res->steps += st.steps;
+    if (status == RS_OK) {
+      pos.newton = st.nonlin_iters;
+      times[k] = t1;
+      position_store(&pos, &wk, (size_t)k, pc, pp);
+      double *row = pc + (size_t)k * C_POSITION_COLS;
+      row[C_Y] = wk.lateral_displacement;
+      row[C_YAW] = wk.yaw;
+      row[C_OMEGA] = pos.omega;
+      if (pos.geo.npatch > npatch) npatch = pos.geo.npatch;
+      done++;
+      if (out) {
+        fprintf(out, "%9.5g %8.4g %9.4g", t1, wk.lateral_displacement, wk.yaw);
+        const double *v = pp + (size_t)k * stride * P_PATCH_COLS;
+        for (int j = 0; j < pos.geo.npatch; j++, v += P_PATCH_COLS)
+          fprintf(out, "  | %8.3f %6.2f %9.1f %8.1f %8.1f", v[P_RAIL_Y], v[P_DELTA] * 180.0 / RS_PI,
+                  v[P_FN], v[P_FX], v[P_FS]);
+        fputc('\n', out);
+      }
+    }
+    position_free(&pos);
+  }
+  for (int j = 0; j < RS_WR_MAX_PATCHES; j++) patch_state_free(&last[j]);
+  if (ctx) SUNContext_Free(&ctx);
+  if (status == RS_ERR_INTERRUPTED) interrupted = 1;
+  int wstatus = RS_OK;
+  if (times && pc && pp && cols && done > 0) {
+    rs_positions_column spec[1 + C_POSITION_COLS + P_PATCH_COLS];
+    spec[0] = (rs_positions_column){"time", "s", "time at the end of each interval", 0, times};
+    for (int k = 0; k < C_POSITION_COLS; k++) {
+      double *dcol = cols + (size_t)k * done;
+      for (size_t i = 0; i < done; i++) dcol[i] = pc[i * C_POSITION_COLS + k];
+      spec[1 + k] = position_cols[k];
+      spec[1 + k].data = dcol;
+    }
+    for (int k = 0; k < P_PATCH_COLS; k++) {
+      double *dcol = cols + C_POSITION_COLS * done + (size_t)k * done * stride;
+      for (size_t i = 0; i < done; i++)
+        for (int j = 0; j < stride; j++)
+          dcol[i * stride + j] = pp[(i * stride + j) * P_PATCH_COLS + k];
+      spec[1 + C_POSITION_COLS + k] = patch_cols[k];
+      spec[1 + C_POSITION_COLS + k].data = dcol;
+    }
+    char status_text[700];
+    if (interrupted)
+      snprintf(status_text, sizeof status_text, "interrupted");
+    else if (status != RS_OK)
+      snprintf(status_text, sizeof status_text, "failed: %.600s", msg->text);
+    else
+      snprintf(status_text, sizeof status_text, "complete");
+    const rs_positions_output po = {
+        .path = o->output_path ? o->output_path : c->output_file,
+        .title = c->title ? c->title : "",
+        .history = o->history,
+        .case_text = c->yaml_text ? c->yaml_text : "",
+        .status = status_text,
+        .frames = "per patch: x along the track, s along the profile's tangent (toward the track "
+                  "centre), n the normal into the wheel; *_track: x along the track, y toward the "
+                  "track centre, z up; forces on the wheel",
+        .dim = "time",
+        .npos = done,
+        .npatch = npatch,
+        .stride = stride,
+        .ncols = 1 + C_POSITION_COLS + P_PATCH_COLS,
+        .cols = spec};
+    rs_msg wmsg = {{0}};
+    wstatus = rs_positions_output_write(&po, res->backup, sizeof res->backup, &wmsg);
+    if (wstatus == RS_OK)
+      snprintf(res->file, sizeof res->file, "%s", po.path);
+    else if (status == RS_OK)
+      rs_msg_set(msg, wstatus, "%s", wmsg.text);
+  }
+  res->records = done;
+  free(times);
+  free(pc);
+  free(pp);
+  free(cols);
+  if (status == RS_OK && wstatus != RS_OK) return wstatus;
+  if (status == RS_OK && interrupted)
+    return rs_msg_set(msg, RS_ERR_INTERRUPTED, "interrupted: %zu of %zu intervals written", done,
+                      n);
+  return status;
+}
+
 /* OUT.nc -> OUT_patchK.nc (K from 1); a path without .nc gets _patchK.nc appended. */
 static int patch_path(const char *base, int k, char *out, size_t len)
 {
@@ -514,6 +823,7 @@ int rs_wheel_rail_run(const rs_case *c, const rs_run_opts *o, FILE *out, rs_wr_r
 {
   memset(res, 0, sizeof *res);
   const rs_wheel_rail *w = c->profiles;
+  if (rs_wheel_rail_moving(c)) return path_run(c, o, out, res, msg);
   rs_wr_input in;
   int status = rs_wheel_rail_input(w, &in, msg);
   rs_wr_geometry geo;
@@ -546,7 +856,8 @@ int rs_wheel_rail_run(const rs_case *c, const rs_run_opts *o, FILE *out, rs_wr_r
       status = rs_msg_set(msg, RS_ERR_INPUT, "output file %s: the name is too long", base);
       break;
     }
-    if ((status = patch_creepages(p, V, w->yaw, omega, &cr, msg)) != RS_OK) break;
+    const wr_motion mo = {.V = V, .psi = w->yaw, .omega = omega};
+    if ((status = patch_creepages(p, &mo, &cr, msg)) != RS_OK) break;
     if ((status = patch_params(c, p, r, V, &cr, &par, &pn, msg)) != RS_OK) break;
     char note[400];
     snprintf(note, sizeof note,

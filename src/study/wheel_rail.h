@@ -44,7 +44,16 @@ int rs_wheel_rail_sweep(const rs_case *c, const rs_sweep *sw, const rs_wr_sweep_
 typedef struct rs_wr_run_result {
   int patches, runs; /* patches found, patches run */
   long newton, steps;
+  /* a moving wheelset (rs_wheel_rail_moving): the records written to file, where an older
+   * file of that name was kept */
+  size_t records;
+  char file[1040], backup[1040];
 } rs_wr_run_result;
+/* 1 when a transient run moves the wheelset (profiles.lateral_displacement or profiles.yaw
+ * a history): rs_wheel_rail_run then writes one file of the sweep file's layout over time
+ * (docs/file-format.md "Wheel-rail sweep files"), the geometry updated every output
+ * interval. */
+int rs_wheel_rail_moving(const rs_case *c);
 int rs_wheel_rail_run(const rs_case *c, const rs_run_opts *o, FILE *out, rs_wr_run_result *res,
                       rs_msg *msg);
 
