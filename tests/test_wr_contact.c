@@ -17,6 +17,7 @@
 #include "test_support.h"
 
 #include <stdlib.h>
+#include <string.h>
 
 #include "physics/elastic2d.h" /* RS_PI */
 #include "physics/elastic3d.h"
@@ -614,6 +615,32 @@ static void yawed_torus(double Rr, double Rw, int concave, double dl, double psi
   rs_wr_geometry_free(&geo);
 }
 
+/* A concave profile (5 mm) at 0.1 rad on a 3 mm crown: z'' sin^2(psi) = 4.5e-3 outweighs the
+ * circle's cos^2(theta) cos^2(psi)/r = 2.1e-3, the wheel curves toward the rail along the
+ * track, the locus is a saddle and not the closest approach: refused. */
+static void yawed_saddle(void)
+{
+  static arc_line rail, wheel;
+  const double dl = 0.7, yr = 3.0 * sin(dl), yw = 5.0 * sin(dl);
+  arc(&rail, -2.85, 2.85, 0.01, 0.0, 3.0, 3.0, 1.0);
+  arc(&wheel, -4.75, 4.75, 0.01, 0.0, 5.0, 5.0, 1.0);
+  rs_wr_input in = input(&rail, &wheel, yr - yw);
+  in.yaw = 0.1;
+  in.axle_offset = 750.0;
+  rs_wr_geometry geo;
+  rs_msg msg = {{0}};
+  const int status = rs_wr_geometry_build(&in, &geo, &msg);
+  printf("-- concave wheel Rw 5 yawed 0.1 rad on a crown of 3 mm: %s\n", msg.text);
+  ts_check("yawed saddle: refused as input", status, RS_ERR_INPUT, 0);
+  ts_check("yawed saddle: the message says why", strstr(msg.text, "curves toward the rail") != NULL,
+           1, 0);
+  in.yaw = 0.0;
+  if (!geometry(&in, &geo)) { /* unyawed the same profiles are a contact */
+    ts_check("yawed saddle: unyawed, one patch", geo.npatch, 1, 0);
+    rs_wr_geometry_free(&geo);
+  }
+}
+
 /* psi -> -psi mirrors the wheel along the track: the same patch with the lead's sign
  * reversed (every other number the same to rounding: they depend on psi through cos psi,
  * sin psi tan psi and sin^2 theta). And psi -> 0: the unyawed patch, the lead -r m psi. */
@@ -691,6 +718,7 @@ int main(int argc, char **argv)
   yawed_cone(2.75, 0.024, 400.0);
   yawed_torus(40.0, 60.0, 0, asin(0.6), 0.024, 2.0);
   yawed_torus(12.0, 20.0, 1, 0.7, 0.05, 1.0);
+  yawed_saddle();
   yaw_symmetry(argv[1], 3.0, 0.0072);
   yaw_symmetry(argv[1], 8.0, 0.0192);
   printf("%s: %d failure(s)\n", argv[0], ts_failures);

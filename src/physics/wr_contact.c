@@ -513,7 +513,15 @@ static int build(const rs_wr_input *in, const wr_locus *L, rs_wr_geometry *geo, 
     p->axle_height = p->rolling_radius;
     p->curv_x = cos(p->delta) / p->rolling_radius;
     status = patch_table(in, geo->wheel_z, p, rseg, wseg, L, msg);
-    if (status == RS_OK && L) locus_point(L, in->yaw, wseg, p);
+    if (status == RS_OK && L) {
+      locus_point(L, in->yaw, wseg, p);
+      if (!(p->curv_x > 0.0)) /* a saddle of the wheel: the locus is no closest approach */
+        status = rs_msg_set(msg, RS_ERR_INPUT,
+                            "at yaw %g rad the wheel curves toward the rail along the track at the "
+                            "contact point y = %.3f mm (its profile's own curvature outweighs its "
+                            "circle's): its contact locus does not hold there",
+                            in->yaw, p->y);
+    }
   }
   geo->npatch = np;
   free(mins);
