@@ -2,8 +2,10 @@
 """The creepages `rollsim check` prints for a wheel-rail patch (docs/model.md §21) against the
 closed forms of rigid-body kinematics for the wheelset rolling along the track at V, yawed by
 psi, its wheel turning at omega, at the patch's printed rolling radius r and contact angle
-delta (profiles' z downward, y toward the track centre):
-    xi = 1 - omega r cos(psi) / V,  eta = -omega r sin(psi) cos(delta) / V,
+delta (profiles' z downward, y toward the track centre); the yawed wheel's contact point lies
+below its axle by h = r / sqrt(1 + tan^2(delta) sin^2(psi)) and ahead of it by
+-h tan(delta) tan(psi), where the wheel's tangent plane is the patch's (docs/model.md §20 "Yaw"):
+    xi = 1 - omega h cos(psi) / V,  eta = -omega h sin(psi) / (V cos(delta)),
     phi = omega cos(psi) sin(delta) / V.
 Tolerance: what the printed inputs' digits allow (r to 1e-4 mm, delta to 1e-4 deg, the
 creepages to 6 significant digits), doubled.
@@ -32,10 +34,16 @@ def value(key):
 
 r, delta = value("rolling_radius")[0], math.radians(value("contact_angle")[0])
 xi, eta, phi = value("creepages")
-want = (1.0 - omega * r * math.cos(psi) / V, -omega * r * math.sin(psi) * math.cos(delta) / V,
+h = r / math.sqrt(1.0 + (math.tan(delta) * math.sin(psi)) ** 2)
+want = (1.0 - omega * h * math.cos(psi) / V, -omega * h * math.sin(psi) / (V * math.cos(delta)),
         omega * math.cos(psi) * math.sin(delta) / V)
 dr, dd = 5e-5, math.radians(5e-5)  # half the printed last digits of r and delta
-tols = (omega * dr / V, omega * abs(math.sin(psi)) * (dr + r * dd) / V, omega * dd / V)
+# their effect: h within dr + r tan(delta)/cos^2(delta) sin^2(psi) dd, 1/cos(delta) within
+# tan(delta)/cos(delta) dd
+dh = dr + r * abs(math.tan(delta)) / math.cos(delta) ** 2 * math.sin(psi) ** 2 * dd
+tols = (omega * dh / V,
+        omega * abs(math.sin(psi)) * (dh + h * abs(math.tan(delta)) * dd) / (V * math.cos(delta)),
+        omega * dd / V)
 failures = 0
 for name, got, w, t in zip(("xi", "eta", "phi (1/mm)"), (xi, eta, phi), want, tols):
     tol = 2.0 * (t + 5e-6 * abs(w))

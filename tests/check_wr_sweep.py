@@ -6,10 +6,11 @@ with its own lateral displacement, yaw and wheel angular velocity) and its file
 - every position solved (status "complete", converged 1) and the file's swept keys are the case's
   lists, position by position;
 - the creepages of each patch against the closed forms of rigid-body kinematics at the file's
-  rolling radius and contact angle with that position's V, yaw and omega (docs/model.md §21):
-  xi = 1 - omega r cos(psi)/V, eta = -omega r sin(psi) cos(delta)/V, phi = omega cos(psi)
-  sin(delta)/V, to 1e-12 (rounding): a position solved with another position's yaw or omega
-  differs by 1e-6 or more;
+  rolling radius and contact angle with that position's V, yaw and omega (docs/model.md §21),
+  the yawed wheel's contact point below its axle by h = r / sqrt(1 + tan^2(delta) sin^2(psi))
+  and ahead of it by -h tan(delta) tan(psi) (§20 "Yaw"): xi = 1 - omega h cos(psi)/V,
+  eta = -omega h sin(psi) / (V cos(delta)), phi = omega cos(psi) sin(delta)/V, to 1e-12
+  (rounding): a position solved with another position's yaw or omega differs by 1e-6 or more;
 - the load sharing: sum of F_n cos(delta) is the wheel load to 2e-7 (the load sharing's
   tolerance 1e-7, doubled);
 - the track forces are the patch forces turned by the contact angle: Fz_track + sum F_s
@@ -75,7 +76,8 @@ for i in range(n):
     fz = fy = fx = fn_vert = 0.0
     for k in range(int(v["patches"][i])):
         r, d = v["rolling_radius"][i, k], v["contact_angle"][i, k]
-        want = (1 - omega * r * math.cos(psi) / V, -omega * r * math.sin(psi) * math.cos(d) / V,
+        h = r / math.sqrt(1.0 + (math.tan(d) * math.sin(psi)) ** 2)
+        want = (1 - omega * h * math.cos(psi) / V, -omega * h * math.sin(psi) / (V * math.cos(d)),
                 omega * math.cos(psi) * math.sin(d) / V)
         for j, name in enumerate(("xi", "eta", "phi")):
             worst[j] = max(worst[j], abs(v[name][i, k] - want[j]))

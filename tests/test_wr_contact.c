@@ -17,6 +17,7 @@
 #include "test_support.h"
 
 #include <stdlib.h>
+#include <string.h>
 
 #include "physics/elastic2d.h" /* RS_PI */
 #include "physics/elastic3d.h"
@@ -375,8 +376,8 @@ static void two_crowns(void)
  * The rail file has its gauge side at negative y, so it is read mirrored (rail_mirror: true)
  * to face the wheel's flange. mirror: the whole arrangement mirrored (the rail as in its file,
  * the wheel mirrored), so the wheel's shift changes sign. */
-static int mbench(const char *dir, double dy, int mirror, rs_profile *rail, rs_profile *wheel,
-                  rs_wr_geometry *geo)
+static int mbench(const char *dir, double dy, double yaw, int mirror, rs_profile *rail,
+                  rs_profile *wheel, rs_wr_geometry *geo)
 {
   char path[1024];
   rs_msg msg = {{0}};
@@ -398,7 +399,9 @@ static int mbench(const char *dir, double dy, int mirror, rs_profile *rail, rs_p
                     .wheel = {wheel->n, wheel->y, wheel->z},
                     .wheel_shift = mirror ? -shift : shift,
                     .nominal_radius = 460.0,
-                    .separation = 0.01};
+                    .separation = 0.01,
+                    .yaw = yaw,
+                    .axle_offset = 750.0};
   rs_profile_z_at(wheel, 0.0, &in.wheel_z0);
   if (rs_wr_geometry_build(&in, geo, &msg) != RS_OK) goto fail;
   return 0;
@@ -417,7 +420,7 @@ static void mirrored(const char *dir, double dy)
   rs_wr_solution sol[2];
   int ok = 1;
   for (int m = 0; m < 2; m++) {
-    if (mbench(dir, dy, m, &rail[m], &wheel[m], &geo[m])) return;
+    if (mbench(dir, dy, 0.0, m, &rail[m], &wheel[m], &geo[m])) return;
     ok = ok && solve(&geo[m], 40, &sol[m]) == 0;
   }
   if (ok) {
@@ -448,7 +451,7 @@ static void flange(const char *dir)
 {
   rs_profile rail = {0}, wheel = {0};
   rs_wr_geometry geo;
-  if (mbench(dir, 8.0, 0, &rail, &wheel, &geo)) return;
+  if (mbench(dir, 8.0, 0.0, 0, &rail, &wheel, &geo)) return;
   printf("-- S1002/UIC60 at 8 mm\n");
   ts_check("flange: one patch", geo.npatch, 1, 0);
   ts_check("flange: contact angle (deg), the S1002 flank's 70", geo.patch[0].delta * 180 / RS_PI,
@@ -464,6 +467,240 @@ static void flange(const char *dir)
   rs_profile_free(&wheel);
 }
 
+/* (e) Yaw (docs/model.md §20 "Yaw"). A cone r(u) = 460 + m u (its profile the line z = m u)
+ * yawed by psi about the vertical 750 mm from its profile's origin, on a rail crown of radius
+ * Rr sampled every d: the cone's lowest points for each track y form the straight locus
+ * y(u) = u + shift + (750 - u)(1 - cos psi) - r(u) m tan(psi) sin(psi),
+ * z(u) = m u - r(u)(1 - cos theta), sin theta = -m tan psi, of slope m / (cos psi cos theta):
+ * the contact angle; the crown touches it where its own slope is that, y = Rr sin(delta). The
+ * contact point lies ahead of the axle's point at its y by x = r sin(theta) / cos(psi) and
+ * below the axle by r cos(theta). */
+static void yawed_cone(double m, double psi, double Rr)
+{
+  static arc_line rail, wheel;
+  const double tp = tan(psi), st = -m * tp, ct = sqrt(1.0 - st * st);
+  const double delta = atan(m / (cos(psi) * ct)), yc = Rr * sin(delta), d = 0.01;
+  arc(&rail, yc - 20.0, fmin(yc + 20.0, 0.995 * Rr), d, 0.0, Rr, Rr, 1.0);
+  wheel.n = 121;
+  for (size_t i = 0; i < wheel.n; i++)
+    wheel.y[i] = -30.0 + 0.5 * (double)i, wheel.z[i] = m * wheel.y[i];
+  rs_wr_input in = input(&rail, &wheel, yc);
+  in.yaw = psi;
+  in.axle_offset = 750.0;
+  rs_wr_geometry geo;
+  if (geometry(&in, &geo)) return;
+  printf("-- cone m %g yawed %g rad on a crown of %g mm\n", m, psi, Rr);
+  ts_check("yawed cone: one patch", geo.npatch, 1, 0);
+  const rs_wr_patch *p = &geo.patch[0];
+  /* u of the contact from y(u) = yc (linear in u) */
+  const double vers = 1.0 - cos(psi), k = m * tp * sin(psi);
+  const double u = (yc - yc - 750.0 * vers + 460.0 * k) / (1.0 - vers - m * k);
+  const double r = 460.0 + m * u;
+  ts_check("yawed cone: contact angle (rad)", p->delta, delta, 0.05 * d * d / Rr);
+  ts_check("yawed cone: contact point on the rail y (mm)", p->y, yc, 0.05 * d * d);
+  /* the wheel's side is linear in u: its y, radius and lead to the rail point's error */
+  ts_check("yawed cone: contact point on the wheel y (mm)", p->y_wheel, u, 0.1 * d * d);
+  ts_check("yawed cone: rolling radius (mm)", p->rolling_radius, r, 0.1 * m * d * d);
+  ts_check("yawed cone: lead x = r sin(theta)/cos(psi) (mm)", p->x, r * st / cos(psi),
+           1e-9 * r + 0.1 * d * d);
+  ts_check("yawed cone: axle height r cos(theta) (mm)", p->axle_height, r * ct,
+           1e-9 * r + 0.1 * d * d);
+  /* along the track the cone curves by cos^2(theta) cos^2(psi) / (r sqrt(1 + m^2)) (a straight
+   * profile: no curvature of its own), to the radius' error */
+  ts_check("yawed cone: curvature along x (1/mm)", p->curv_x,
+           ct * ct * cos(psi) * cos(psi) / (r * sqrt(1.0 + m * m)), 0.2 * m * d * d / (r * r));
+  rs_wr_geometry_free(&geo);
+}
+
+/* The exact undeformed distance of a yawed wheel over a rail crown, both circles in their
+ * profiles (rail: z = Rr - sqrt(Rr^2 - y^2); wheel: z = sqrt(Rw^2 - u^2) - Rw, or its negative
+ * for a concave wheel, radius 460 + z), at (x, s) of the patch's tangent plane: the rail and the
+ * wheel met along the normal through that point, the wheel by bisection on the surface of
+ * revolution |P - axis| = r(u(P)) about the turned axle. */
+typedef struct yaw_scene {
+  double Rr, Rw, psi, L0, shift, axle_z; /* axle_z: the axle's z (downward), track frame */
+  double concave;                        /* 1: the wheel's profile z = Rw - sqrt(Rw^2 - u^2) */
+} yaw_scene;
+
+static double exact_w(const yaw_scene *sc, const double q[3], const double n[3], int wheel)
+{
+  double lo = -3.0, hi = 3.0;
+  for (int it = 0; it < 200; it++) {
+    const double w = 0.5 * (lo + hi), P[3] = {q[0] + w * n[0], q[1] + w * n[1], q[2] + w * n[2]};
+    double g;
+    if (!wheel) { /* below the rail's surface: g > 0 */
+      g = P[2] - (sc->Rr - sqrt(sc->Rr * sc->Rr - P[1] * P[1]));
+    } else { /* outside the wheel: g > 0 */
+      const double a[3] = {-sin(sc->psi), cos(sc->psi), 0.0};
+      const double c[3] = {0.0, sc->shift + sc->L0, sc->axle_z};
+      const double dp[3] = {P[0] - c[0], P[1] - c[1], P[2] - c[2]};
+      const double along = dp[0] * a[0] + dp[1] * a[1], u = along + sc->L0;
+      const double rho = sqrt(dp[0] * dp[0] + dp[1] * dp[1] + dp[2] * dp[2] - along * along);
+      const double zw = sqrt(sc->Rw * sc->Rw - u * u) - sc->Rw;
+      g = rho - (460.0 + (sc->concave ? -zw : zw));
+    }
+    if (g > 0)
+      hi = w;
+    else
+      lo = w;
+  }
+  return 0.5 * (lo + hi);
+}
+
+/* The largest difference between rs_wr_patch_h and the exact h over |x - xo(0)|, |s| <= e,
+ * both from their values at the contact point. */
+static double yaw_h_error(const yaw_scene *sc, const rs_wr_patch *p, double X0, double e)
+{
+  const double t[3] = {0.0, cos(p->delta), sin(p->delta)},
+               n[3] = {0.0, -sin(p->delta), cos(p->delta)};
+  double err = 0.0, ref = 0.0;
+  for (int i = -8; i <= 8; i++)
+    for (int j = -8; j <= 8; j++) {
+      const double x = e * i / 8.0, s = e * j / 8.0;
+      const double q[3] = {X0 + x, p->y + s * t[1], p->z_rail + s * t[2]};
+      const double h = exact_w(sc, q, n, 0) - exact_w(sc, q, n, 1);
+      const double dh = rs_wr_patch_h(p, x, s) - h;
+      if (i == 0 && j == 0) ref = dh;
+      err = fmax(err, fabs(dh - ref));
+    }
+  return err;
+}
+
+/* A yawed wheel whose profile is a circle of radius Rw (convex, or concave as a flange root)
+ * on a rail crown of radius Rr, both finely sampled, at the unyawed contact angle dl: h(x, s) =
+ * h(s) + curv_x (x - xo(s))^2 / 2 is the exact distance to second order in (x, s)
+ * (docs/model.md §20 "Yaw"), so its error shrinks about eightfold when the region +-e halves
+ * (more than fourfold required: the polylines' chords, d^2/8 (1/Rr + 1/Rw) <= 2e-5 mm, and the
+ * fourth-order terms), and it is a small part of what the yaw changes (against the unyawed
+ * x^2 cos(delta)/(2r)). The concave wheel's own curvature along its profile lowers curv_x by
+ * z'' sin^2(psi) (5 % at 50 mrad; with the opposite sign the error is 31 % of the change) and
+ * skews the patch (the locus' lead moves by r z'' tan(psi) per mm of profile). */
+static void yawed_torus(double Rr, double Rw, int concave, double dl, double psi, double e)
+{
+  static arc_line rail, wheel;
+  const double d = 0.02, sg = concave ? -1.0 : 1.0;
+  /* the unyawed contact: the rail at Rr sin(dl), the wheel at -sg Rw sin(dl) */
+  const double yr = Rr * sin(dl), yw = -sg * Rw * sin(dl), shift = yr - yw;
+  arc(&rail, fmax(yr - 6.0, -0.95 * Rr), fmin(yr + 6.0, 0.95 * Rr), d, 0.0, Rr, Rr, 1.0);
+  arc(&wheel, fmax(yw - 6.0, -0.95 * Rw), fmin(yw + 6.0, 0.95 * Rw), d, 0.0, -sg * Rw, Rw, -sg);
+  rs_wr_input in = input(&rail, &wheel, shift);
+  in.yaw = psi;
+  in.axle_offset = 750.0;
+  rs_wr_geometry geo;
+  if (geometry(&in, &geo)) return;
+  printf("-- %s wheel Rw %g yawed %g rad on a crown of %g mm\n", concave ? "concave" : "convex", Rw,
+         psi, Rr);
+  ts_check("yawed circles: one patch", geo.npatch, 1, 0);
+  const rs_wr_patch *p = &geo.patch[0];
+  /* the axle's z: the wheel's lowest point over the whole locus lies on the rail at first
+   * contact (z_track = z_profile + wheel_z, radius 460 + z_profile) */
+  const yaw_scene sc = {Rr, Rw, psi, 750.0, shift, geo.wheel_z - 460.0, concave};
+  /* the contact point's x from the wheelset's centre: the axle's point at its y, plus the lead */
+  const double X0 = -(p->y - shift - 750.0) * tan(psi) + p->x;
+  const double e1 = yaw_h_error(&sc, p, X0, e), e2 = yaw_h_error(&sc, p, X0, 0.5 * e);
+  printf("   h(x, s) error on +-%g mm %.3g mm, on +-%g mm %.3g mm\n", e, e1, 0.5 * e, e2);
+  ts_check("yawed circles: h error shrinks beyond second order (ratio on +-e / +-e/2 > 4)",
+           e1 / e2 > 4.0, 1, 0);
+  /* what the yaw changes: the locus offset xo(s) and curv_x against the unyawed formula */
+  double change = 0.0;
+  for (int i = -8; i <= 8; i++)
+    for (int j = -8; j <= 8; j++) {
+      const double x = e * i / 8.0, s = e * j / 8.0;
+      change = fmax(change, fabs(rs_wr_patch_h(p, x, s) - rs_wr_patch_h0(p, s) -
+                                 x * x * cos(p->delta) / (2.0 * p->rolling_radius)));
+    }
+  printf("   the yaw's change of h on +-%g mm %.3g mm\n", e, change);
+  ts_check("yawed circles: h error below a tenth of the yaw's change on +-e", e1 < 0.1 * change, 1,
+           0);
+  rs_wr_geometry_free(&geo);
+}
+
+/* A concave profile (5 mm) at 0.1 rad on a 3 mm crown: z'' sin^2(psi) = 4.5e-3 outweighs the
+ * circle's cos^2(theta) cos^2(psi)/r = 2.1e-3, the wheel curves toward the rail along the
+ * track, the locus is a saddle and not the closest approach: refused. */
+static void yawed_saddle(void)
+{
+  static arc_line rail, wheel;
+  const double dl = 0.7, yr = 3.0 * sin(dl), yw = 5.0 * sin(dl);
+  arc(&rail, -2.85, 2.85, 0.01, 0.0, 3.0, 3.0, 1.0);
+  arc(&wheel, -4.75, 4.75, 0.01, 0.0, 5.0, 5.0, 1.0);
+  rs_wr_input in = input(&rail, &wheel, yr - yw);
+  in.yaw = 0.1;
+  in.axle_offset = 750.0;
+  rs_wr_geometry geo;
+  rs_msg msg = {{0}};
+  const int status = rs_wr_geometry_build(&in, &geo, &msg);
+  printf("-- concave wheel Rw 5 yawed 0.1 rad on a crown of 3 mm: %s\n", msg.text);
+  ts_check("yawed saddle: refused as input", status, RS_ERR_INPUT, 0);
+  ts_check("yawed saddle: the message says why", strstr(msg.text, "curves toward the rail") != NULL,
+           1, 0);
+  in.yaw = 0.0;
+  if (!geometry(&in, &geo)) { /* unyawed the same profiles are a contact */
+    ts_check("yawed saddle: unyawed, one patch", geo.npatch, 1, 0);
+    rs_wr_geometry_free(&geo);
+  }
+}
+
+/* psi -> -psi mirrors the wheel along the track: the same patch with the lead's sign
+ * reversed (every other number the same to rounding: they depend on psi through cos psi,
+ * sin psi tan psi and sin^2 theta). And psi -> 0: the unyawed patch, the lead -r m psi. */
+static void yaw_symmetry(const char *dir, double dy, double psi)
+{
+  rs_profile rail[3] = {{0}}, wheel[3] = {{0}};
+  rs_wr_geometry geo[3];
+  const double yaw[3] = {psi, -psi, 1e-7};
+  int ok = 1;
+  for (int k = 0; k < 3 && ok; k++) ok = !mbench(dir, dy, yaw[k], 0, &rail[k], &wheel[k], &geo[k]);
+  if (ok) {
+    printf("-- S1002/UIC60 at %g mm, yaw +-%g rad and 1e-7 rad\n", dy, psi);
+    ts_check("yaw symmetry: patches", geo[1].npatch, geo[0].npatch, 0);
+    const rs_wr_patch *a = &geo[0].patch[0], *b = &geo[1].patch[0];
+    ts_check("yaw symmetry: contact point y (mm)", b->y, a->y, 1e-12);
+    ts_check("yaw symmetry: contact angle (rad)", b->delta, a->delta, 1e-14);
+    ts_check("yaw symmetry: rolling radius (mm)", b->rolling_radius, a->rolling_radius, 1e-12);
+    ts_check("yaw symmetry: lead x (mm), opposite", b->x, -a->x, 1e-12);
+    ts_check("yaw symmetry: h(1, 0.5) (mm)", rs_wr_patch_h(b, -1.0, 0.5),
+             rs_wr_patch_h(a, 1.0, 0.5), 1e-12);
+    rs_wr_solution sol[2];
+    if (solve(&geo[0], 40, &sol[0]) == 0) {
+      if (solve(&geo[1], 40, &sol[1]) == 0) {
+        const rs_wr_patch_result *ra = &sol[0].patch[0], *rb = &sol[1].patch[0];
+        ts_check("yaw symmetry: F_n (relative)", rb->normal_force / ra->normal_force, 1.0, 1e-9);
+        ts_check("yaw symmetry: p_max (relative)", rb->p_max / ra->p_max, 1.0, 1e-9);
+        ts_check("yaw symmetry: x extent mirrored (mm)", rb->x_extent[0], -ra->x_extent[1], 1e-9);
+        rs_wr_solution_free(&sol[1]);
+      }
+      rs_wr_solution_free(&sol[0]);
+    }
+    /* the small-yaw limit: against the unyawed patch (geo[2] at 1e-7 against mbench at 0) */
+    rs_profile r0 = {0}, w0 = {0};
+    rs_wr_geometry g0;
+    if (!mbench(dir, dy, 0.0, 0, &r0, &w0, &g0)) {
+      const rs_wr_patch *c = &geo[2].patch[0], *z = &g0.patch[0];
+      ts_check("small yaw: contact point y (mm)", c->y, z->y, 1e-6);
+      ts_check("small yaw: contact angle (rad)", c->delta, z->delta, 1e-8);
+      ts_check("small yaw: rolling radius (mm)", c->rolling_radius, z->rolling_radius, 1e-6);
+      double err = 0.0, hmax = 0.0;
+      for (double x = -5.0; x <= 5.0; x += 0.5)
+        for (double s = -5.0; s <= 5.0; s += 0.25) {
+          err = fmax(err, fabs(rs_wr_patch_h(c, x, s) - rs_wr_patch_h(z, x, s)));
+          hmax = fmax(hmax, rs_wr_patch_h(z, x, s));
+        }
+      /* the yawed curvature along x from the wheel's slope, the unyawed from the rail's: they
+       * differ by the polylines' kinks at the contact point, a percent of x^2 cos(delta)/(2r) */
+      ts_check("small yaw: h(x, s) on +-5 mm, relative to its largest", err / hmax, 0.0, 0.01);
+      rs_wr_geometry_free(&g0);
+    }
+    rs_profile_free(&r0);
+    rs_profile_free(&w0);
+  }
+  for (int k = 0; k < 3; k++) {
+    if (ok) rs_wr_geometry_free(&geo[k]);
+    rs_profile_free(&rail[k]);
+    rs_profile_free(&wheel[k]);
+  }
+}
+
 int main(int argc, char **argv)
 {
   if (argc < 2) {
@@ -477,6 +714,13 @@ int main(int argc, char **argv)
   mirrored(argv[1], 3.0);
   two_crowns();
   flange(argv[1]);
+  yawed_cone(0.5, 0.02, 300.0);
+  yawed_cone(2.75, 0.024, 400.0);
+  yawed_torus(40.0, 60.0, 0, asin(0.6), 0.024, 2.0);
+  yawed_torus(12.0, 20.0, 1, 0.7, 0.05, 1.0);
+  yawed_saddle();
+  yaw_symmetry(argv[1], 3.0, 0.0072);
+  yaw_symmetry(argv[1], 8.0, 0.0192);
   printf("%s: %d failure(s)\n", argv[0], ts_failures);
   return ts_failures ? 1 : 0;
 }

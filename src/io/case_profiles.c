@@ -155,7 +155,9 @@ int rs_wheel_rail_input(const rs_wheel_rail *w, rs_wr_input *in, rs_msg *msg)
                                      w->flange_back_position - w->lateral_displacement,
                       .nominal_radius = w->nominal_rolling_radius,
                       .wheel_z0 = z0,
-                      .separation = w->patch_separation};
+                      .separation = w->patch_separation,
+                      .yaw = w->yaw,
+                      .axle_offset = 0.5 * w->flange_back_distance + w->flange_back_position};
   return RS_OK;
 }
 

@@ -82,10 +82,10 @@ static double local_slope(const double *py, const double *pz, size_t n, size_t s
  * the tangent, w along the normal (downward for delta = 0), walked from segment seg both ways
  * while u keeps growing away from it, so that w is a function of u. The polyline is placed
  * at (y + shift, z + zshift). Returns the chain's length; u[], w[] in increasing u; y_of[]
- * the track y of each point. */
+ * the track y of each point, idx[] (unless NULL) its index in the polyline. */
 static size_t tangent_chain(const double *py, const double *pz, size_t n, double shift,
                             double zshift, size_t seg, double cy, double cz, double delta,
-                            double *u, double *w, double *y_of)
+                            double *u, double *w, double *y_of, size_t *idx)
 {
   const double c = cos(delta), s = sin(delta);
 #define UCOORD(i) ((py[i] + shift - cy) * c + (pz[i] + zshift - cz) * s)
@@ -102,6 +102,7 @@ static size_t tangent_chain(const double *py, const double *pz, size_t n, double
     u[m] = UCOORD(j);
     w[m] = -(py[j] + shift - cy) * s + (pz[j] + zshift - cz) * c;
     y_of[m] = py[j] + shift;
+    if (idx) idx[m] = (size_t)j;
     m++;
     if (j == last) break;
   }
@@ -147,27 +148,116 @@ static void chain_clip(const double *u, const double *y, size_t m, double ylo, d
     }
 }
 
+/* The wheel's contact locus under yaw (docs/model.md §20 "Yaw"): per wheel profile point, the
+ * lowest point of the turned wheel's circle there for the track y it maps to, in track
+ * coordinates, with what a patch needs there. */
+typedef struct wr_locus {
+  size_t n;
+  double *y, *z;      /* track y; z the wheel profile's z raised by r (1 - cos theta) */
+  double *u, *zw, *r; /* the wheel profile point and its radius */
+  double *X;          /* x from the wheelset's centre */
+  double *zpp;        /* the profile's second derivative there */
+  double *buf;
+} wr_locus;
+
+/* The profile's slope and second derivative at point k from the parabola through it and its
+ * neighbours (the first or last three at an end); where those are not a function of y, the
+ * slope of a segment at k and no curvature. 0 when that segment is vertical. */
+static int point_slope(const double *py, const double *pz, size_t n, size_t k, double *m,
+                       double *zpp)
+{
+  *zpp = 0.0;
+  if (n >= 3) {
+    const size_t j = k == 0 ? 0 : k + 1 >= n ? n - 3 : k - 1;
+    const double y0 = py[j], y1 = py[j + 1], y2 = py[j + 2];
+    if ((y0 < y1 && y1 < y2) || (y0 > y1 && y1 > y2)) {
+      const double d1 = (pz[j + 1] - pz[j]) / (y1 - y0), d2 = (pz[j + 2] - pz[j + 1]) / (y2 - y1);
+      const double c = (d2 - d1) / (y2 - y0);
+      *m = d1 + c * (2.0 * py[k] - y0 - y1);
+      *zpp = 2.0 * c;
+      return 1;
+    }
+  }
+  const size_t a = k + 1 < n ? k : k - 1; /* the segment after k (before it at the end) */
+  if (py[a + 1] == py[a]) return 0;
+  *m = (pz[a + 1] - pz[a]) / (py[a + 1] - py[a]);
+  return 1;
+}
+
+/* The locus of a wheel yawed by psi about the vertical through the wheelset's centre: its
+ * axle a = (-sin psi, cos psi, 0) (x along the track, y toward the track centre, z up), the
+ * profile point u at (u - axle_offset) a from the centre, on a circle of radius r(u). The
+ * point of that circle at angle theta from the bottom is the lowest for its track y where
+ * sin theta = -r'(u) tan psi; a profile too steep for that (|r' tan psi| >= 1, a side of the
+ * flange facing along the axle) has no lowest point there, and those points are left out. */
+static int locus_build(const rs_wr_input *in, wr_locus *L, rs_msg *msg)
+{
+  const rs_wr_polyline *w = &in->wheel;
+  const size_t n = w->n;
+  memset(L, 0, sizeof *L);
+  if (!(L->buf = malloc(7 * n * sizeof *L->buf)))
+    return rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory");
+  double *b = L->buf;
+  L->y = b, L->z = b + n, L->u = b + 2 * n, L->zw = b + 3 * n, L->r = b + 4 * n;
+  L->X = b + 5 * n, L->zpp = b + 6 * n;
+  const double psi = in->yaw, sp = sin(psi), cp = cos(psi), tp = tan(psi);
+  const double vers = 2.0 * sin(0.5 * psi) * sin(0.5 * psi); /* 1 - cos psi */
+  size_t k = 0;
+  for (size_t i = 0; i < n; i++) {
+    double m, zpp;
+    if (!point_slope(w->y, w->z, n, i, &m, &zpp)) continue;
+    const double st = -m * tp;
+    if (!(fabs(st) < 1.0)) continue;
+    const double ct = sqrt(1.0 - st * st), u = w->y[i];
+    const double r = in->nominal_radius + w->z[i] - in->wheel_z0;
+    /* y = y_centre + (u - L0) cos psi + r sin theta sin psi with y_centre = shift + L0 */
+    L->y[k] = u + in->wheel_shift + (in->axle_offset - u) * vers + r * st * sp;
+    L->z[k] = w->z[i] - r * st * st / (1.0 + ct);
+    L->u[k] = u, L->zw[k] = w->z[i], L->r[k] = r, L->zpp[k] = zpp;
+    L->X[k] = (in->axle_offset - u) * sp + r * st * cp;
+    k++;
+  }
+  L->n = k;
+  if (k < 2) {
+    free(L->buf);
+    return rs_msg_set(msg, RS_ERR_INPUT,
+                      "the wheel profile is too steep everywhere for a lowest point at yaw %g rad",
+                      psi);
+  }
+  return RS_OK;
+}
+
 /* The patch's h(0, s) table: both profiles in the tangent frame at the contact point,
- * their normal separation on the union of their points, within the patch's lateral range. */
+ * their normal separation on the union of their points, within the patch's lateral range.
+ * With a locus L (in->wheel its points) also the locus' offset xo(s) along the track. */
 static int patch_table(const rs_wr_input *in, double wheel_z, rs_wr_patch *p, size_t rseg,
-                       size_t wseg, rs_msg *msg)
+                       size_t wseg, const wr_locus *L, rs_msg *msg)
 {
   const size_t nr = in->rail.n, nw = in->wheel.n;
-  double *buf = malloc((3 * (nr + nw) + 2 * (nr + nw)) * sizeof *buf);
-  if (!buf) return rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory");
+  double *buf = malloc((3 * (nr + nw) + 2 * (nr + nw) + nw) * sizeof *buf);
+  size_t *idx = L ? malloc(nw * sizeof *idx) : NULL;
+  if (!buf || (L && !idx)) {
+    free(buf);
+    free(idx);
+    return rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory");
+  }
   double *ur = buf, *wr = ur + nr, *yr = wr + nr;
   double *uw = yr + nr, *ww = uw + nw, *yw = ww + nw;
-  double *su = yw + nw;
+  double *su = yw + nw, *xw = su + 2 * (nr + nw);
   const double zr = p->z_rail, zw = p->z_rail - p->gap;
-  const size_t mr =
-      tangent_chain(in->rail.y, in->rail.z, nr, 0.0, 0.0, rseg, p->y, zr, p->delta, ur, wr, yr);
+  const size_t mr = tangent_chain(in->rail.y, in->rail.z, nr, 0.0, 0.0, rseg, p->y, zr, p->delta,
+                                  ur, wr, yr, NULL);
   const size_t mw = tangent_chain(in->wheel.y, in->wheel.z, nw, in->wheel_shift, wheel_z, wseg,
-                                  p->y, zw, p->delta, uw, ww, yw);
+                                  p->y, zw, p->delta, uw, ww, yw, idx);
   if (mr < 2 || mw < 2) {
     free(buf);
+    free(idx);
     return rs_msg_set(msg, RS_ERR_INPUT, "the profiles turn back at the contact point y = %.3f mm",
                       p->y);
   }
+  if (L)
+    for (size_t k = 0; k < mw; k++) xw[k] = L->X[idx[k]];
+  free(idx);
   double lo, hi;
   chain_clip(ur, yr, mr, p->y_lo, p->y_hi, &lo, &hi);
   lo = fmax(lo, uw[0]);
@@ -182,15 +272,18 @@ static int patch_table(const rs_wr_input *in, double wheel_z, rs_wr_patch *p, si
   qsort(su, m, sizeof *su, cmp_double);
   p->s = malloc(m * sizeof *p->s);
   p->h = malloc(m * sizeof *p->h);
-  if (!p->s || !p->h) {
+  if (L) p->xo = malloc(m * sizeof *p->xo);
+  if (!p->s || !p->h || (L && !p->xo)) {
     free(buf);
     return rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory");
   }
+  const double xc = L ? chain_at(uw, xw, mw, 0.0) : 0.0;
   size_t k = 0;
   for (size_t j = 0; j < m; j++) {
     if (k > 0 && su[j] <= p->s[k - 1]) continue;
     p->s[k] = su[j];
     p->h[k] = chain_at(ur, wr, mr, su[j]) - chain_at(uw, ww, mw, su[j]);
+    if (L) p->xo[k] = chain_at(uw, xw, mw, su[j]) - xc;
     k++;
   }
   p->ns = k;
@@ -212,8 +305,22 @@ double rs_wr_patch_h0(const rs_wr_patch *p, double s)
   return chain_at(p->s, p->h, p->ns, fmin(fmax(s, p->s[0]), p->s[p->ns - 1]));
 }
 
+double rs_wr_patch_h(const rs_wr_patch *p, double x, double s)
+{
+  if (!p->xo) return rs_wr_patch_h0(p, s) + x * x * cos(p->delta) / (2.0 * p->rolling_radius);
+  const double dx = x - chain_at(p->s, p->xo, p->ns, fmin(fmax(s, p->s[0]), p->s[p->ns - 1]));
+  return rs_wr_patch_h0(p, s) + 0.5 * p->curv_x * dx * dx;
+}
+
 void rs_wr_patch_gap(const rs_wr_patch *p, const rs_grid3d *grid, double *h)
 {
+  if (p->xo) {
+    for (int j = 0; j < grid->ny; j++)
+      for (int i = 0; i < grid->nx; i++)
+        h[(size_t)j * grid->nx + i] =
+            rs_wr_patch_h(p, grid->x0 + (i + 0.5) * grid->dx, grid->y0 + (j + 0.5) * grid->dy);
+    return;
+  }
   const double cx = cos(p->delta) / (2.0 * p->rolling_radius);
   for (int j = 0; j < grid->ny; j++) {
     const double h0 = rs_wr_patch_h0(p, grid->y0 + (j + 0.5) * grid->dy);
@@ -247,6 +354,7 @@ void rs_wr_geometry_free(rs_wr_geometry *geo)
   for (int k = 0; k < RS_WR_MAX_PATCHES; k++) {
     free(geo->patch[k].s);
     free(geo->patch[k].h);
+    free(geo->patch[k].xo);
   }
   memset(geo, 0, sizeof *geo);
 }
@@ -256,7 +364,35 @@ typedef struct minimum {
   size_t a, b;
 } minimum;
 
-int rs_wr_geometry_build(const rs_wr_input *in, rs_wr_geometry *geo, rs_msg *msg)
+/* The wheel's side of a patch whose contact point lies on segment seg of the locus: the
+ * profile point, its radius and the profile's second derivative by linear interpolation
+ * along the segment. The point of that circle where the wheel's tangent plane is the
+ * patch's (angle delta about the track's x) has tan theta = -tan(delta) sin(psi): there the
+ * wheel's material moves within the tangent plane (the lead x = -h tan(delta) tan(psi), h
+ * the axle's height). The wheel's normal curvature along the track: Euler's formula with the
+ * circle's 1/(r sqrt(1 + m^2)) and the profile's -z''/(1 + m^2)^(3/2), the track's x turned
+ * from the circle's direction by alpha, cos^2 alpha = cos^2 theta cos^2 psi, m the profile's
+ * slope there, tan(delta) cos(psi) cos(theta). */
+static void locus_point(const wr_locus *L, double psi, size_t seg, rs_wr_patch *p)
+{
+  const double dy = L->y[seg + 1] - L->y[seg];
+  const double f = dy != 0.0 ? (p->y - L->y[seg]) / dy : 0.0;
+#define LERP(a) (L->a[seg] + f * (L->a[seg + 1] - L->a[seg]))
+  p->y_wheel = LERP(u);
+  p->z_wheel = LERP(zw);
+  p->rolling_radius = LERP(r);
+  const double zpp = LERP(zpp);
+#undef LERP
+  const double cp = cos(psi), sp = sin(psi), td = tan(p->delta);
+  const double ct = 1.0 / sqrt(1.0 + td * td * sp * sp), m = td * cp * ct;
+  p->axle_height = p->rolling_radius * ct;
+  p->x = -p->axle_height * td * sp / cp;
+  p->curv_x = (ct * ct * cp * cp / p->rolling_radius - zpp * sp * sp) / sqrt(1.0 + m * m);
+}
+
+/* The geometry of the wheel profile in `in`, or (L given) of the wheel's locus L, in->wheel
+ * then its points in track coordinates. */
+static int build(const rs_wr_input *in, const wr_locus *L, rs_wr_geometry *geo, rs_msg *msg)
 {
   memset(geo, 0, sizeof *geo);
   const rs_wr_polyline *r = &in->rail, *w = &in->wheel;
@@ -373,10 +509,39 @@ int rs_wr_geometry_build(const rs_wr_input *in, rs_wr_geometry *geo, rs_msg *msg
     p->rolling_radius = in->nominal_radius + p->z_wheel - in->wheel_z0;
     p->y_lo = bound[k];
     p->y_hi = bound[k + 1];
-    status = patch_table(in, geo->wheel_z, p, rseg, wseg, msg);
+    p->x = 0.0;
+    p->axle_height = p->rolling_radius;
+    p->curv_x = cos(p->delta) / p->rolling_radius;
+    status = patch_table(in, geo->wheel_z, p, rseg, wseg, L, msg);
+    if (status == RS_OK && L) {
+      locus_point(L, in->yaw, wseg, p);
+      if (!(p->curv_x > 0.0)) /* a saddle of the wheel: the locus is no closest approach */
+        status = rs_msg_set(msg, RS_ERR_INPUT,
+                            "at yaw %g rad the wheel curves toward the rail along the track at the "
+                            "contact point y = %.3f mm (its profile's own curvature outweighs its "
+                            "circle's): its contact locus does not hold there",
+                            in->yaw, p->y);
+    }
   }
   geo->npatch = np;
   free(mins);
   if (status != RS_OK) rs_wr_geometry_free(geo);
+  return status;
+}
+
+int rs_wr_geometry_build(const rs_wr_input *in, rs_wr_geometry *geo, rs_msg *msg)
+{
+  if (in->yaw == 0.0) return build(in, NULL, geo, msg);
+  wr_locus L;
+  int status = locus_build(in, &L, msg);
+  if (status != RS_OK) {
+    memset(geo, 0, sizeof *geo);
+    return status;
+  }
+  rs_wr_input li = *in;
+  li.wheel = (rs_wr_polyline){L.n, L.y, L.z};
+  li.wheel_shift = 0.0;
+  status = build(&li, &L, geo, msg);
+  free(L.buf);
   return status;
 }

@@ -34,6 +34,9 @@ typedef struct rs_wr_input {
   double wheel_z0;       /* mm, the wheel profile's z at its origin */
   double separation;     /* mm: two gap minima are separate patches when the gap rises
                           * more than this above the higher of them between them */
+  double yaw;            /* rad, of the wheelset about the vertical (0: the axle along y) */
+  double axle_offset;    /* mm, along the axle from the wheelset's centre (the yaw's pivot)
+                          * out to the wheel profile's origin */
 } rs_wr_input;
 
 typedef struct rs_wr_patch {
@@ -46,13 +49,20 @@ typedef struct rs_wr_patch {
   double delta;          /* contact angle, rad: atan of the rail's slope dz/dy there
                           * (positive toward the flange) */
   double rolling_radius; /* the wheel's radius there, mm */
+  double x;              /* mm, the contact point's lead along the track from the axle's
+                          * point at the same lateral position (0 without yaw) */
+  double axle_height;    /* mm, the axle above the contact point (the rolling radius without
+                          * yaw) */
+  double curv_x;         /* 1/mm, the wheel's normal curvature along the track at the contact
+                          * point (cos(delta)/r without yaw) */
   double y_lo, y_hi;     /* the patch's lateral range: between the gap maxima that separate
                           * it from its neighbours (or the ends of the common range) */
   /* h(0, s): the profiles' separation normal to the tangent plane against s (along the
    * tangent, from the contact point), on the union of both profiles' points within the
-   * patch's range; s increasing. */
+   * patch's range; s increasing. With yaw the wheel's side is its contact locus: h is then
+   * the least separation over x at each s, reached at x = xo (NULL without yaw). */
   size_t ns;
-  double *s, *h;
+  double *s, *h, *xo;
 } rs_wr_patch;
 
 typedef struct rs_wr_geometry {
@@ -72,8 +82,11 @@ void rs_wr_geometry_free(rs_wr_geometry *geo);
 /* h(0, s) of a patch by linear interpolation of its table (s within the table's range). */
 double rs_wr_patch_h0(const rs_wr_patch *p, double s);
 
-/* The undeformed distance of a patch at the cell centres of grid (x along the track, the
- * grid's y along s): h(x, s) = h(0, s) + x^2 cos(delta) / (2 r). */
+/* The undeformed distance of a patch at (x, s): h(0, s) + x^2 cos(delta) / (2 r); with yaw
+ * h(s) + curv_x (x - xo(s))^2 / 2 (docs/model.md §20). */
+double rs_wr_patch_h(const rs_wr_patch *p, double x, double s);
+
+/* rs_wr_patch_h at the cell centres of grid (x along the track, the grid's y along s). */
 void rs_wr_patch_gap(const rs_wr_patch *p, const rs_grid3d *grid, double *h);
 
 /* The rail's gauge point: y of its innermost (largest y) crossing of the level gauge_height

@@ -33,8 +33,9 @@ static double normal_approach(const rs_wr_patch *p, double dz)
 
 /* The interpenetration region of a patch at normal approach d: the s-range around the
  * contact point where h(0, s) < d (the end of the patch's table when it does not close),
- * and the half-length along x where x^2 cos(delta)/(2r) < d. */
-static void region(const rs_wr_patch *p, double d, double s[2], double *x_half)
+ * and the x-range: |x| < the half-length where x^2 cos(delta)/(2r) < d; with yaw (p->xo)
+ * where curv_x (x - xo(s))^2 / 2 < d - h(s) at some s of that s-range. */
+static void region(const rs_wr_patch *p, double d, double s[2], double x[2])
 {
   size_t k0 = 0;
   while (k0 + 1 < p->ns && p->s[k0 + 1] <= 0.0) k0++;
@@ -50,7 +51,20 @@ static void region(const rs_wr_patch *p, double d, double s[2], double *x_half)
       s[0] = p->s[k + 1] + (p->s[k] - p->s[k + 1]) * (d - p->h[k + 1]) / (p->h[k] - p->h[k + 1]);
       break;
     }
-  *x_half = sqrt(2.0 * p->rolling_radius * fmax(d, 0.0) / cos(p->delta));
+  if (!p->xo) {
+    x[1] = sqrt(2.0 * p->rolling_radius * fmax(d, 0.0) / cos(p->delta));
+    x[0] = -x[1];
+    return;
+  }
+  double lo = 0.0, hi = 0.0;
+  for (size_t k = 0; k < p->ns; k++)
+    if (p->s[k] >= s[0] && p->s[k] <= s[1]) {
+      const double half = sqrt(2.0 * fmax(d - p->h[k], 0.0) / p->curv_x);
+      lo = fmin(lo, p->xo[k] - half);
+      hi = fmax(hi, p->xo[k] + half);
+    }
+  x[0] = lo;
+  x[1] = hi;
 }
 
 /* A start value for the grids only: the load of a patch at normal approach d estimated as
@@ -60,7 +74,7 @@ static double load_estimate(const rs_wr_patch *p, double d, double estar)
 {
   if (!(d > 0)) return 0.0;
   double area = 0.0;
-  const double k = 2.0 * p->rolling_radius / cos(p->delta);
+  const double k = p->xo ? 2.0 / p->curv_x : 2.0 * p->rolling_radius / cos(p->delta);
   for (size_t j = 0; j + 1 < p->ns; j++) {
     const double a = fmax(d - p->h[j], 0.0), b = fmax(d - p->h[j + 1], 0.0);
     area += (p->s[j + 1] - p->s[j]) * (sqrt(k * a) + sqrt(k * b));
@@ -113,14 +127,24 @@ static int patch_grid(patch_solver *ps, double d, int nx, int ns, double shear_m
                       double poisson_ratio, rs_msg *msg)
 {
   const rs_wr_patch *p = ps->geo;
-  double s[2], xh;
-  region(p, d, s, &xh);
+  double s[2], x[2];
+  region(p, d, s, x);
   const double ws = s[1] - s[0];
   const double s0 = fmax(s[0] - RS_WR_MARGIN * ws, p->s[0]);
   const double s1 = fmin(s[1] + RS_WR_MARGIN * ws, p->s[p->ns - 1]);
-  const double x0 = xh * (1.0 + 2.0 * RS_WR_MARGIN);
-  ps->grid = (rs_grid3d){
-      .nx = nx, .ny = ns, .x0 = -x0, .y0 = s0, .dx = 2.0 * x0 / nx, .dy = (s1 - s0) / ns};
+  if (p->xo) { /* the yawed wheel's region lies off x = 0 */
+    const double wx = x[1] - x[0];
+    ps->grid = (rs_grid3d){.nx = nx,
+                           .ny = ns,
+                           .x0 = x[0] - RS_WR_MARGIN * wx,
+                           .y0 = s0,
+                           .dx = (1.0 + 2.0 * RS_WR_MARGIN) * wx / nx,
+                           .dy = (s1 - s0) / ns};
+  } else {
+    const double x0 = x[1] * (1.0 + 2.0 * RS_WR_MARGIN);
+    ps->grid = (rs_grid3d){
+        .nx = nx, .ny = ns, .x0 = -x0, .y0 = s0, .dx = 2.0 * x0 / nx, .dy = (s1 - s0) / ns};
+  }
   const size_t n = (size_t)nx * ns;
   ps->h = malloc(n * sizeof *ps->h);
   ps->p = malloc(n * sizeof *ps->p);

@@ -27,16 +27,17 @@ typedef struct wr_motion {
 
 /* The creepages of a patch (docs/model.md §21) for the wheelset rolling along the track: the
  * profiles' frame taken as a right wheel's, x along the track, y toward the track centre, z up;
- * the contact point below the axle by the patch's rolling radius, its tangent plane turned by
- * the contact angle. The yaw rate about the wheelset's centre moves the axle point above the
- * contact along x by -yaw_rate times its lateral offset from the centre. */
+ * the contact point below the axle by its axle height (the rolling radius without yaw) and
+ * ahead by its lead x, its tangent plane turned by the contact angle. The yaw rate about the
+ * wheelset's centre moves the axle point above the contact along x by -yaw_rate times its
+ * lateral offset from the centre. */
 static int patch_creepages(const rs_wr_patch *p, const wr_motion *mo, rs_creepages *cr, rs_msg *msg)
 {
   const rs_wheelset_motion w = {
       .velocity = {mo->V + mo->yaw_rate * mo->to_centre, mo->v_lateral, 0.0},
       .omega = {-mo->omega * sin(mo->psi), mo->omega * cos(mo->psi), mo->yaw_rate},
       .centre = {0.0, 0.0, 0.0}};
-  const double point[3] = {0.0, 0.0, -p->rolling_radius};
+  const double point[3] = {p->x, 0.0, -p->axle_height};
   rs_contact_frame f;
   /* the profiles' z grows downward: the rail's slope delta turns the tangent down toward +y */
   rs_wr_frame_from_angle(point, -p->delta, &f);
@@ -44,11 +45,7 @@ static int patch_creepages(const rs_wr_patch *p, const wr_motion *mo, rs_creepag
 }
 
 /* The undeformed distance of a patch at (x, s) of its tangent plane (wr_contact.h). */
-static double patch_gap_at(const void *ctx, double x, double s)
-{
-  const rs_wr_patch *p = ctx;
-  return rs_wr_patch_h0(p, s) + x * x * cos(p->delta) / (2.0 * p->rolling_radius);
-}
+static double patch_gap_at(const void *ctx, double x, double s) { return rs_wr_patch_h(ctx, x, s); }
 
 /* Curvature radius of h(0, s) over the loaded part of the patch, from its ends: the Hertz
  * scale of the lateral direction (the solvers' weights). A flat or conformal patch (no
