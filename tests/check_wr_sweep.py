@@ -11,13 +11,16 @@ with its own lateral displacement, yaw and wheel angular velocity) and its file
   and ahead of it by -h tan(delta) tan(psi) (§20 "Yaw"): xi = 1 - omega h cos(psi)/V,
   eta = -omega h sin(psi) / (V cos(delta)), phi = omega cos(psi) sin(delta)/V, to 1e-12
   (rounding): a position solved with another position's yaw or omega differs by 1e-6 or more;
-- the load sharing: sum of F_n cos(delta) is the wheel load to 2e-7 (the load sharing's
-  tolerance 1e-7, doubled);
+- the vertical balance: the wheel's vertical force, tangential forces included (Fz_track, and
+  sum F_n cos(delta) - F_s sin(delta) recomputed here), is the wheel load to 2e-6 (the balance's
+  tolerance 1e-6, doubled);
 - the track forces are the patch forces turned by the contact angle: Fz_track + sum F_s
   sin(delta) = sum F_n cos(delta), Fy_track = sum (F_s cos(delta) + F_n sin(delta)),
   Fx_track = sum F_x, to 1e-9 relative;
-- the flange: at 8 mm the contact angle exceeds 60 deg and F_n exceeds twice the wheel load
-  (F_n = F_z / cos(delta) for one patch), on the tread at 2 mm it is under 10 deg;
+- the flange: at 8 mm the contact angle exceeds 60 deg and F_n exceeds the wheel load by more
+  than 20 % (one patch: F_n cos(delta) - F_s sin(delta) = F_z with |F_s| <= mu F_n gives F_n >=
+  F_z / (cos(delta) + mu sin(delta)), 1.32 F_z at 60 deg), on the tread at 2 mm it is under
+  10 deg;
 - positions 5 (2 mm) and 17 (8 mm) against `rollsim check` with the same keys set: F_n, F_x, F_s
   to the 6 digits check prints.
 
@@ -86,8 +89,9 @@ for i in range(n):
         fz += -fs * math.sin(d) + fn * math.cos(d)
         fy += fs * math.cos(d) + fn * math.sin(d)
         fx += v["Fx"][i, k]
-    check(abs(fn_vert - load) <= 2e-7 * load,
-          f"position {i + 1}: sum F_n cos(delta) = {fn_vert:.9g} N (load {load:g} N)")
+    check(abs(fz - load) <= 2e-6 * load and abs(v["Fz_track"][i] - load) <= 2e-6 * load,
+          f"position {i + 1}: vertical force {fz:.9g} N (load {load:g} N; F_n cos(delta) alone "
+          f"{fn_vert:.6g} N)")
     scale = max(abs(fz), abs(fy), abs(fx), 1.0)
     err = max(abs(fz - v["Fz_track"][i]), abs(fy - v["Fy_track"][i]), abs(fx - v["Fx_track"][i]))
     check(err <= 1e-9 * scale, f"position {i + 1}: track forces (|diff| {err:.2g} N)")
@@ -97,7 +101,7 @@ check(max(worst) <= 1e-12, f"creepages against the closed forms: largest |diff| 
 tread, flange = 4, 16  # 2 mm and 8 mm
 check(math.degrees(v["contact_angle"][tread, 0]) < 10.0,
       f"2 mm: on the tread ({math.degrees(v['contact_angle'][tread, 0]):.2f} deg)")
-check(math.degrees(v["contact_angle"][flange, 0]) > 60.0 and v["Fn"][flange, 0] > 2 * load,
+check(math.degrees(v["contact_angle"][flange, 0]) > 60.0 and v["Fn"][flange, 0] > 1.2 * load,
       f"8 mm: on the flange ({math.degrees(v['contact_angle'][flange, 0]):.2f} deg, "
       f"F_n {v['Fn'][flange, 0]:.0f} N)")
 

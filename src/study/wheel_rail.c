@@ -115,11 +115,66 @@ static int patch_params(const rs_case *c, const rs_wr_patch *p, const rs_wr_patc
   return RS_OK;
 }
 
+/* A patch's solution kept for the next round of the vertical balance or the next interval of a
+ * moving wheelset: its model (only its grid and layout are read later) and state. */
+typedef struct patch_state {
+  int valid;
+  rs_model m;
+  double *y;
+  double rail_y, delta; /* the contact point on the rail (mm) and the contact angle (rad) */
+} patch_state;
+
+static void patch_state_free(patch_state *k)
+{
+  if (k->valid) {
+    rs_model_free(&k->m);
+    free(k->y);
+  }
+  memset(k, 0, sizeof *k);
+}
+
+/* The patch of the last round or interval a patch continues: the nearest on the rail, within
+ * CARRY_DISTANCE mm and CARRY_ANGLE rad of contact angle (else it starts from rest: a new
+ * patch, or a jump from the tread to the flange). */
+#define CARRY_DISTANCE 2.0
+#define CARRY_ANGLE    0.05
+static const patch_state *nearest_patch(const patch_state *last, const rs_wr_patch *p)
+{
+  const patch_state *best = NULL;
+  for (int j = 0; j < RS_WR_MAX_PATCHES; j++)
+    if (last[j].valid && fabs(last[j].rail_y - p->y) <= CARRY_DISTANCE &&
+        fabs(last[j].delta - p->delta) <= CARRY_ANGLE &&
+        (!best || fabs(last[j].rail_y - p->y) < fabs(best->rail_y - p->y)))
+      best = &last[j];
+  return best;
+}
+
+/* The state of `from` carried onto the model m of the patch now at rail_y: interpolated in
+ * (x, s) with s shifted by the contact point's move along the profile, (rail_y - from's) /
+ * cos(delta), so that a point of the surface keeps its place on the rail. */
+static int carry_state(const patch_state *from, double rail_y, double delta, const rs_model *m,
+                       rs_work *w, const rs_inputs *in, double *y, rs_msg *msg)
+{
+  const double ds = (rail_y - from->rail_y) / cos(delta);
+  const int ny = from->m.grid.ny;
+  double *ys = malloc((size_t)ny * sizeof *ys);
+  if (!ys) return rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory");
+  for (int j = 0; j < ny; j++) ys[j] = from->m.grid.y[j] - ds;
+  rs_model shifted = from->m; /* shallow: only its grid and layout are read */
+  shifted.grid.y = ys;
+  const int status = rs_model_interpolate_state(&shifted, from->y, m, w, in, y, msg);
+  free(ys);
+  return status;
+}
+
 /* The steady tangential problem of a loaded patch (patch_params): the forces on the wheel in
  * the patch's frame (F_x along the track, F_s along s, M_n about the normal through the
- * contact point) and the normal force of the model's pressure. */
+ * contact point) and the normal force of the model's pressure. With `from` (the same patch in
+ * the last round of the vertical balance) Newton starts from its solution carried over, and
+ * from rest if that fails; with `keep` the model and solution are kept. */
 static int patch_tangential(const rs_case *c, const rs_wr_patch *p, const rs_wr_patch_result *r,
-                            double V, const rs_creepages *cr, rs_diag *d, long *newton, rs_msg *msg)
+                            double V, const rs_creepages *cr, rs_diag *d, long *newton,
+                            const patch_state *from, patch_state *keep, rs_msg *msg)
 {
   rs_model_params par;
   double *pn = NULL;
@@ -132,23 +187,36 @@ static int patch_tangential(const rs_case *c, const rs_wr_patch *p, const rs_wr_
   double *y = calloc((size_t)m.lay.neq, sizeof *y), *yp = calloc((size_t)m.lay.neq, sizeof *yp);
   rs_steady *s = NULL;
   rs_stats st = {0};
+  rs_work w;
+  int have_work = 0;
+  rs_inputs in;
+  rs_model_inputs_at(&m, 0.0, &in);
   status = y && yp ? rs_steady_create(&s, &m, NULL, msg)
                    : rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory for a patch's solution");
-  if (status == RS_OK) status = rs_steady_solve(s, 0.0, y, &st, msg);
+  if (status == RS_OK) {
+    status = rs_work_create(&w, &m);
+    have_work = status == RS_OK;
+  }
+  if (status == RS_OK && from) {
+    rs_msg ignored = {{0}};
+    if (carry_state(from, p->y, p->delta, &m, &w, &in, y, &ignored) != RS_OK ||
+        rs_steady_solve(s, 0.0, y, &st, &ignored) != RS_OK) {
+      memset(y, 0, (size_t)m.lay.neq * sizeof *y);
+      status = rs_steady_solve(s, 0.0, y, &st, msg);
+    }
+  } else if (status == RS_OK) {
+    status = rs_steady_solve(s, 0.0, y, &st, msg);
+  }
   *newton += st.nonlin_iters;
   rs_steady_free(s);
-  if (status == RS_OK) {
-    rs_work w;
-    rs_inputs in;
-    rs_model_inputs_at(&m, 0.0, &in);
-    status = rs_work_create(&w, &m);
-    if (status == RS_OK) {
-      status = rs_model_diagnostics(&m, &w, &in, y, yp, d, NULL, NULL, NULL);
-      rs_work_free(&w);
-    }
+  if (status == RS_OK) status = rs_model_diagnostics(&m, &w, &in, y, yp, d, NULL, NULL, NULL);
+  if (have_work) rs_work_free(&w);
+  free(yp);
+  if (status == RS_OK && keep) {
+    *keep = (patch_state){.valid = 1, .m = m, .y = y, .rail_y = p->y, .delta = p->delta};
+    return RS_OK;
   }
   free(y);
-  free(yp);
   rs_model_free(&m);
   return status;
 }
@@ -171,8 +239,27 @@ typedef struct wr_position {
   int tangential;  /* 1: V > 0, cr and d of the loaded patches filled */
   rs_creepages cr[RS_WR_MAX_PATCHES];
   rs_diag d[RS_WR_MAX_PATCHES];
-  long newton; /* Newton iterations of the tangential solves */
+  long newton;                /* Newton iterations of the tangential solves */
+  double v_lateral, yaw_rate; /* a moving wheelset's (mm/s toward the track centre, rad/s) */
+  double centre;              /* the wheelset's centre line, y on the rail profile (mm) */
+  double normal_load;         /* N: sum F_n cos(delta), the load the normal problem balanced */
+  double vertical;    /* N: the wheel's vertical force sum (F_n cos(delta) - F_s sin(delta)) */
+  int balance_rounds; /* normal and tangential solves of the vertical balance */
 } wr_position;
+
+/* The wheel's vertical force (up) of a solved position: each loaded patch's normal force and,
+ * rolling, its tangential force along s, turned by the contact angle. */
+static double vertical_force(const wr_position *pos)
+{
+  double fz = 0.0;
+  for (int k = 0; k < pos->geo.npatch; k++) {
+    const rs_wr_patch_result *r = &pos->sol.patch[k];
+    if (!r->loaded) continue;
+    const double delta = pos->geo.patch[k].delta;
+    fz += r->normal_force * cos(delta) - (pos->tangential ? pos->d[k].Fy * sin(delta) : 0.0);
+  }
+  return fz;
+}
 
 static void position_free(wr_position *pos)
 {
@@ -182,32 +269,90 @@ static void position_free(wr_position *pos)
 
 /* Solve the position of w (the case's block or a sweep's copy of it). On failure nothing is
  * left to free. */
-static int position_solve(const rs_case *c, const rs_wheel_rail *w, wr_position *pos, rs_msg *msg)
+/* Tolerance and most rounds of the vertical balance with the tangential forces. */
+#define BALANCE_TOL 1e-6
+#define BALANCE_MAX 30
+
+/* The patches' normal problems balancing `load` (sum F_n cos(delta)) and, rolling, each loaded
+ * patch's creepages and steady tangential solution. */
+static int position_round(const rs_case *c, const rs_wheel_rail *w, double load, wr_position *pos,
+                          patch_state *last, rs_msg *msg)
+{
+  patch_state kept[RS_WR_MAX_PATCHES] = {{0}};
+  int status = rs_wr_normal_solve(&pos->geo, load, c->shear_modulus, c->poisson_ratio,
+                                  w->grid_cells[0], w->grid_cells[1], &pos->sol, msg);
+  for (int k = 0; status == RS_OK && pos->tangential && k < pos->geo.npatch; k++) {
+    const rs_wr_patch *p = &pos->geo.patch[k];
+    const rs_wr_patch_result *r = &pos->sol.patch[k];
+    if (!r->loaded) continue;
+    const wr_motion mo = {.V = pos->V,
+                          .psi = w->yaw,
+                          .omega = pos->omega,
+                          .v_lateral = pos->v_lateral,
+                          .yaw_rate = pos->yaw_rate,
+                          .to_centre = pos->centre - p->y};
+    status = patch_creepages(p, &mo, &pos->cr[k], msg);
+    if (status == RS_OK)
+      status = patch_tangential(c, p, r, pos->V, &pos->cr[k], &pos->d[k], &pos->newton,
+                                last ? nearest_patch(last, p) : NULL, last ? &kept[k] : NULL, msg);
+  }
+  for (int k = 0; last && k < RS_WR_MAX_PATCHES; k++) { /* the next round starts from these */
+    patch_state_free(&last[k]);
+    last[k] = kept[k];
+  }
+  pos->normal_load = load;
+  pos->balance_rounds++;
+  return status;
+}
+
+/* Everything at the position of w: the patches, and the load the normal problems balance
+ * found by the secant method so that the wheel's whole vertical force, tangential forces
+ * included, is the wheel load to BALANCE_TOL (docs/model.md §20, "Vertical balance"). On
+ * failure nothing is left to free. */
+static int position_solve(const rs_case *c, const rs_wheel_rail *w, double t, double v_lateral,
+                          double yaw_rate, wr_position *pos, rs_msg *msg)
 {
   memset(pos, 0, sizeof *pos);
   rs_wr_input in;
   int status = rs_wheel_rail_input(w, &in, msg);
   if (status != RS_OK) return status;
   if ((status = rs_wr_geometry_build(&in, &pos->geo, msg)) != RS_OK) return status;
-  status = rs_wr_normal_solve(&pos->geo, w->vertical_load, c->shear_modulus, c->poisson_ratio,
-                              w->grid_cells[0], w->grid_cells[1], &pos->sol, msg);
-  if (status != RS_OK) {
-    rs_wr_geometry_free(&pos->geo);
-    return status;
-  }
-  pos->V = rs_history_eval(&c->velocity, 0.0);
+  pos->v_lateral = v_lateral;
+  pos->yaw_rate = yaw_rate;
+  /* the track centre line is at y = gauge/2 + y_gauge on the rail profile (io/profile.h), the
+   * wheelset's centre line there less the lateral displacement */
+  pos->centre = in.wheel_shift + 0.5 * w->flange_back_distance + w->flange_back_position;
+  pos->V = rs_history_eval(&c->velocity, t);
   pos->omega = w->wheel_angular_velocity > 0.0 ? w->wheel_angular_velocity
                                                : pos->V / w->nominal_rolling_radius;
   pos->tangential = pos->V > 0.0;
-  for (int k = 0; status == RS_OK && pos->tangential && k < pos->geo.npatch; k++) {
-    const rs_wr_patch *p = &pos->geo.patch[k];
-    const rs_wr_patch_result *r = &pos->sol.patch[k];
-    if (!r->loaded) continue;
-    const wr_motion mo = {.V = pos->V, .psi = w->yaw, .omega = pos->omega};
-    status = patch_creepages(p, &mo, &pos->cr[k], msg);
-    if (status == RS_OK)
-      status = patch_tangential(c, p, r, pos->V, &pos->cr[k], &pos->d[k], &pos->newton, msg);
+  const double fz = w->vertical_load;
+  double load = fz, load_last = 0.0, miss_last = 0.0, miss = 0.0;
+  patch_state last[RS_WR_MAX_PATCHES] = {{0}};
+  for (int round = 0; status == RS_OK; round++) {
+    if (round > 0) rs_wr_solution_free(&pos->sol);
+    status = position_round(c, w, load, pos, last, msg);
+    if (status != RS_OK) break;
+    pos->vertical = vertical_force(pos);
+    miss = pos->vertical - fz;
+    if (!pos->tangential || fabs(miss) <= BALANCE_TOL * fz) break;
+    if (round + 1 == BALANCE_MAX) {
+      status = rs_msg_set(msg, RS_ERR_SOLVER,
+                          "the wheel's vertical force with the tangential forces did not balance "
+                          "the wheel load in %d rounds: %.9g N against %.9g N",
+                          BALANCE_MAX, pos->vertical, fz);
+      break;
+    }
+    /* the first step as if the tangential forces grew in proportion to the normal ones (as
+     * at full slip), then secant steps */
+    const double next = round == 0 || miss == miss_last
+                            ? load * fz / pos->vertical
+                            : load - miss * (load - load_last) / (miss - miss_last);
+    load_last = load;
+    miss_last = miss;
+    load = next > 0.0 ? next : 0.5 * load;
   }
+  for (int k = 0; k < RS_WR_MAX_PATCHES; k++) patch_state_free(&last[k]);
   if (status != RS_OK) position_free(pos);
   return status;
 }
@@ -217,7 +362,7 @@ int rs_wheel_rail_print(const rs_case *c, FILE *out, rs_msg *msg)
   const rs_wheel_rail *w = c->profiles;
   if (!w || !(w->vertical_load > 0)) return RS_OK;
   wr_position pos;
-  int status = position_solve(c, w, &pos, msg);
+  int status = position_solve(c, w, 0.0, 0.0, 0.0, &pos, msg);
   if (status != RS_OK) return status;
   const rs_wr_geometry *geo = &pos.geo;
   const rs_wr_solution *sol = &pos.sol;
@@ -234,8 +379,15 @@ int rs_wheel_rail_print(const rs_case *c, FILE *out, rs_msg *msg)
           geo->npatch, geo->minima, w->patch_separation);
   fprintf(out, "wheel_rail.vertical_approach: %.6g  # mm, of the wheel from first contact\n",
           sol->dz);
-  fprintf(out, "wheel_rail.vertical_force: %.9g  # N, sum of F_n cos(contact angle)\n",
-          sol->vertical);
+  fprintf(out,
+          "wheel_rail.vertical_force: %.9g  # N, the wheel's, sum of F_n cos(contact angle) %s\n",
+          pos.tangential ? pos.vertical : sol->vertical,
+          pos.tangential ? "- F_s sin(contact angle) (rolling)" : "(not rolling)");
+  if (pos.tangential)
+    fprintf(out,
+            "wheel_rail.normal_share: %.9g  # N, sum of F_n cos(contact angle), %d round(s) of "
+            "the vertical balance\n",
+            sol->vertical, pos.balance_rounds);
   fprintf(out,
           "wheel_rail.motion: [%.9g, %.9g, %.9g]  # V mm/s (rolling.velocity), yaw rad, the "
           "wheel's angular velocity rad/s%s\n",
@@ -439,7 +591,7 @@ int rs_wheel_rail_sweep(const rs_case *c, const rs_sweep *sw, const rs_wr_sweep_
                        : rs_history_eval(&c->velocity, 0.0) / w.nominal_rolling_radius;
     wr_position pos;
     rs_msg pm = {{0}};
-    if (position_solve(c, &w, &pos, &pm) != RS_OK) {
+    if (position_solve(c, &w, 0.0, 0.0, 0.0, &pos, &pm) != RS_OK) {
       row[C_CONVERGED] = 0.0;
       res->failed++;
       if (!*first_error)
@@ -516,57 +668,6 @@ int rs_wheel_rail_sweep(const rs_case *c, const rs_sweep *sw, const rs_wr_sweep_
   return status;
 }
 
-/* A patch's transient state kept from one geometry update of a moving wheelset to the next. */
-typedef struct patch_state {
-  int valid;
-  rs_model m;
-  double *y;
-  double rail_y, delta; /* the contact point on the rail (mm) and the contact angle (rad) */
-} patch_state;
-
-static void patch_state_free(patch_state *k)
-{
-  if (k->valid) {
-    rs_model_free(&k->m);
-    free(k->y);
-  }
-  memset(k, 0, sizeof *k);
-}
-
-/* The patch of the last update a patch continues: the nearest on the rail, within
- * CARRY_DISTANCE mm and CARRY_ANGLE rad of contact angle (else it starts from rest: a new
- * patch, or a jump from the tread to the flange). */
-#define CARRY_DISTANCE 2.0
-#define CARRY_ANGLE    0.05
-static const patch_state *nearest_patch(const patch_state *last, const rs_wr_patch *p)
-{
-  const patch_state *best = NULL;
-  for (int j = 0; j < RS_WR_MAX_PATCHES; j++)
-    if (last[j].valid && fabs(last[j].rail_y - p->y) <= CARRY_DISTANCE &&
-        fabs(last[j].delta - p->delta) <= CARRY_ANGLE &&
-        (!best || fabs(last[j].rail_y - p->y) < fabs(best->rail_y - p->y)))
-      best = &last[j];
-  return best;
-}
-
-/* The state of `from` carried onto the model m of the patch now at rail_y: interpolated in
- * (x, s) with s shifted by the contact point's move along the profile, (rail_y - from's) /
- * cos(delta), so that a point of the surface keeps its place on the rail. */
-static int carry_state(const patch_state *from, double rail_y, double delta, const rs_model *m,
-                       rs_work *w, const rs_inputs *in, double *y, rs_msg *msg)
-{
-  const double ds = (rail_y - from->rail_y) / cos(delta);
-  const int ny = from->m.grid.ny;
-  double *ys = malloc((size_t)ny * sizeof *ys);
-  if (!ys) return rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory");
-  for (int j = 0; j < ny; j++) ys[j] = from->m.grid.y[j] - ds;
-  rs_model shifted = from->m; /* shallow: only its grid and layout are read */
-  shifted.grid.y = ys;
-  const int status = rs_model_interpolate_state(&shifted, from->y, m, w, in, y, msg);
-  free(ys);
-  return status;
-}
-
 /* One patch over one interval of a moving wheelset: its model at the interval's start, its
  * state carried from `from` (or rest), the transient to t1; the forces at t1 into d and the
  * model and state into keep. */
@@ -640,6 +741,10 @@ static int path_run(const rs_case *c, const rs_run_opts *o, FILE *out, rs_wr_run
   const rs_wheel_rail *w0 = c->profiles;
   const double T = c->end_time, dt = c->output_interval;
   const long nrec = (long)ceil(T / dt - 1e-9);
+  if (!(rs_history_min(&c->velocity, 0.0, T) > 0.0))
+    return rs_msg_set(msg, RS_ERR_INPUT,
+                      "rolling.velocity: a moving wheelset needs it above 0 at all times (the "
+                      "creepages are divided by it)");
   if (c->temperature.on)
     return rs_msg_set(msg, RS_ERR_INPUT,
                       "temperature: not with a moving wheelset yet (profiles.lateral_displacement "
@@ -684,39 +789,20 @@ static int path_run(const rs_case *c, const rs_run_opts *o, FILE *out, rs_wr_run
     rs_wheel_rail_set(&wk, "lateral_displacement", rs_history_eval(&w0->lateral_history, t0),
                       &ignored);
     rs_wheel_rail_set(&wk, "yaw", rs_history_eval(&w0->yaw_history, t0), &ignored);
+    /* the patches, their creepages with the wheelset's motion, and the loads of the steady
+     * vertical balance at this position */
     wr_position pos;
-    memset(&pos, 0, sizeof pos);
-    rs_wr_input in;
-    status = rs_wheel_rail_input(&wk, &in, msg);
-    if (status == RS_OK) status = rs_wr_geometry_build(&in, &pos.geo, msg);
+    status = position_solve(c, &wk, t0, -rs_history_rate(&w0->lateral_history, t0),
+                            rs_history_rate(&w0->yaw_history, t0), &pos, msg);
     if (status != RS_OK) break;
-    status = rs_wr_normal_solve(&pos.geo, wk.vertical_load, c->shear_modulus, c->poisson_ratio,
-                                wk.grid_cells[0], wk.grid_cells[1], &pos.sol, msg);
-    if (status != RS_OK) {
-      rs_wr_geometry_free(&pos.geo);
-      break;
-    }
-    pos.V = rs_history_eval(&c->velocity, t0);
-    pos.omega = wk.wheel_angular_velocity > 0.0 ? wk.wheel_angular_velocity
-                                                : pos.V / wk.nominal_rolling_radius;
-    pos.tangential = 1;
     patch_state next[RS_WR_MAX_PATCHES] = {{0}};
     rs_stats st = {0};
     for (int j = 0; status == RS_OK && j < pos.geo.npatch; j++) {
       const rs_wr_patch *p = &pos.geo.patch[j];
       const rs_wr_patch_result *r = &pos.sol.patch[j];
       if (!r->loaded) continue;
-      const wr_motion mo = {.V = pos.V,
-                            .psi = wk.yaw,
-                            .omega = pos.omega,
-                            .v_lateral = -rs_history_rate(&w0->lateral_history, t0),
-                            .yaw_rate = rs_history_rate(&w0->yaw_history, t0),
-                            .to_centre = in.wheel_shift + 0.5 * wk.flange_back_distance +
-                                         wk.flange_back_position - p->y};
-      status = patch_creepages(p, &mo, &pos.cr[j], msg);
-      if (status == RS_OK)
-        status = patch_interval(c, p, r, pos.V, &pos.cr[j], nearest_patch(last, p), t0, t1,
-                                o->interrupt_flag, ctx, &pos.d[j], &st, &next[j], msg);
+      status = patch_interval(c, p, r, pos.V, &pos.cr[j], nearest_patch(last, p), t0, t1,
+                              o->interrupt_flag, ctx, &pos.d[j], &st, &next[j], msg);
     }
     for (int j = 0; j < RS_WR_MAX_PATCHES; j++) {
       patch_state_free(&last[j]);
@@ -821,31 +907,25 @@ int rs_wheel_rail_run(const rs_case *c, const rs_run_opts *o, FILE *out, rs_wr_r
   memset(res, 0, sizeof *res);
   const rs_wheel_rail *w = c->profiles;
   if (rs_wheel_rail_moving(c)) return path_run(c, o, out, res, msg);
-  rs_wr_input in;
-  int status = rs_wheel_rail_input(w, &in, msg);
-  rs_wr_geometry geo;
-  if (status != RS_OK || (status = rs_wr_geometry_build(&in, &geo, msg)) != RS_OK) return status;
-  rs_wr_solution sol;
-  status = rs_wr_normal_solve(&geo, w->vertical_load, c->shear_modulus, c->poisson_ratio,
-                              w->grid_cells[0], w->grid_cells[1], &sol, msg);
-  if (status != RS_OK) {
-    rs_wr_geometry_free(&geo);
-    return status;
-  }
-  const double V = rs_history_eval(&c->velocity, 0.0);
-  const double omega =
-      w->wheel_angular_velocity > 0.0 ? w->wheel_angular_velocity : V / w->nominal_rolling_radius;
+  /* the patches' loads and creepages of the steady vertical balance */
+  wr_position pos;
+  int status = position_solve(c, w, 0.0, 0.0, 0.0, &pos, msg);
+  if (status != RS_OK) return status;
   const char *base = o->output_path ? o->output_path : c->output_file;
-  res->patches = geo.npatch;
-  for (int k = 0; k < geo.npatch && status == RS_OK; k++) {
-    const rs_wr_patch *p = &geo.patch[k];
-    const rs_wr_patch_result *r = &sol.patch[k];
+  res->patches = pos.geo.npatch;
+  for (int k = 0; k < pos.geo.npatch && status == RS_OK; k++) {
+    const rs_wr_patch *p = &pos.geo.patch[k];
+    const rs_wr_patch_result *r = &pos.sol.patch[k];
     if (!r->loaded) {
       if (out)
         fprintf(out, "patch %d: open (its gap exceeds the approach): nothing to run\n", k + 1);
       continue;
     }
-    rs_creepages cr;
+    rs_creepages cr = pos.cr[k];
+    if (!pos.tangential) {
+      const wr_motion mo = {.V = pos.V, .psi = w->yaw, .omega = pos.omega};
+      if ((status = patch_creepages(p, &mo, &cr, msg)) != RS_OK) break;
+    }
     rs_model_params par;
     double *pn = NULL;
     char path[1100];
@@ -853,16 +933,14 @@ int rs_wheel_rail_run(const rs_case *c, const rs_run_opts *o, FILE *out, rs_wr_r
       status = rs_msg_set(msg, RS_ERR_INPUT, "output file %s: the name is too long", base);
       break;
     }
-    const wr_motion mo = {.V = V, .psi = w->yaw, .omega = omega};
-    if ((status = patch_creepages(p, &mo, &cr, msg)) != RS_OK) break;
-    if ((status = patch_params(c, p, r, V, &cr, &par, &pn, msg)) != RS_OK) break;
+    if ((status = patch_params(c, p, r, pos.V, &cr, &par, &pn, msg)) != RS_OK) break;
     char note[400];
     snprintf(note, sizeof note,
              "patch %d of %d at lateral displacement %g mm, yaw %g rad: contact point y %.4f mm, "
              "z %.4f mm on the rail, contact angle %.6g rad, rolling radius %.4f mm, F_n %.9g N, "
              "creepages [%.9g, %.9g, %.9g]; x along the track, y along s (the profile's tangent "
              "toward the track centre, from the contact point), forces on the wheel",
-             k + 1, geo.npatch, w->lateral_displacement, w->yaw, p->y, p->z_rail, p->delta,
+             k + 1, pos.geo.npatch, w->lateral_displacement, w->yaw, p->y, p->z_rail, p->delta,
              p->rolling_radius, r->normal_force, cr.xi, cr.eta, cr.phi);
     rs_run_opts po = *o;
     po.output_path = path;
@@ -885,7 +963,6 @@ int rs_wheel_rail_run(const rs_case *c, const rs_run_opts *o, FILE *out, rs_wr_r
     }
     rs_run_result_free(&rr);
   }
-  rs_wr_solution_free(&sol);
-  rs_wr_geometry_free(&geo);
+  position_free(&pos);
   return status;
 }
