@@ -54,6 +54,9 @@ rs_unit_test(test_normal_cg_2d_operator)
 # 3D elliptic contact in steady rolling: Kalker's linear theory, the 2D limit, symmetry,
 # plastic limits (see the file's header).
 rs_unit_test(test_3d_steady)
+# Kalker's C11, C22, C23, C33 at four nodes of his table at the recommended grid (64^2 and
+# 128^2; C11, C22, C33 extrapolated with the first order) to 1 %, and the reciprocity of the two C23.
+rs_unit_test(test_kalker_grid)
 # A 3D model on a gap given by the caller (the wheel-rail patches' path).
 rs_unit_test(test_model_gap)
 # Creepages from the wheelset's rigid-body motion.

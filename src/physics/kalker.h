@@ -20,10 +20,11 @@
  * values were at hand (Kalker 1990, Table E.3, a/b = 0.1 ... 1.0). Neither transcription
  * above carries that column, and no printed copy was available to type it from, so every
  * entry was checked against an independent computation instead: rollsim's own spin moment
- * M_z(phi) of an elastic ellipse in full adhesion on 64^2, 128^2 and 256^2 cells, extrapolated
- * to zero cell size, agrees with each of the 30 entries to within 1 % (bench/kalker_c33
- * prints the comparison; the extrapolation is first order, the scheme's). For a > b no
- * value could be checked that way against a source, so C33 is NaN there.
+ * M_z(phi) of an elastic ellipse in full adhesion on 64^2 and 128^2 cells, extrapolated to
+ * zero cell size with the scheme's first order, agrees with each of the 30 entries to within
+ * 1 % (bench/kalker_coefficients prints the comparison, with C11, C22 and C23 at every node
+ * of the table; docs/verification.md 10). For a > b no value could be checked that way
+ * against a source, so C33 is NaN there.
  *
  * Laws and sign conventions (Kalker 1990 §2.2 / Johnson 1985 §8.4), G the combined
  * shear modulus, a the semi-axis along the rolling direction x, b across it:
