@@ -550,7 +550,8 @@ def build_parser():
                "A sweep file on profiles (rollsim sweep on a case with profiles:): per patch the "
                "contact\npoint on the rail, the contact angle, F_n, F_x and F_s on the wheel, "
                "and the lateral and\nvertical force on the wheel in track coordinates, against "
-               "the wheelset's lateral\ndisplacement.")
+               "the wheelset's lateral\ndisplacement; a moving wheelset's file (rollsim run) "
+               "against time, with the\nlateral displacement drawn beside the contact point.")
     s.add_argument("file", metavar="FILE")
     s.set_defaults(func=cmd_wheelrail)
 

@@ -640,11 +640,14 @@ def plot_profiles(prof, title, out, rec=None):
 
 
 def plot_wheelrail(d, title, out, rec=None):
-    """A sweep on profiles against the lateral displacement: each patch's contact point on the
-    rail and contact angle, its normal and tangential forces, and the lateral force on the wheel
-    in track coordinates (docs/file-format.md "Wheel-rail sweep files")."""
+    """A sweep on profiles against the lateral displacement (a moving wheelset's run file against
+    time): each patch's contact point on the rail and contact angle, its normal and tangential
+    forces, and the lateral force on the wheel in track coordinates (docs/file-format.md
+    "Wheel-rail sweep files")."""
     rec = rec or Recorder()
-    y = d["lateral_displacement"]
+    # a moving wheelset's file (rollsim run) is drawn against time, the displacement in panel 1
+    over_time = "time" in d and isinstance(d["time"], np.ndarray)
+    y = d["time"] if over_time else d["lateral_displacement"]
     npatch = d["Fn"].shape[1]
     fig, axes = plt.subplots(2, 2, figsize=(10.0, 7.0), layout="constrained", sharex=True)
     fig.suptitle(title, fontsize=10)
@@ -679,6 +682,12 @@ def plot_wheelrail(d, title, out, rec=None):
     ax.set_ylabel("force [kN]")
     ax.grid(alpha=0.25)
     ax.legend(fontsize=7, loc="best")
+    if over_time:
+        rec.line(axes[0, 0], 0, y, d["lateral_displacement"], "--", color="k",
+                 series="lateral displacement of the wheelset", quantity="y_mm")
+        axes[0, 0].set_ylabel("mm: y on the rail, lateral displacement")
+        axes[0, 0].legend(fontsize=7, loc="best")
     for ax in axes[1]:
-        ax.set_xlabel("lateral displacement of the wheelset toward the rail [mm]")
+        ax.set_xlabel("time [s]" if over_time else
+                      "lateral displacement of the wheelset toward the rail [mm]")
     save(fig, out)

@@ -3,7 +3,8 @@
 here by netCDF4 directly (a second reader): per patch the contact point's y on the rail, the
 contact angle in degrees, F_n, F_x, F_s in kN, and F_y, F_z of the track in kN, each against
 the lateral displacement, to 1e-12 relative (the CSV holds repr() of the plotted doubles); the
-figure file exists.
+figure file exists. A moving wheelset's file (rollsim run with a lateral-displacement history)
+is drawn against its time, the lateral displacement beside the contact point.
 
 Usage: check_wheelrail_plot.py ROLLSIM POST CASE.yaml WORKDIR
 """
@@ -54,5 +55,24 @@ for key, w in want.items():
     failures += not ok
 ok = os.path.getsize(png) > 20000
 print(("ok   " if ok else "FAIL ") + f"figure {png}")
+failures += not ok
+
+moving = os.path.join(work, "moving.nc")
+subprocess.run([rollsim, "run", case, "-o", moving, "--quiet", "--set", "sweep=null",
+                "--set", "simulation.mode=transient", "--set", "simulation.end_time=0.02",
+                "--set", "simulation.output_interval=0.01", "--set",
+                "profiles.lateral_displacement={ramp: {from: 0, to: 0.5, start: 0, duration: 0.02}}"],
+               check=True, capture_output=True)
+r = subprocess.run([sys.executable, post, "wheelrail", moving, "-o", png, "--data", data],
+                   capture_output=True, text=True, env=dict(os.environ, MPLBACKEND="Agg"))
+with netCDF4.Dataset(moving) as nc:
+    t = np.ma.filled(nc.variables["time"][:].astype(float), np.nan)
+    lat = np.ma.filled(nc.variables["lateral_displacement"][:].astype(float), np.nan)
+rows = [row for row in csv.DictReader(open(data))] if r.returncode == 0 else []
+drawn = [(float(w["x"]), float(w["y"])) for w in rows
+         if w["series"] == "lateral displacement of the wheelset"]
+ok = r.returncode == 0 and len(drawn) == len(t) and all(
+    abs(a - b) <= 1e-15 and abs(c - e) <= 1e-12 for (a, c), b, e in zip(drawn, t, lat))
+print(("ok   " if ok else "FAIL ") + f"moving wheelset: drawn against time, {len(drawn)} points")
 failures += not ok
 sys.exit(1 if failures else 0)
