@@ -157,3 +157,8 @@ add_test(NAME profile_run_moving_temperature_refused
     -- ${RS_BIN} run ${RS_WR_CASE} -o ${RS_PROF_OUT}/moving_temperature.nc
        --set "temperature={bulk: 20}"
        --set "profiles.lateral_displacement={ramp: {from: 0, to: 1, start: 0, duration: 1e-3}}")
+add_test(NAME profile_run_not_rolling_refused
+  COMMAND ${SYSTEM_PYTHON3} ${RS_TESTS}/cli_expect.py --exit 2
+    --stderr "rolling.velocity: 0 mm/s: a run on profiles needs the wheelset rolling"
+    --absent ${RS_PROF_OUT}/not_rolling_patch1.nc
+    -- ${RS_BIN} run ${RS_WR_CASE} -o ${RS_PROF_OUT}/not_rolling.nc --set rolling.velocity=0)

@@ -234,6 +234,11 @@ int rs_wheel_rail_run(const rs_case *c, const rs_run_opts *o, FILE *out, rs_wr_r
   memset(res, 0, sizeof *res);
   const rs_wheel_rail *w = c->profiles;
   if (rs_wheel_rail_moving(c)) return path_run(c, o, out, res, msg);
+  if (!(rs_history_eval(&c->velocity, 0.0) > 0.0))
+    return rs_msg_set(msg, RS_ERR_INPUT,
+                      "rolling.velocity: %g mm/s: a run on profiles needs the wheelset rolling "
+                      "(the creepages are divided by its speed)",
+                      rs_history_eval(&c->velocity, 0.0));
   /* the patches' loads and creepages of the steady vertical balance */
   wr_position pos;
   int status = wr_position_solve(c, w, 0.0, 0.0, 0.0, &pos, msg);
