@@ -266,7 +266,7 @@ int rs_wheel_rail_run(const rs_case *c, const rs_run_opts *o, FILE *out, rs_wr_r
       break;
     }
     if ((status = wr_patch_params(c, p, r, pos.V, &cr, &par, &pn, msg)) != RS_OK) break;
-    char note[400];
+    char note[1400];
     snprintf(note, sizeof note,
              "patch %d of %d at lateral displacement %g mm, yaw %g rad: contact point y %.4f mm, "
              "z %.4f mm on the rail, contact angle %.6g rad, rolling radius %.4f mm, F_n %.9g N, "
