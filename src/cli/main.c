@@ -374,6 +374,10 @@ static void print_summary(const rs_case *c, const cli_args *a, const rs_run_resu
   if (st->couplings > 0)
     printf("  temperature coupling: %ld coupled solves, %ld Newton steps, %ld Jacobian products\n",
            st->couplings, st->coupling_newton, st->coupling_products);
+  else if (c->mode == RS_MODE_TRANSIENT && st->coupling_products > 0)
+    printf("  temperature coupling: %ld products with the coupling's Jacobian term in the steps' "
+           "Newton iterations\n",
+           st->coupling_products);
   /* Rolling transients: the cost per cell passage (docs/model.md §5: one passage is one cell
    * length rolled; a fixed-shift scheme takes one step per passage). */
   if (c->mode == RS_MODE_TRANSIENT && !c->rig.on && res->rolled > 0.0 && res->dx > 0.0)

@@ -574,6 +574,8 @@ int rs_model_evaluate(const rs_model *m, rs_work *w, const rs_inputs *in, const 
   if (status != RS_OK) return status;
   if (jac && (status = rs_model_flags_alloc(m, w)) != RS_OK) return status;
   rs_model_kinematics(m, w, in, y, yp);
+  if (w->before_laws && (status = w->before_laws(w->before_laws_ctx, w, in, y)) != RS_OK)
+    return status;
   int e = 0;
   for (int i = 0; i < n; i++) {
     rs_law_out *o = &w->law[i];

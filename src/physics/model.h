@@ -172,6 +172,12 @@ typedef struct rs_work {
   double load_cached;         /* load of pn_buf (NAN: none) */
   double *inflow;             /* state entering at the leading edge, per row: u_pl (ncomp), u* */
   rs_msg msg;                 /* why the last evaluation failed */
+  /* NULL, or called by every evaluation into this work after the kinematics and before the
+   * local laws (the factors of mu(T), tau_c0(T) set from the heat of the point itself, the
+   * transient's exact coupling, docs/model.md §18 "Couplings"); a status other than RS_OK
+   * fails the evaluation. Set by the work's owner; rs_work_create leaves it NULL. */
+  int (*before_laws)(void *ctx, const struct rs_work *w, const rs_inputs *in, const double *y);
+  void *before_laws_ctx;
 } rs_work;
 
 int rs_work_create(rs_work *w, const rs_model *m);
@@ -337,6 +343,13 @@ void rs_model_diagnostics_of(const rs_model *m, const rs_work *w, const rs_input
  * their sums times the cell area are its frictional_power and plastic_power. */
 void rs_model_power_densities(const rs_model *m, const rs_work *w, const double *y,
                               double *frictional, double *plastic);
+/* Their change in the direction v of the unknowns with rates vp = cj v (both are bilinear in
+ * the tractions and the rates: d(-p . v_s) = -(v_p . v_s + p . dv_s), the plastic one alike),
+ * at the point y of w (evaluated there); wlin is scratch for the kinematics of v (as
+ * rs_model_jv). */
+void rs_model_power_jv(const rs_model *m, const rs_work *w, rs_work *wlin, const rs_inputs *in,
+                       double cj, const double *y, const double *v, const double *vp,
+                       double *dfrictional, double *dplastic);
 
 /* Checks a steady state y (y' = 0): the paper's contact conditions cell by cell (eqs.
  * 7-10: |p| <= min(g, tau_c); slip only at the bound and opposite to p; plastic flow

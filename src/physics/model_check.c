@@ -87,6 +87,27 @@ void rs_model_power_densities(const rs_model *m, const rs_work *w, const double 
   }
 }
 
+void rs_model_power_jv(const rs_model *m, const rs_work *w, rs_work *wlin, const rs_inputs *in,
+                       double cj, const double *y, const double *v, const double *vp,
+                       double *dfrictional, double *dplastic)
+{
+  const rs_layout *L = &m->lay;
+  const int n = L->n, nc = L->ncomp;
+  rs_inputs lin = *in;
+  lin.linear = 1; /* the rates' linear part: no rigid slip, no inflow */
+  rs_model_kinematics_scaled(m, wlin, &lin, v, vp, cj);
+  for (int i = 0; i < n; i++) {
+    double pf = 0.0, pp = 0.0;
+    for (int c = 0; c < nc; c++) {
+      const double p = y[rs_at_p(L, c, i)], dp = v[rs_at_p(L, c, i)];
+      pf -= dp * w->vslip[c * n + i] + p * wlin->vslip[c * n + i];
+      pp += dp * w->dupl[c * n + i] + p * wlin->dupl[c * n + i];
+    }
+    dfrictional[i] = pf;
+    dplastic[i] = pp;
+  }
+}
+
 /* Reason of the first failed condition, in the user's terms. */
 static int refuse(rs_msg *msg, const rs_model *m, int i, const char *what, double p, double other,
                   const char *other_name, const char *unit)

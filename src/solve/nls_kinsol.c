@@ -33,6 +33,10 @@ typedef struct nls_content {
    * weights, and full-length copies of a correction and a residual for IDA's system function. */
   N_Vector ycor_c, w_c, ycor_full, f_full;
   unsigned char *branch_held;
+  /* With host.couple_jv on the direct path: GMRES's basis [(COUPLE_KRYLOV + 1) neq] and
+   * scratch vectors for C v and P^-1 C v. */
+  double *basis;
+  N_Vector cv, pcv;
   double cj_held;
   int held;
   int warm; /* the contact solve starts from the correction given (host.couple's passes) */
@@ -186,6 +190,7 @@ static int direct_setup(nls_content *c, N_Vector ycor)
  * rig the steps then collapse. A step shorter than the test that leaves the residual above it
  * ends the solve with a fresh factorisation (accepted within IDA's tolerance itself, as KINSOL's
  * step test was) and refreshes a kept one. */
+static int coupled_step(nls_content *c, N_Vector delta);
 enum { DIRECT_OK = 0, DIRECT_FAILED = 1, DIRECT_STOP = -1 };
 #define CJ_WINDOW    4.0
 #define RATE_REFRESH 0.2
@@ -198,6 +203,7 @@ static int direct_solve(nls_content *c, N_Vector ycor, double tol, double cj)
   double fnorm = scaled_max_norm(c->fval, c->fscale);
   if (fnorm <= 0.01 * ftol) return DIRECT_OK; /* the predictor solves the step */
   int keep = c->held && cj <= CJ_WINDOW * c->cj_held && c->cj_held <= CJ_WINDOW * cj;
+  int coupled = 0; /* the coupling's Jacobian term in the step (host.couple_jv) */
   for (int it = 1; it <= c->max_iters; it++) {
     int fresh = 0;
     if (!keep || memcmp(c->w->branch, c->branch_held, (size_t)c->m->grid.n) != 0) {
@@ -206,6 +212,7 @@ static int direct_solve(nls_content *c, N_Vector ycor, double tol, double cj)
     }
     N_VScale(-1.0, c->fval, c->rhs);
     flag = SUNLinSolSolve(rs_linsys_solver(c->ls), rs_linsys_matrix(c->ls), c->delta, c->rhs, 0.0);
+    if (flag == 0 && coupled) flag = coupled_step(c, c->delta);
     if (flag != 0) return flag < 0 ? DIRECT_STOP : DIRECT_FAILED;
     N_VLinearSum(1.0, ycor, 1.0, c->delta, ycor);
     c->last_iters = it;
@@ -216,7 +223,10 @@ static int direct_solve(nls_content *c, N_Vector ycor, double tol, double cj)
       if (fresh) return fnew <= tol ? DIRECT_OK : DIRECT_FAILED;
       keep = 0;
     }
-    if (fnew > RATE_REFRESH * fnorm) keep = 0;
+    if (fnew > RATE_REFRESH * fnorm) {
+      keep = 0;
+      coupled = c->host.couple_jv != NULL;
+    }
     fnorm = fnew;
   }
   return DIRECT_FAILED;
@@ -224,8 +234,135 @@ static int direct_solve(nls_content *c, N_Vector ycor, double tol, double cj)
 
 static int contact_solve(nls_content *c, N_Vector ycor, N_Vector w, sunrealtype tol, void *mem);
 
+/* The exact coupling on the direct path (coupled_step, from the first iteration of a solve that
+ * contracted by less than RATE_REFRESH on: the residual is exact from the start, and where the
+ * coupling is weak the contact's own Jacobian contracts it fast enough, each product costing
+ * about half an iteration). The preconditioned coupling P^-1 C is
+ * the loop gain of the step's heat on the contact's factors, usually a fraction (about 0.1 on
+ * cases/hot_creep_curve.yaml); where the first product shows it below COUPLE_NEUMANN the step is
+ * the Neumann series' first two terms, (I - P^-1 C) P^-1 (-F), within COUPLE_NEUMANN^2 of the
+ * exact one for one product, else GMRES (at most COUPLE_KRYLOV products) to COUPLE_ETA. */
+#define COUPLE_NEUMANN 0.3
+#define COUPLE_KRYLOV  10
+#define COUPLE_ETA     1e-2
+
+/* x <- (I + P^-1 C) x, P the held factorisation (scaled: x holds u-scaled values, s the
+ * scales). */
+static int coupled_op(nls_content *c, const double *s, const double *x, double *out)
+{
+  const int neq = c->m->lay.neq;
+  double *cv = N_VGetArrayPointer(c->cv);
+  for (int i = 0; i < neq; i++) out[i] = x[i] / s[i]; /* unscaled, as scratch */
+  memset(cv, 0, (size_t)neq * sizeof *cv);
+  if (c->host.couple_jv(c->host.ctx, out, cv) != RS_OK) return -1;
+  const int flag =
+      SUNLinSolSolve(rs_linsys_solver(c->ls), rs_linsys_matrix(c->ls), c->pcv, c->cv, 0.0);
+  if (flag != 0) return flag;
+  const double *pcv = N_VGetArrayPointer(c->pcv);
+  for (int i = 0; i < neq; i++) out[i] = x[i] + s[i] * pcv[i];
+  return 0;
+}
+
+static double dot(const double *a, const double *b, int n)
+{
+  double sum = 0.0;
+  for (int i = 0; i < n; i++) sum += a[i] * b[i];
+  return sum;
+}
+
+/* The Newton step of the coupled contact rows on the direct path: delta holds P^-1 (-F) on
+ * entry and receives the solution of (I + P^-1 C) d = P^-1 (-F), i.e. (P + C) d = -F, in the
+ * u-scaled norm from d = delta (the uncoupled step): the residual there, -P^-1 C delta, is the
+ * Neumann series' next term (taken as the step's correction when small) and GMRES's first basis
+ * vector otherwise (modified Gram-Schmidt, Givens rotations, one cycle). */
+static int coupled_step(nls_content *c, N_Vector delta)
+{
+  const int neq = c->m->lay.neq, mk = COUPLE_KRYLOV;
+  const double *s = N_VGetArrayPointer(c->uscale);
+  double *d = N_VGetArrayPointer(delta), *V = c->basis;
+  double H[COUPLE_KRYLOV + 1][COUPLE_KRYLOV], cs[COUPLE_KRYLOV], sn[COUPLE_KRYLOV],
+      g[COUPLE_KRYLOV + 1], yk[COUPLE_KRYLOV];
+  double *b = V + (size_t)mk * neq; /* the right-hand side, in the last basis slot (free until
+                                      the last iteration, when it is no longer needed) */
+  for (int i = 0; i < neq; i++) b[i] = d[i] * s[i];
+  const double bnorm = sqrt(dot(b, b, neq));
+  if (!(bnorm > 0.0)) return 0;
+  /* r0 = b - A b = -(P^-1 C b), scaled */
+  int flag = coupled_op(c, s, b, V);
+  if (flag != 0) return flag;
+  for (int i = 0; i < neq; i++) V[i] = b[i] - V[i];
+  const double beta = sqrt(dot(V, V, neq));
+  if (beta <= COUPLE_NEUMANN * bnorm) { /* d = (I - P^-1 C) P^-1 (-F) */
+    for (int j = 0; j < neq; j++) d[j] += V[j] / s[j];
+    return 0;
+  }
+  for (int i = 0; i < neq; i++) V[i] /= beta;
+  g[0] = beta;
+  int k = 0;
+  for (; k < mk; k++) {
+    double *v = V + (size_t)(k + 1) * neq;
+    if ((flag = coupled_op(c, s, V + (size_t)k * neq, v)) != 0) return flag;
+    for (int i = 0; i <= k; i++) {
+      const double h = dot(v, V + (size_t)i * neq, neq);
+      H[i][k] = h;
+      for (int j = 0; j < neq; j++) v[j] -= h * V[(size_t)i * neq + j];
+    }
+    const double hn = sqrt(dot(v, v, neq));
+    H[k + 1][k] = hn;
+    if (hn > 0.0)
+      for (int j = 0; j < neq; j++) v[j] /= hn;
+    for (int i = 0; i < k; i++) {
+      const double a = H[i][k], bb = H[i + 1][k];
+      H[i][k] = cs[i] * a + sn[i] * bb;
+      H[i + 1][k] = -sn[i] * a + cs[i] * bb;
+    }
+    const double rr = hypot(H[k][k], H[k + 1][k]);
+    cs[k] = rr > 0.0 ? H[k][k] / rr : 1.0;
+    sn[k] = rr > 0.0 ? H[k + 1][k] / rr : 0.0;
+    H[k][k] = rr;
+    H[k + 1][k] = 0.0;
+    g[k + 1] = -sn[k] * g[k];
+    g[k] = cs[k] * g[k];
+    if (fabs(g[k + 1]) <= COUPLE_ETA * bnorm || hn == 0.0) {
+      k++;
+      break;
+    }
+  }
+  for (int i = k - 1; i >= 0; i--) {
+    double sum = g[i];
+    for (int l = i + 1; l < k; l++) sum -= H[i][l] * yk[l];
+    yk[i] = H[i][i] != 0.0 ? sum / H[i][i] : 0.0;
+  }
+  for (int i = 0; i < k; i++)
+    for (int j = 0; j < neq; j++) d[j] += yk[i] * V[(size_t)i * neq + j] / s[j];
+  return 0;
+}
+
 /* Contact solves per step with host.couple before the step is declared failed. */
 #define COUPLE_PASSES 30
+
+/* The exact coupling's step: the contact rows (whose evaluations eliminate the tail) to the
+ * contact's Newton test, then the tail's rows at the converged point, as without coupling. */
+static int coupled_solve(nls_content *c, N_Vector ycor, sunrealtype tol, void *mem)
+{
+  *c->host.tail_rows = 0;
+  int flag = contact_solve(c, c->ycor_c, c->w_c, tol, mem);
+  *c->host.tail_rows = 1;
+  if (flag != SUN_NLS_SUCCESS) return flag;
+  const size_t bytes = (size_t)c->m->lay.neq * sizeof(double);
+  if (memcmp(N_VGetArrayPointer(c->ycor_full), N_VGetArrayPointer(ycor), bytes) != 0) {
+    memcpy(N_VGetArrayPointer(c->ycor_full), N_VGetArrayPointer(ycor), bytes);
+    if (c->sysfn(c->ycor_full, c->f_full, mem) != 0) return SUN_NLS_CONV_RECVR;
+  }
+  sunrealtype tcur, cj;
+  N_Vector ypred, yppred, yn, ypn, res;
+  void *udata;
+  IDAGetNonlinearSystemData(mem, &tcur, &ypred, &yppred, &yn, &ypn, &res, &cj, &udata);
+  return c->host.tail(c->host.ctx, cj, N_VGetArrayPointer(ypred), N_VGetArrayPointer(yppred),
+                      N_VGetArrayPointer(ycor)) == RS_OK
+             ? SUN_NLS_SUCCESS
+             : -1;
+}
 
 /* With a tail: the contact rows on views of the first neq entries, then the tail's rows at
  * the converged point (the last residual evaluation was there; if Newton's last evaluation
@@ -244,6 +381,16 @@ static int nls_solve(SUNNonlinearSolver nls, N_Vector y0, N_Vector ycor, N_Vecto
   double *wc = N_VGetArrayPointer(c->w_c);
   for (int i = 0; i < c->m->lay.neq; i++) wc[i] = c->host.weight_scale * wv[i];
   long iters = 0;
+  if (c->host.couple_begin) { /* the exact coupling: the step's predictors */
+    sunrealtype tcur, cj;
+    N_Vector ypred, yppred, yn, ypn, res;
+    void *udata;
+    IDAGetNonlinearSystemData(mem, &tcur, &ypred, &yppred, &yn, &ypn, &res, &cj, &udata);
+    c->host.couple_begin(c->host.ctx, cj, N_VGetArrayPointer(ypred), N_VGetArrayPointer(yppred));
+    const int flag = coupled_solve(c, ycor, tol, mem);
+    c->host.couple_begin(c->host.ctx, 0.0, NULL, NULL);
+    return flag;
+  }
   if (c->host.couple) { /* the coupling's data from the predicted tail */
     sunrealtype tcur, cj;
     N_Vector ypred, yppred, yn, ypn, res;
@@ -381,6 +528,9 @@ static int nls_free(SUNNonlinearSolver nls)
     if (c->ycor_c) N_VDestroy(c->ycor_c);
     if (c->w_c) N_VDestroy(c->w_c);
     if (c->ycor_full) N_VDestroy(c->ycor_full);
+    if (c->cv) N_VDestroy(c->cv);
+    if (c->pcv) N_VDestroy(c->pcv);
+    free(c->basis);
     if (c->f_full) N_VDestroy(c->f_full);
     free(c->branch_held);
     free(c->ybuf);
@@ -471,6 +621,12 @@ SUNNonlinearSolver rs_nls_kinsol_create(const rs_model *m, rs_work *w, rs_linsys
     c->f_full = N_VNew_Serial(host.neq_full, ctx);
     if (!c->ycor_c || !c->w_c || !c->ycor_full || !c->f_full) goto fail;
     N_VConst(0.0, c->ycor_full);
+  }
+  if (host.couple_jv && !kry) {
+    c->cv = N_VClone(tmpl);
+    c->pcv = N_VClone(tmpl);
+    c->basis = malloc((size_t)(COUPLE_KRYLOV + 1) * m->lay.neq * sizeof *c->basis);
+    if (!c->cv || !c->pcv || !c->basis) goto fail;
   }
   if (!kry) { /* the direct path: modified Newton of its own (direct_solve) */
     c->fval = N_VClone(tmpl);

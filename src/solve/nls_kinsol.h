@@ -42,6 +42,18 @@ typedef struct rs_nls_host {
    * Newton test the contact rows are solved again from the current correction, then the tail. */
   int (*couple)(void *ctx, const double *ypred, const double *ycor, const double *wc,
                 double *change);
+  /* with tail and couple NULL: NULL, or the contact rows depend on the tail, eliminated exactly
+   * by the host at each of their evaluations (the exact coupling, transient.h):
+   * couple_begin(ctx, cj, ypred, yppred) before a step's contact solve (IDA's predictors, full
+   * length) and with ypred NULL after it; couple_jv(ctx, v, Cv) the coupling's part of the
+   * contact Jacobian (the Schur complement's J_ct J_tt^-1 J_tc, here its sign already such that
+   * the Jacobian is J_cc + C) added to Cv, at the point of the last evaluation. On the direct
+   * path, from the first iteration of a solve that contracts poorly on, the Newton step solves
+   * (P + C) d = -F with P the held factorisation (the Neumann series' first two terms or GMRES
+   * on I + P^-1 C, nls_kinsol.c); before that, with couple_jv NULL and on the Krylov path the
+   * step leaves C out (Newton on the exact residual with the contact's own Jacobian). */
+  int (*couple_begin)(void *ctx, double cj, const double *ypred, const double *yppred);
+  int (*couple_jv)(void *ctx, const double *v, double *Cv);
 } rs_nls_host;
 
 /* The linear algebra: ls (direct: KLU or the Schur complement), or Newton-Krylov with

@@ -53,6 +53,19 @@ struct rs_transient {
   int tail_rows; /* 0: the residual leaves the modes' rows out (nls_kinsol.h) */
   const rs_transient_coupling *coupling; /* NULL: the contact does not read the temperature */
   double *T1;                            /* with coupling: scratch [n] */
+  /* The exact coupling (rs_transient_coupling.fixed_point = 0): the step's predicted modes and
+   * their rates (IDA's, full length: NULL outside a step's solve) and c_j; the point of the last
+   * evaluation (its contact unknowns, work and inputs), the modes the step leaves there and its
+   * heat; dF/df of each contact cell's rows there (valid: computed at that point); scratch. */
+  const double *pred, *ratepred;
+  double cj_step;
+  double *y_pt, *theta_pt, *cor, *theta_s, *cor_s, *Ts, *dq, *dfric, *dplast, *vp;
+  const rs_work *w_pt;
+  rs_inputs in_pt;
+  double *dfdmu, *dfdyield;
+  int *rows, *nrow, deriv_valid;
+  rs_work wlin; /* the kinematics of a direction */
+  long products;
   double weight_scale; /* sqrt(neq_full/neq): IDA's error weights times it (error_weights) */
   double p_floor;      /* N/mm^2: the smallest traction size of the error weights */
 };
@@ -163,6 +176,10 @@ static int solve_tail(void *data, double cj, const double *ypred, const double *
 {
   rs_transient *tr = data;
   const int neq = tr->m->lay.neq;
+  if (tr->pred && tr->w_pt && tr->in.velocity > 0.0) { /* the exact coupling solved them there */
+    memcpy(ycor + neq, tr->cor, (size_t)(tr->neq_full - neq) * sizeof *ycor);
+    return RS_OK;
+  }
   rs_thermal_dae_solve(tr->thermal, tr->in.velocity, tr->q, tr->contact, cj, ypred + neq,
                        yppred + neq, tr->theta, ycor + neq);
   return RS_OK;
@@ -205,6 +222,134 @@ static int couple_step(void *data, const double *ypred, const double *ycor, cons
   return RS_OK;
 }
 
+/* The factors of mu(T), tau_c0(T) at each cell's temperature T, as couple_step. */
+static void set_factors(const rs_transient_coupling *cp, int n, const double *T)
+{
+  for (int i = 0; i < n; i++) {
+    if (cp->mu_factor) cp->mu_factor[i] = rs_history_eval(cp->mu_table, T[i]) / cp->mu_rest;
+    if (cp->yield_factor) cp->yield_factor[i] = rs_history_eval(cp->tau_table, T[i]) / cp->tau_rest;
+    cp->T_used[i] = T[i];
+  }
+}
+
+/* The exact coupling's evaluation hook (rs_work.before_laws): within a step's solve, the heat of
+ * the point (its kinematics are in w), the modes the step leaves under it (the step's rows solved
+ * exactly from the predictor, whatever the modes' part of the point) and the factors of their
+ * temperatures, which the laws then read. Without rolling the factors are held. */
+static int coupled_laws(void *data, const rs_work *w, const rs_inputs *in, const double *y)
+{
+  rs_transient *tr = data;
+  if (!tr->pred || !(in->velocity > 0.0)) return RS_OK;
+  const rs_model *m = tr->m;
+  const int neq = m->lay.neq;
+  /* the point of the last evaluation again (the factorisation's set-up there): as it was */
+  if (w == tr->w_pt && in->t == tr->in_pt.t && !memcmp(y, tr->y_pt, (size_t)neq * sizeof *y))
+    return RS_OK;
+  rs_thermal_sources(tr->thermal, m, w, y, tr->fric, tr->plast, tr->q, tr->contact);
+  rs_thermal_inflow_at(tr->thermal, in->t);
+  rs_thermal_dae_solve(tr->thermal, in->velocity, tr->q, tr->contact, tr->cj_step, tr->pred + neq,
+                       tr->ratepred + neq, tr->theta_pt, tr->cor);
+  rs_thermal_state_temperature(tr->thermal, in->velocity, tr->theta_pt, tr->T1);
+  set_factors(tr->coupling, m->grid.n, tr->T1);
+  memcpy(tr->y_pt, y, (size_t)neq * sizeof *y);
+  tr->w_pt = w;
+  tr->in_pt = *in;
+  tr->deriv_valid = 0;
+  return RS_OK;
+}
+
+/* The start (ypred non-NULL: IDA's predictor and its rates, full length) and the end (NULL) of a
+ * step's solve with the exact coupling. */
+static int couple_begin(void *data, double cj, const double *ypred, const double *yppred)
+{
+  rs_transient *tr = data;
+  tr->pred = ypred;
+  tr->ratepred = yppred;
+  tr->cj_step = cj;
+  tr->w_pt = NULL;
+  return RS_OK;
+}
+
+/* dF/df of each contact cell's rows at the point of the last evaluation: a factor acts on its
+ * own cell's law only, whose rows are piecewise linear in it (the bound mu p_n, the yield limit
+ * tau_c0 + k_tau u*), so the central difference over 1e-6 of the factor is the derivative to
+ * roundoff on the cell's branch (as the steady coupling's, study/temperature.c). */
+static void factor_derivatives(rs_transient *tr)
+{
+  const rs_transient_coupling *cp = tr->coupling;
+  const rs_model *m = tr->m;
+  double Rp[RS_LAW_NROW], Rm[RS_LAW_NROW];
+  for (int I = 0; I < m->grid.n; I++) {
+    tr->nrow[I] = 0;
+    if (!tr->contact[I]) continue;
+    for (int f = 0; f < 2; f++) {
+      double *factor = f == 0 ? cp->mu_factor : cp->yield_factor;
+      double *d = (f == 0 ? tr->dfdmu : tr->dfdyield) + (size_t)I * RS_LAW_NROW;
+      int *row = tr->rows + (size_t)I * RS_LAW_NROW;
+      if (!factor) continue;
+      const double f0 = factor[I], h = 1e-6 * fmax(fabs(f0), 1e-3);
+      factor[I] = f0 + h;
+      const int nr = rs_model_cell_rows(m, tr->w_pt, tr->y_pt, I, row, Rp);
+      factor[I] = f0 - h;
+      rs_model_cell_rows(m, tr->w_pt, tr->y_pt, I, row, Rm);
+      factor[I] = f0;
+      tr->nrow[I] = nr;
+      for (int k = 0; k < nr; k++) d[k] = (Rp[k] - Rm[k]) / (2 * h);
+    }
+  }
+  tr->deriv_valid = 1;
+}
+
+/* Jv += J_ctheta dtheta/dy v over the contact rows (neq) at the point of the last evaluation:
+ * the change of the heat in the direction v (v' = c_j v), of the modes the step leaves under it
+ * (the step's solve is affine in the heat: its change under q + s dq, over s), of the cells'
+ * temperatures (linear in the modes), of the factors (the tables' slopes) and of the rows. */
+static int coupling_product(rs_transient *tr, const double *v, double *Jv)
+{
+  const rs_transient_coupling *cp = tr->coupling;
+  const rs_model *m = tr->m;
+  const int n = m->grid.n, neq = m->lay.neq;
+  if (!tr->pred || !tr->w_pt || !(tr->in_pt.velocity > 0.0)) return RS_OK;
+  tr->products++;
+  if (!tr->deriv_valid) factor_derivatives(tr);
+  const double cj = tr->cj_step, V = tr->in_pt.velocity;
+  for (int k = 0; k < neq; k++) tr->vp[k] = cj * v[k];
+  rs_model_power_jv(m, tr->w_pt, &tr->wlin, &tr->in_pt, cj, tr->y_pt, v, tr->vp, tr->dfric,
+                    tr->dplast);
+  const double frac = tr->thermal->par.plastic_heat_fraction;
+  double qmax = 0.0, dqmax = 0.0;
+  for (int i = 0; i < n; i++) {
+    tr->dq[i] = 1e-3 * (tr->dfric[i] + frac * tr->dplast[i]);
+    qmax = fmax(qmax, fabs(tr->q[i]));
+    dqmax = fmax(dqmax, fabs(tr->dq[i]));
+  }
+  if (!(dqmax > 0.0)) return RS_OK;
+  const double s = qmax > 0.0 ? qmax / dqmax : 1.0 / dqmax;
+  for (int i = 0; i < n; i++) tr->dq[i] = tr->q[i] + s * tr->dq[i];
+  rs_thermal_dae_solve(tr->thermal, V, tr->dq, tr->contact, cj, tr->pred + neq, tr->ratepred + neq,
+                       tr->theta_s, tr->cor_s);
+  rs_thermal_state_temperature(tr->thermal, V, tr->theta_s, tr->Ts);
+  for (int I = 0; I < n; I++) {
+    const int nr = tr->nrow[I];
+    if (!nr) continue;
+    const double dT = (tr->Ts[I] - cp->T_used[I]) / s, T = cp->T_used[I];
+    const double smu = cp->mu_factor ? rs_history_rate(cp->mu_table, T) / cp->mu_rest * dT : 0.0;
+    const double sy =
+        cp->yield_factor ? rs_history_rate(cp->tau_table, T) / cp->tau_rest * dT : 0.0;
+    const int *row = tr->rows + (size_t)I * RS_LAW_NROW;
+    for (int k = 0; k < nr; k++)
+      Jv[row[k]] += tr->dfdmu[(size_t)I * RS_LAW_NROW + k] * smu +
+                    tr->dfdyield[(size_t)I * RS_LAW_NROW + k] * sy;
+  }
+  return RS_OK;
+}
+
+/* The direct path's product (rs_nls_host.couple_jv). */
+static int couple_jv(void *data, const double *v, double *Cv)
+{
+  return coupling_product(data, v, Cv);
+}
+
 void rs_transient_free(rs_transient *tr)
 {
   if (!tr) return;
@@ -223,6 +368,21 @@ void rs_transient_free(rs_transient *tr)
   free(tr->theta);
   free(tr->contact);
   free(tr->T1);
+  free(tr->y_pt);
+  free(tr->theta_pt);
+  free(tr->cor);
+  free(tr->theta_s);
+  free(tr->cor_s);
+  free(tr->Ts);
+  free(tr->dq);
+  free(tr->dfric);
+  free(tr->dplast);
+  free(tr->vp);
+  free(tr->dfdmu);
+  free(tr->dfdyield);
+  free(tr->rows);
+  free(tr->nrow);
+  rs_work_free(&tr->wlin);
   rs_work_free(&tr->work);
   if (tr->own_ctx) SUNContext_Free(&tr->own_ctx);
   free(tr);
@@ -267,11 +427,32 @@ int rs_transient_create(rs_transient **out, const rs_model *m, SUNContext ctx, d
     tr->contact = malloc(n);
     tr->theta = malloc((size_t)(nfull - neq) * sizeof *tr->theta);
     tr->coupling = o->coupling;
+    int exact_ok = 1;
     if (tr->coupling) {
       tr->T1 = malloc(n * sizeof *tr->T1);
     }
+    if (tr->coupling && !tr->coupling->fixed_point) {
+      const size_t nm = (size_t)(nfull - neq), nr = n * RS_LAW_NROW;
+      tr->y_pt = malloc((size_t)neq * sizeof *tr->y_pt);
+      tr->vp = malloc((size_t)neq * sizeof *tr->vp);
+      tr->theta_pt = malloc(nm * sizeof *tr->theta_pt);
+      tr->cor = malloc(nm * sizeof *tr->cor);
+      tr->theta_s = malloc(nm * sizeof *tr->theta_s);
+      tr->cor_s = malloc(nm * sizeof *tr->cor_s);
+      tr->Ts = malloc(n * sizeof *tr->Ts);
+      tr->dq = malloc(n * sizeof *tr->dq);
+      tr->dfric = malloc(n * sizeof *tr->dfric);
+      tr->dplast = malloc(n * sizeof *tr->dplast);
+      tr->dfdmu = calloc(nr, sizeof *tr->dfdmu);
+      tr->dfdyield = calloc(nr, sizeof *tr->dfdyield);
+      tr->rows = calloc(nr, sizeof *tr->rows);
+      tr->nrow = calloc(n, sizeof *tr->nrow);
+      exact_ok = tr->y_pt && tr->vp && tr->theta_pt && tr->cor && tr->theta_s && tr->cor_s &&
+                 tr->Ts && tr->dq && tr->dfric && tr->dplast && tr->dfdmu && tr->dfdyield &&
+                 tr->rows && tr->nrow && rs_work_create_kinematics(&tr->wlin, m) == RS_OK;
+    }
     if (!tr->fric || !tr->plast || !tr->q || !tr->theta || !tr->contact || !tr->tmpl_c ||
-        (tr->coupling && !tr->T1)) {
+        (tr->coupling && !tr->T1) || !exact_ok) {
       rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory (transient solver, temperature modes)");
       goto fail;
     }
@@ -356,6 +537,13 @@ int rs_transient_create(rs_transient **out, const rs_model *m, SUNContext ctx, d
      * same GMRES count on the bench's start-ups. */
     rs_krylov_set_reuse(&tr->kry, 4.0, 2);
   }
+  const int exact = tr->coupling && !tr->coupling->fixed_point;
+  if (exact) { /* every evaluation of the contact rows reads the factors of its own step */
+    tr->work.before_laws = coupled_laws;
+    tr->work.before_laws_ctx = tr;
+    tr->kry.w.before_laws = coupled_laws;
+    tr->kry.w.before_laws_ctx = tr;
+  }
   tr->cj = 0.0;
   const rs_nls_host host = {.cj_slot = &tr->cj,
                             .inputs_at = host_inputs,
@@ -364,7 +552,9 @@ int rs_transient_create(rs_transient **out, const rs_model *m, SUNContext ctx, d
                             .neq_full = nfull,
                             .tail_rows = &tr->tail_rows,
                             .weight_scale = 1.0 / tr->weight_scale,
-                            .couple = tr->coupling ? couple_step : NULL};
+                            .couple = tr->coupling && !exact ? couple_step : NULL,
+                            .couple_begin = exact ? couple_begin : NULL,
+                            .couple_jv = exact && !krylov ? couple_jv : NULL};
   /* Newton-Krylov: the largest forcing term follows the tolerance, 30 rtol within [1e-3, 0.1]
    * (the term itself follows the Newton test, nls_kinsol.c). A loose tolerance's Newton test is
    * loose too, and a tight linear solve there only costs GMRES iterations; at tight tolerances
@@ -519,6 +709,7 @@ void rs_transient_get_stats(const rs_transient *tr, rs_stats *st)
   st->klu_analyses = rs_linsys_analyses(&tr->ls) + tr->kry.analyses;
   st->factorizations = rs_linsys_factorizations(&tr->ls) + tr->kry.factorizations;
   st->lin_solves = tr->kry.lin_iters; /* Newton-Krylov: GMRES iterations (else 0) */
+  st->coupling_products = tr->products;
 }
 
 /* solver.rtol auto: in proportion to the cell size, so that the time integration's error

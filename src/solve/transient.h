@@ -33,7 +33,8 @@ typedef struct rs_stats {
                          by rolling the material, or the solve failed) */
   long couplings;     /* steady solves of mu(T), tau_c0(T) coupled states (docs/model.md §18) */
   long coupling_newton;   /* their Newton steps */
-  long coupling_products; /* and the products with their Jacobian (GMRES iterations) */
+  long coupling_products; /* and the products with their Jacobian (GMRES iterations; in a
+                             transient those of the exact coupling, rs_transient_coupling) */
 } rs_stats;
 
 /* Linear algebra of the steady Newton iteration (all give the same solution to the
@@ -83,15 +84,28 @@ typedef struct rs_transient_opts {
  * reads (rs_model.mu_factor, rs_model.yield_factor, each NULL without its table) are
  * table(T)/rest at each cell's temperature T read from the modes (rs_thermal_state_temperature),
  * so that the contact rows depend on the DAE state, not on the heat of the point itself (that
- * would be a friction law falling with the slip velocity: ill-posed without memory). Each step:
- * the factors of the predicted modes, the contact rows solved with them held, the modes' rows
- * exactly at that point, the factors of the new modes, until a pass changes no contact row
- * beyond the contact's Newton test (block Gauss-Seidel on (contact | modes) within the step). */
+ * would be a friction law falling with the slip velocity: ill-posed without memory). Each
+ * step's system, contact and modes, is solved by one of:
+ * - exact (fixed_point = 0): the modes eliminated, the step's rows solved exactly for them
+ *   (rs_thermal_dae_solve, affine in the heat) at every evaluation of the contact rows, so that
+ *   these read the factors of the modes the point would leave after the step; Newton on the
+ *   contact unknowns. On the direct path (2D), once an iteration of a step's solve contracts
+ *   poorly, its step has the coupling's Jacobian J_ctheta dtheta/dy (the Schur complement's
+ *   term) added to the contact's, applied matrix-free with the held factorisation as
+ *   preconditioner (nls_kinsol.h); otherwise, and on the Krylov path (3D), the step is the
+ *   contact's own (the term's products cost more time than the iterations they save where the
+ *   coupling is weak, bench/RESULTS.md issue 43);
+ * - alternation (fixed_point = 1): the factors of the predicted modes, the contact rows solved
+ *   with them held, the modes' rows exactly at that point, the factors of the new modes, until
+ *   a pass changes no contact row beyond the contact's Newton test (block Gauss-Seidel on
+ *   (contact | modes) within the step).
+ * Both solve the same equations, to the contact's Newton test. */
 typedef struct rs_transient_coupling {
   const rs_history *mu_table, *tau_table; /* NULL: no such table */
   double mu_rest, tau_rest;               /* mu_law(0) and plasticity.tau_c0 */
   double *mu_factor, *yield_factor;       /* [n], those the model points at */
   double *T_used;                         /* [n]: the temperatures of the factors */
+  int fixed_point;                        /* 1: the alternation (temperature.coupling) */
 } rs_transient_coupling;
 
 /* Unknowns of the integrated system: the model's neq, plus the temperature modes. */

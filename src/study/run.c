@@ -238,7 +238,9 @@ static int run_transient(run_state *s, const rs_run_opts *o, rs_run_result *res,
                                           .tau_rest = s->temp.tau_rest,
                                           .mu_factor = s->temp.mu_factor,
                                           .yield_factor = s->temp.yield_factor,
-                                          .T_used = s->temp.T_used};
+                                          .T_used = s->temp.T_used,
+                                          .fixed_point =
+                                              s->temp.coupling == RS_COUPLING_FIXED_POINT};
   if (s->temp.modes && s->temp.T_used) topts.coupling = &coupling;
   if (rig) {
     topts.step_hook = rs_rig_run_step;
