@@ -19,3 +19,9 @@ set_tests_properties(py_pip_install PROPERTIES ENVIRONMENT "PIP_ROOT_USER_ACTION
 # set= as a dict or a list of "KEY=VALUE" strings; anything else a TypeError saying so.
 add_test(NAME py_api_set COMMAND ${SYSTEM_PYTHON3} ${RS_TESTS}/check_python_set.py ${RS_CASES})
 set_tests_properties(py_api_set PROPERTIES ENVIRONMENT "ROLLSIM_LIB=$<TARGET_FILE:rollsim_shared>")
+# rollsim.sweep on profiles (a path of wheelset positions) equals the command line's file bit for
+# bit; rollsim.run on profiles points to the command line.
+add_test(NAME py_api_profiles
+  COMMAND ${SYSTEM_PYTHON3} ${RS_TESTS}/check_python_profiles.py ${RS_BIN}
+    ${RS_CASES}/profiles/mbench_a22_right.yaml ${RS_PY_WORK}/profiles)
+set_tests_properties(py_api_profiles PROPERTIES ENVIRONMENT "ROLLSIM_LIB=$<TARGET_FILE:rollsim_shared>")

@@ -9,10 +9,12 @@
 
 /* rollsim run CASE [--set ...] -o OUT. Returns the status (base/status.h: 0 ok, 2 invalid
  * input, 3 solver failure, 4 interrupted, 1 internal, 5 output); on failure msg holds the
- * command line's message. */
+ * command line's message. A case with profiles: is refused (2): its run writes one file per
+ * contact patch, the command line's. */
 int rs_api_run(const char *case_path, const char *const *sets, int nsets, const char *out_path,
                char *msg, size_t msg_len);
-/* rollsim sweep CASE [--set ...] -o OUT. */
+/* rollsim sweep CASE [--set ...] -o OUT (on profiles: a path of wheelset positions, its
+ * progress called once at the end). */
 int rs_api_sweep(const char *case_path, const char *const *sets, int nsets, const char *out_path,
                  char *msg, size_t msg_len);
 /* rs_api_sweep with progress(ctx, points done, points in all) after every point (the

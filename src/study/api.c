@@ -27,8 +27,7 @@ static int load_sweep(rs_case *c, rs_sweep *sw, const char *case_path, const cha
 {
   int status = rs_case_load(c, case_path, sets, nsets, m);
   if (status != RS_OK) return status;
-  status = rs_case_refuse_profiles(c, m);
-  if (status == RS_OK && !c->has_sweep)
+  if (!c->has_sweep)
     status = rs_msg_set(m, RS_ERR_INPUT, "%s: the case has no sweep: block (use rollsim run)",
                         case_path);
   else if (status == RS_OK)
@@ -44,9 +43,13 @@ int rs_api_run(const char *case_path, const char *const *sets, int nsets, const 
   rs_case c;
   int status = rs_case_load(&c, case_path, sets, nsets, &m);
   if (status != RS_OK) return finish(status, &m, msg, msg_len);
-  if ((status = rs_case_refuse_profiles(&c, &m)) != RS_OK) {
+  if (c.has_profiles) { /* one file per patch: the command line's */
+    rs_msg_set(&m, RS_ERR_INPUT,
+               "%s: profiles: a run on profiles writes one file per contact patch and is the "
+               "command line's (rollsim run); the API's sweep runs paths of wheelset positions",
+               case_path);
     rs_case_free(&c);
-    return finish(status, &m, msg, msg_len);
+    return finish(RS_ERR_INPUT, &m, msg, msg_len);
   }
   volatile sig_atomic_t stop = 0;
   const rs_run_opts o = {.output_path = out_path,
@@ -71,6 +74,18 @@ static int api_sweep(const char *case_path, const char *const *sets, int nsets,
   int status = load_sweep(&c, &sw, case_path, sets, nsets, &m);
   if (status != RS_OK) return finish(status, &m, msg, msg_len);
   volatile sig_atomic_t stop = 0;
+  if (sw.positions) { /* a sweep on profiles: a path of wheelset positions */
+    const rs_wr_sweep_opts wo = {.output_path = out_path,
+                                 .history = history,
+                                 .case_text = c.yaml_text ? c.yaml_text : "",
+                                 .interrupt_flag = &stop};
+    rs_wr_sweep_result wres;
+    status = rs_wheel_rail_sweep(&c, &sw, &wo, &wres, &m);
+    if (progress) progress(ctx, wres.done + wres.failed, sw.npoints);
+    rs_sweep_free(&sw);
+    rs_case_free(&c);
+    return finish(status, &m, msg, msg_len);
+  }
   const rs_run_opts o = {.output_path = out_path, .history = history, .interrupt_flag = &stop};
   const rs_sweep_dist d = {.progress = progress, .progress_ctx = ctx};
   rs_sweep_result res;
