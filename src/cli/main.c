@@ -184,6 +184,13 @@ static int cmd_check(const rs_case *c, const cli_args *a, const rs_sweep *sw)
   return status == RS_ERR_SOLVER ? RS_ERR_INPUT : status;
 }
 
+/* The summary's output line: the file written and where an older one was kept ("" none). */
+static void print_output(const char *file, const char *backup)
+{
+  printf("  output: %s%s%s%s\n", file, *backup ? " (the previous file kept as " : "", backup,
+         *backup ? ")" : "");
+}
+
 /* rollsim sweep on profiles: a path of wheelset positions, on rank 0 only. */
 static int cmd_sweep_positions(const rs_case *c, const cli_args *a, const rs_sweep *sw,
                                const rs_run_opts *o)
@@ -215,8 +222,7 @@ static int cmd_sweep_positions(const rs_case *c, const cli_args *a, const rs_swe
   for (int k = 0; k < sw->naxes; k++) printf(" %s", sw->axes[k].key);
   printf("; %zu solved, %zu failed, Newton iterations %ld, wall time %.3f s\n", res.done,
          res.failed, res.newton, res.wall_seconds);
-  printf("  output: %s%s%s%s\n", res.file, *res.backup ? " (the previous file kept as " : "",
-         res.backup, *res.backup ? ")" : "");
+  print_output(res.file, res.backup);
   return status;
 }
 
@@ -436,9 +442,7 @@ static int cmd_run_patches(const rs_case *c, const cli_args *a, const rs_run_opt
   if (rs_wheel_rail_moving(c)) {
     printf("moving wheelset: %zu intervals written, Newton iterations %ld, steps %ld\n",
            res.records, res.newton, res.steps);
-    if (*res.file)
-      printf("  output: %s%s%s%s\n", res.file, *res.backup ? " (the previous file kept as " : "",
-             res.backup, *res.backup ? ")" : "");
+    if (*res.file) print_output(res.file, res.backup);
   } else {
     printf("%d patch(es) found, %d run: Newton iterations %ld, steps %ld\n", res.patches, res.runs,
            res.newton, res.steps);

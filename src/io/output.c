@@ -373,6 +373,22 @@ int rs_output_keep_old(const char *path, char *backup, size_t len, rs_msg *msg)
   return RS_OK;
 }
 
+int rs_output_commit_part(int nc_err, const char *part, const char *path, int keep_old,
+                          char *backup, size_t len, const char *what, rs_msg *msg)
+{
+  int status = RS_OK;
+  if (nc_err) {
+    status = rs_output_nc_failure(msg, path, what, nc_err);
+    remove(part);
+  } else if (keep_old && (status = rs_output_keep_old(path, backup, len, msg)) != RS_OK) {
+    remove(part);
+  } else if (rename(part, path) != 0) {
+    status = rs_msg_set(msg, RS_ERR_OUTPUT, "output file %s: cannot rename %s to it", path, part);
+    remove(part);
+  }
+  return status;
+}
+
 char *rs_output_get_text(int ncid, int varid, const char *name)
 {
   size_t len = 0;

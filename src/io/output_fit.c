@@ -165,17 +165,8 @@ int rs_fit_output_write(const rs_fit_output *o, char *backup, size_t backup_len,
     const int cerr = nc_close(ncid);
     if (!err) err = cerr;
   }
-  if (err) {
-    status = rs_output_nc_failure(msg, o->path, "writing the fit file", err);
-    remove(part);
-  } else if (o->keep_old &&
-             (status = rs_output_keep_old(o->path, backup, backup_len, msg)) != RS_OK) {
-    remove(part);
-  } else if (rename(part, o->path) != 0) {
-    status =
-        rs_msg_set(msg, RS_ERR_OUTPUT, "output file %s: cannot rename %s to it", o->path, part);
-    remove(part);
-  }
+  status = rs_output_commit_part(err, part, o->path, o->keep_old, backup, backup_len,
+                                 "writing the fit file", msg);
   free(part);
   free(buf);
   free(col_id);

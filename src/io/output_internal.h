@@ -95,6 +95,11 @@ int rs_output_make_parent_dirs(const char *path, rs_msg *msg);
 /* An existing regular file at path is renamed to path~ (replacing an older path~);
  * backup gets path~ then, else "". Nothing to do when path does not exist. */
 int rs_output_keep_old(const char *path, char *backup, size_t len, rs_msg *msg);
+/* A file written whole to PART moved over PATH: with nc_err (writing PART failed) the netCDF
+ * failure ("output file PATH: WHAT: ..."); else the older PATH kept as PATH~ when keep_old
+ * (rs_output_keep_old) and PART renamed to PATH. PART is removed on any failure. */
+int rs_output_commit_part(int nc_err, const char *part, const char *path, int keep_old,
+                          char *backup, size_t len, const char *what, rs_msg *msg);
 /* Text of a global text attribute (malloc'ed, NUL-terminated; "" when absent), NULL
  * when out of memory. */
 char *rs_output_get_text(int ncid, int varid, const char *name);

@@ -66,16 +66,8 @@ int rs_positions_output_write(const rs_positions_output *o, char *backup, size_t
     const int cerr = nc_close(ncid);
     if (!err) err = cerr;
   }
-  if (err) {
-    status = rs_output_nc_failure(msg, o->path, "writing the sweep file", err);
-    remove(part);
-  } else if ((status = rs_output_keep_old(o->path, backup, backup_len, msg)) != RS_OK) {
-    remove(part);
-  } else if (rename(part, o->path) != 0) {
-    status =
-        rs_msg_set(msg, RS_ERR_OUTPUT, "output file %s: cannot rename %s to it", o->path, part);
-    remove(part);
-  }
+  status = rs_output_commit_part(err, part, o->path, 1, backup, backup_len,
+                                 "writing the sweep file", msg);
   free(part);
   free(ids);
   free(buf);

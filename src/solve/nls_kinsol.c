@@ -12,6 +12,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "solve/gmres_cycle.h"
+
 typedef struct nls_content {
   const rs_model *m;
   rs_work *w;
@@ -275,13 +277,22 @@ static double dot(const double *a, const double *b, int n)
  * u-scaled norm from d = delta (the uncoupled step): the residual there, -P^-1 C delta, is the
  * Neumann series' next term (taken as the step's correction when small) and GMRES's first basis
  * vector otherwise (modified Gram-Schmidt, Givens rotations, one cycle). */
+typedef struct coupled_ctx {
+  nls_content *c;
+  const double *s;
+} coupled_ctx;
+
+static int coupled_apply(void *ctx, const double *x, double *out)
+{
+  const coupled_ctx *k = ctx;
+  return coupled_op(k->c, k->s, x, out);
+}
+
 static int coupled_step(nls_content *c, N_Vector delta)
 {
   const int neq = c->m->lay.neq, mk = COUPLE_KRYLOV;
   const double *s = N_VGetArrayPointer(c->uscale);
   double *d = N_VGetArrayPointer(delta), *V = c->basis;
-  double H[COUPLE_KRYLOV + 1][COUPLE_KRYLOV], cs[COUPLE_KRYLOV], sn[COUPLE_KRYLOV],
-      g[COUPLE_KRYLOV + 1], yk[COUPLE_KRYLOV];
   double *b = V + (size_t)mk * neq; /* the right-hand side, in the last basis slot (free until
                                       the last iteration, when it is no longer needed) */
   for (int i = 0; i < neq; i++) b[i] = d[i] * s[i];
@@ -297,58 +308,17 @@ static int coupled_step(nls_content *c, N_Vector delta)
     return 0;
   }
   for (int i = 0; i < neq; i++) V[i] /= beta;
-  g[0] = beta;
-  int k = 0;
-  for (; k < mk; k++) {
-    double *v = V + (size_t)(k + 1) * neq;
-    if ((flag = coupled_op(c, s, V + (size_t)k * neq, v)) != 0) return flag;
-    for (int i = 0; i <= k; i++) {
-      const double h = dot(v, V + (size_t)i * neq, neq);
-      H[i][k] = h;
-      for (int j = 0; j < neq; j++) v[j] -= h * V[(size_t)i * neq + j];
-    }
-    const double hn = sqrt(dot(v, v, neq));
-    H[k + 1][k] = hn;
-    if (hn > 0.0)
-      for (int j = 0; j < neq; j++) v[j] /= hn;
-    for (int i = 0; i < k; i++) {
-      const double a = H[i][k], bb = H[i + 1][k];
-      H[i][k] = cs[i] * a + sn[i] * bb;
-      H[i + 1][k] = -sn[i] * a + cs[i] * bb;
-    }
-    const double rr = hypot(H[k][k], H[k + 1][k]);
-    cs[k] = rr > 0.0 ? H[k][k] / rr : 1.0;
-    sn[k] = rr > 0.0 ? H[k + 1][k] / rr : 0.0;
-    H[k][k] = rr;
-    H[k + 1][k] = 0.0;
-    g[k + 1] = -sn[k] * g[k];
-    g[k] = cs[k] * g[k];
-    if (fabs(g[k + 1]) <= COUPLE_ETA * bnorm || hn == 0.0) {
-      k++;
-      break;
-    }
-  }
-  for (int i = k - 1; i >= 0; i--) {
-    double sum = g[i];
-    for (int l = i + 1; l < k; l++) sum -= H[i][l] * yk[l];
-    yk[i] = H[i][i] != 0.0 ? sum / H[i][i] : 0.0;
-  }
-  for (int i = 0; i < k; i++)
-    for (int j = 0; j < neq; j++) d[j] += yk[i] * V[(size_t)i * neq + j] / s[j];
-  return 0;
+  coupled_ctx ctx = {c, s};
+  double res;
+  int used;
+  return rs_gmres_cycle(neq, mk, coupled_apply, &ctx, V, beta, COUPLE_ETA * bnorm, s, d, &res,
+                        &used);
 }
 
-/* Contact solves per step with host.couple before the step is declared failed. */
-#define COUPLE_PASSES 30
-
-/* The exact coupling's step: the contact rows (whose evaluations eliminate the tail) to the
- * contact's Newton test, then the tail's rows at the converged point, as without coupling. */
-static int coupled_solve(nls_content *c, N_Vector ycor, sunrealtype tol, void *mem)
+/* The tail's rows at the point ycor the contact rows converged to (the full system evaluated
+ * there first when Newton's last evaluation was elsewhere). */
+static int tail_at(nls_content *c, N_Vector ycor, void *mem)
 {
-  *c->host.tail_rows = 0;
-  int flag = contact_solve(c, c->ycor_c, c->w_c, tol, mem);
-  *c->host.tail_rows = 1;
-  if (flag != SUN_NLS_SUCCESS) return flag;
   const size_t bytes = (size_t)c->m->lay.neq * sizeof(double);
   if (memcmp(N_VGetArrayPointer(c->ycor_full), N_VGetArrayPointer(ycor), bytes) != 0) {
     memcpy(N_VGetArrayPointer(c->ycor_full), N_VGetArrayPointer(ycor), bytes);
@@ -362,6 +332,20 @@ static int coupled_solve(nls_content *c, N_Vector ycor, sunrealtype tol, void *m
                       N_VGetArrayPointer(ycor)) == RS_OK
              ? SUN_NLS_SUCCESS
              : -1;
+}
+
+/* Contact solves per step with host.couple before the step is declared failed. */
+#define COUPLE_PASSES 30
+
+/* The exact coupling's step: the contact rows (whose evaluations eliminate the tail) to the
+ * contact's Newton test, then the tail's rows at the converged point, as without coupling. */
+static int coupled_solve(nls_content *c, N_Vector ycor, sunrealtype tol, void *mem)
+{
+  *c->host.tail_rows = 0;
+  int flag = contact_solve(c, c->ycor_c, c->w_c, tol, mem);
+  *c->host.tail_rows = 1;
+  if (flag != SUN_NLS_SUCCESS) return flag;
+  return tail_at(c, ycor, mem);
 }
 
 /* With a tail: the contact rows on views of the first neq entries, then the tail's rows at
@@ -411,19 +395,12 @@ static int nls_solve(SUNNonlinearSolver nls, N_Vector y0, N_Vector ycor, N_Vecto
     iters += c->last_iters;
     c->last_iters = iters;
     if (flag != SUN_NLS_SUCCESS) return flag;
-    const size_t bytes = (size_t)c->m->lay.neq * sizeof(double);
-    if (memcmp(N_VGetArrayPointer(c->ycor_full), N_VGetArrayPointer(ycor), bytes) != 0) {
-      memcpy(N_VGetArrayPointer(c->ycor_full), N_VGetArrayPointer(ycor), bytes);
-      if (c->sysfn(c->ycor_full, c->f_full, mem) != 0) return SUN_NLS_CONV_RECVR;
-    }
+    if ((flag = tail_at(c, ycor, mem)) != SUN_NLS_SUCCESS) return flag;
+    if (!c->host.couple) return SUN_NLS_SUCCESS;
     sunrealtype tcur, cj;
     N_Vector ypred, yppred, yn, ypn, res;
     void *udata;
     IDAGetNonlinearSystemData(mem, &tcur, &ypred, &yppred, &yn, &ypn, &res, &cj, &udata);
-    flag = c->host.tail(c->host.ctx, cj, N_VGetArrayPointer(ypred), N_VGetArrayPointer(yppred),
-                        N_VGetArrayPointer(ycor));
-    if (flag != RS_OK) return -1;
-    if (!c->host.couple) return SUN_NLS_SUCCESS;
     /* the contact's own Newton test (direct_solve: 1/100 of IDA's tolerance) */
     double change = 0.0;
     if (c->host.couple(c->host.ctx, N_VGetArrayPointer(ypred), N_VGetArrayPointer(ycor), wc,

@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "physics/history.h"
+#include "solve/gmres_cycle.h"
 
 int rs_temperature_coupled(const rs_case *c) { return c->mu_table.n || c->tau_c0_table.n; }
 
@@ -371,16 +372,26 @@ static int coupling_times(coupling_newton *cn, const rs_inputs *in, const double
   return RS_OK;
 }
 
-/* GMRES (modified Gram-Schmidt, Givens rotations, restarted) for (I - dPhi/dT) x = rhs over the
- * nc contact cells, from x = 0, to |rhs - A x|_2 <= rtol |rhs|_2. */
+typedef struct coupling_op_ctx {
+  coupling_newton *cn;
+  const rs_inputs *in;
+  rs_msg *msg;
+} coupling_op_ctx;
+
+static int coupling_apply(void *ctx, const double *v, double *Jv)
+{
+  const coupling_op_ctx *k = ctx;
+  return coupling_times(k->cn, k->in, v, Jv, k->msg);
+}
+
+/* Restarted GMRES (solve/gmres_cycle.h) for (I - dPhi/dT) x = rhs over the nc contact cells,
+ * from x = 0, to |rhs - A x|_2 <= rtol |rhs|_2. */
 #define RS_COUPLING_KRYLOV 30
 static int coupling_gmres(coupling_newton *cn, const rs_inputs *in, const double *rhs, double *x,
                           double rtol, rs_msg *msg)
 {
   const int nc = cn->nc, mk = nc < RS_COUPLING_KRYLOV ? nc : RS_COUPLING_KRYLOV;
   double *V = malloc((size_t)(mk + 1) * nc * sizeof *V), *Av = malloc((size_t)nc * sizeof *Av);
-  double H[RS_COUPLING_KRYLOV + 1][RS_COUPLING_KRYLOV], cs[RS_COUPLING_KRYLOV],
-      sn[RS_COUPLING_KRYLOV], g[RS_COUPLING_KRYLOV + 1], yk[RS_COUPLING_KRYLOV];
   int status = V && Av ? RS_OK : rs_msg_set(msg, RS_ERR_INTERNAL, "out of memory (coupling)");
   double bnorm = 0.0;
   for (int j = 0; j < nc; j++) {
@@ -388,6 +399,7 @@ static int coupling_gmres(coupling_newton *cn, const rs_inputs *in, const double
     x[j] = 0.0;
   }
   bnorm = sqrt(bnorm);
+  coupling_op_ctx ctx = {cn, in, msg};
   for (int restart = 0; restart < 4 && status == RS_OK && bnorm > 0.0; restart++) {
     /* r = rhs - A x */
     if (restart == 0) {
@@ -401,49 +413,11 @@ static int coupling_gmres(coupling_newton *cn, const rs_inputs *in, const double
     beta = sqrt(beta);
     if (beta <= rtol * bnorm) break;
     for (int j = 0; j < nc; j++) V[j] /= beta;
-    g[0] = beta;
-    int k = 0;
-    for (; k < mk; k++) {
-      double *v = V + (size_t)(k + 1) * nc;
-      if ((status = coupling_times(cn, in, V + (size_t)k * nc, v, msg)) != RS_OK) break;
-      for (int i = 0; i <= k; i++) {
-        double dot = 0.0;
-        for (int j = 0; j < nc; j++) dot += v[j] * V[(size_t)i * nc + j];
-        H[i][k] = dot;
-        for (int j = 0; j < nc; j++) v[j] -= dot * V[(size_t)i * nc + j];
-      }
-      double hn = 0.0;
-      for (int j = 0; j < nc; j++) hn += v[j] * v[j];
-      hn = sqrt(hn);
-      H[k + 1][k] = hn;
-      if (hn > 0.0)
-        for (int j = 0; j < nc; j++) v[j] /= hn;
-      for (int i = 0; i < k; i++) { /* the earlier rotations */
-        const double a = H[i][k], b = H[i + 1][k];
-        H[i][k] = cs[i] * a + sn[i] * b;
-        H[i + 1][k] = -sn[i] * a + cs[i] * b;
-      }
-      const double rr = hypot(H[k][k], H[k + 1][k]);
-      cs[k] = rr > 0.0 ? H[k][k] / rr : 1.0;
-      sn[k] = rr > 0.0 ? H[k + 1][k] / rr : 0.0;
-      H[k][k] = rr;
-      H[k + 1][k] = 0.0;
-      g[k + 1] = -sn[k] * g[k];
-      g[k] = cs[k] * g[k];
-      if (fabs(g[k + 1]) <= rtol * bnorm || hn == 0.0) {
-        k++;
-        break;
-      }
-    }
-    if (status != RS_OK) break;
-    for (int i = k - 1; i >= 0; i--) { /* x += V y, H y = g */
-      double sum = g[i];
-      for (int l = i + 1; l < k; l++) sum -= H[i][l] * yk[l];
-      yk[i] = H[i][i] != 0.0 ? sum / H[i][i] : 0.0;
-    }
-    for (int i = 0; i < k; i++)
-      for (int j = 0; j < nc; j++) x[j] += yk[i] * V[(size_t)i * nc + j];
-    if (k > 0 && fabs(g[k]) <= rtol * bnorm) break;
+    double res;
+    int used;
+    status =
+        rs_gmres_cycle(nc, mk, coupling_apply, &ctx, V, beta, rtol * bnorm, NULL, x, &res, &used);
+    if (status == RS_OK && used > 0 && res <= rtol * bnorm) break;
   }
   free(V);
   free(Av);
